@@ -1,0 +1,10 @@
+#pragma once
+// One function per subcommand of the `arcplan` executable; each lives in its own *_command.cpp,
+// parses its options and calls the library.
+#include <CLI/CLI.hpp>
+
+namespace arcplan::apps {
+
+void registerRobotCommand(CLI::App& app);
+
+}  // namespace arcplan::apps

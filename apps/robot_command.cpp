@@ -1,0 +1,125 @@
+// arcplan robot fk|ik|check — kinematics and collision queries on one configuration.
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "arcplan/common/error.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/pose.h"
+#include "arcplan/robot/robot_model.h"
+#include "arcplan/robot/ur_inverse_kinematics.h"
+#include "cli_support.h"
+#include "commands.h"
+
+namespace arcplan::apps {
+namespace {
+
+struct RobotOptions {
+  std::string urdf;
+  std::string tip = "tool0";
+  std::string json;
+};
+
+void addRobotOptions(CLI::App& command, RobotOptions& options) {
+  command.add_option("--urdf", options.urdf, "URDF file (default: arcplan's UR10e)");
+  command.add_option("--tip", options.tip, "tip link of the chain")->capture_default_str();
+  command.add_option("--json", options.json, "write the result as JSON to this file ('-' for stdout)");
+}
+
+robot::RobotModel loadModel(const RobotOptions& options) {
+  const std::filesystem::path urdf = options.urdf.empty() ? robot::ur10eUrdfPath() : std::filesystem::path(options.urdf);
+  if (!std::filesystem::exists(urdf)) throw Error("URDF file " + urdf.string() + " does not exist");
+  return robot::loadRobotModel(urdf, {"base_link", options.tip});
+}
+
+nlohmann::json toJson(const robot::Vector6& q) { return std::vector<double>(q.data(), q.data() + 6); }
+
+void printVector(const robot::Vector6& q) {
+  std::cout << std::fixed << std::setprecision(6);
+  for (int j = 0; j < 6; ++j) std::cout << (j ? ", " : "") << std::setw(10) << q[j];
+  std::cout << "\n";
+}
+
+void runForwardKinematics(const RobotOptions& options, const std::string& jointText) {
+  const auto model = loadModel(options);
+  const auto values = parseVector(jointText, "--joints", static_cast<std::size_t>(model.dof()));
+  const Eigen::Map<const Eigen::VectorXd> q(values.data(), static_cast<Eigen::Index>(values.size()));
+  for (int j = 0; j < model.dof(); ++j) {
+    const auto& limits = model.joints()[j].limits;
+    if (q[j] < limits.lower || q[j] > limits.upper) {
+      throw Error("--joints: joint " + std::to_string(j) + " (" + model.joints()[j].name + ") = " + std::to_string(q[j]) +
+                  " is outside its limits [" + std::to_string(limits.lower) + ", " + std::to_string(limits.upper) + "]");
+    }
+  }
+  const Eigen::Isometry3d pose = robot::tipPose(model, q);
+  const auto xyzRpy = robot::xyzRpyFromPose(pose);
+  std::cout << std::fixed << std::setprecision(6) << options.tip << " in base_link\n"
+            << "  position [m]   " << pose.translation().transpose() << "\n"
+            << "  rpy [rad]      " << xyzRpy[3] << " " << xyzRpy[4] << " " << xyzRpy[5] << "\n"
+            << "  rotation       " << pose.linear().row(0) << "\n"
+            << "                 " << pose.linear().row(1) << "\n"
+            << "                 " << pose.linear().row(2) << "\n";
+  if (!options.json.empty()) {
+    nlohmann::json rotation = nlohmann::json::array();
+    for (int r = 0; r < 3; ++r) rotation.push_back({pose.linear()(r, 0), pose.linear()(r, 1), pose.linear()(r, 2)});
+    writeJson(options.json, {{"link", options.tip},
+                             {"joints", values},
+                             {"position", {pose.translation().x(), pose.translation().y(), pose.translation().z()}},
+                             {"rotation", rotation},
+                             {"rpy", {xyzRpy[3], xyzRpy[4], xyzRpy[5]}}});
+  }
+}
+
+void runInverseKinematics(const RobotOptions& options, const std::string& poseText, const std::string& seedText) {
+  const auto model = loadModel(options);
+  const robot::UrInverseKinematics ik(model);
+  const auto values = parseVector(poseText, "--pose", 6);
+  const Eigen::Isometry3d target = robot::poseFromXyzRpy({values[0], values[1], values[2], values[3], values[4], values[5]});
+  const auto solutions = ik.solveAll(target);
+  if (solutions.empty()) {
+    throw Error("--pose: no inverse-kinematics solution: the pose is out of reach of " + model.name() +
+                " or outside its joint limits");
+  }
+  std::cout << solutions.size() << " solutions inside the joint limits (" << ik.solveBranches(target).size()
+            << " analytic branches)\n";
+  for (const auto& q : ik.solveBranches(target)) {
+    std::cout << "  branch " << ik.branchOf(q) << ": ";
+    printVector(q);
+  }
+  nlohmann::json result{{"pose", values}, {"solutions", nlohmann::json::array()}};
+  for (const auto& q : solutions) result["solutions"].push_back(toJson(q));
+  if (!seedText.empty()) {
+    const auto seedValues = parseVector(seedText, "--seed", 6);
+    const robot::Vector6 seed = Eigen::Map<const robot::Vector6>(seedValues.data());
+    const auto nearest = ik.solveNearest(target, seed);
+    if (!nearest) throw Error("--seed: no solution inside the joint limits");
+    std::cout << "nearest to seed: ";
+    printVector(*nearest);
+    result["nearest"] = toJson(*nearest);
+  }
+  if (!options.json.empty()) writeJson(options.json, result);
+}
+
+}  // namespace
+
+void registerRobotCommand(CLI::App& app) {
+  auto* robotCommand = app.add_subcommand("robot", "kinematics and collision checks of one robot configuration");
+  robotCommand->require_subcommand(1);
+
+  auto options = std::make_shared<RobotOptions>();
+  auto joints = std::make_shared<std::string>();
+  auto* fk = robotCommand->add_subcommand("fk", "forward kinematics: tip pose of a joint vector");
+  fk->add_option("--joints", *joints, "joint angles q0,...,q5 [rad]")->required();
+  addRobotOptions(*fk, *options);
+  fk->callback([options, joints] { runForwardKinematics(*options, *joints); });
+
+  auto pose = std::make_shared<std::string>();
+  auto seed = std::make_shared<std::string>();
+  auto* ik = robotCommand->add_subcommand("ik", "inverse kinematics: every joint solution of a tip pose");
+  ik->add_option("--pose", *pose, "tip pose x,y,z,roll,pitch,yaw [m, rad] in base_link")->required();
+  ik->add_option("--seed", *seed, "joint vector; also report the solution nearest to it");
+  addRobotOptions(*ik, *options);
+  ik->callback([options, pose, seed] { runInverseKinematics(*options, *pose, *seed); });
+}
+
+}  // namespace arcplan::apps

@@ -1,0 +1,47 @@
+#include "arcplan/common/atomic_file.h"
+
+#include <system_error>
+#include <unistd.h>
+
+#include "arcplan/common/error.h"
+
+namespace arcplan {
+
+AtomicOutputFile::AtomicOutputFile(std::filesystem::path target) : target_(std::move(target)) {
+  if (target_.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(target_.parent_path(), ec);
+    if (ec) throw Error("cannot create directory " + target_.parent_path().string() + ": " + ec.message());
+  }
+  // pid in the name: concurrent writers (benchmark shards) never share a temporary file.
+  temporary_ = target_;
+  temporary_ += ".tmp." + std::to_string(::getpid());
+  stream_.open(temporary_, std::ios::out | std::ios::trunc | std::ios::binary);
+  if (!stream_) throw Error("cannot write " + target_.string() + " (temporary " + temporary_.string() + ")");
+}
+
+AtomicOutputFile::~AtomicOutputFile() {
+  if (!committed_) {
+    stream_.close();
+    std::error_code ignored;
+    std::filesystem::remove(temporary_, ignored);
+  }
+}
+
+void AtomicOutputFile::commit() {
+  stream_.flush();
+  if (!stream_) throw Error("writing " + target_.string() + " failed");
+  stream_.close();
+  std::error_code ec;
+  std::filesystem::rename(temporary_, target_, ec);
+  if (ec) throw Error("cannot move " + temporary_.string() + " to " + target_.string() + ": " + ec.message());
+  committed_ = true;
+}
+
+void writeFileAtomically(const std::filesystem::path& target, const std::string& content) {
+  AtomicOutputFile file(target);
+  file.stream() << content;
+  file.commit();
+}
+
+}  // namespace arcplan

@@ -1,0 +1,31 @@
+#pragma once
+// Forward kinematics and the geometric Jacobian of a RobotModel's chain.
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "arcplan/robot/robot_model.h"
+
+namespace arcplan::robot {
+
+using JointVector = Eigen::VectorXd;
+using JointRef = Eigen::Ref<const Eigen::VectorXd>;
+using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>;  // rows: linear (3), angular (3)
+
+// Scratch space for kinematics; one per thread, reused across calls.
+struct KinematicsData {
+  explicit KinematicsData(const RobotModel& model);
+  std::vector<Eigen::Isometry3d> linkPoses;  // in the base link frame, indexed like model.links()
+};
+
+// Poses of every link of the model for joint vector q (size model.dof()).
+void forwardKinematics(const RobotModel& model, const JointRef& q, KinematicsData& data);
+
+// Pose of the tip link (allocates a workspace; use forwardKinematics in loops).
+Eigen::Isometry3d tipPose(const RobotModel& model, const JointRef& q);
+
+// Geometric Jacobian of `link` (default: tip) in the base frame, reference point at the link
+// origin: [v; w] = J(q)·qd. Uses data.linkPoses, so call forwardKinematics(q) first.
+Jacobian jacobian(const RobotModel& model, const KinematicsData& data, int link = -1);
+
+}  // namespace arcplan::robot

@@ -1,0 +1,243 @@
+#include "arcplan/robot/robot_model.h"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include <console_bridge/console.h>
+#include <tinyxml.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "arcplan/common/error.h"
+#include "arcplan/common/resources.h"
+#include "arcplan/robot/package_path.h"
+#include "arcplan/robot/pose.h"
+
+namespace arcplan::robot {
+namespace {
+
+// urdfdom reports its parse errors through console_bridge; collect them so the exception we
+// throw carries urdfdom's own explanation instead of a bare "parse failed".
+class CollectingOutputHandler : public console_bridge::OutputHandler {
+public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) messages.push_back(text);
+  }
+  std::vector<std::string> messages;
+};
+
+std::mutex consoleBridgeMutex;  // console_bridge's output handler is process-global
+
+Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
+  Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
+  transform.translation() << pose.position.x, pose.position.y, pose.position.z;
+  transform.linear() =
+      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z).normalized().toRotationMatrix();
+  return transform;
+}
+
+std::string where(const std::filesystem::path& file) { return file.empty() ? std::string("URDF") : file.string(); }
+
+CollisionGeometry convertCollision(const urdf::Collision& collision, const std::string& linkName,
+                                   const std::filesystem::path& sourceFile) {
+  CollisionGeometry geometry;
+  geometry.origin = toIsometry(collision.origin);
+  if (!collision.geometry) throw Error(where(sourceFile) + ": link '" + linkName + "' has a <collision> without <geometry>");
+  switch (collision.geometry->type) {
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(*collision.geometry);
+      geometry.shape = CollisionGeometry::Shape::Mesh;
+      try {
+        geometry.meshFile = resolveResourceUri(mesh.filename, sourceFile);
+      } catch (const Error& e) {
+        throw Error(where(sourceFile) + ": link '" + linkName + "': " + e.what());
+      }
+      geometry.meshScale << mesh.scale.x, mesh.scale.y, mesh.scale.z;
+      break;
+    }
+    case urdf::Geometry::BOX: {
+      const auto& box = static_cast<const urdf::Box&>(*collision.geometry);
+      geometry.shape = CollisionGeometry::Shape::Box;
+      geometry.boxSize << box.dim.x, box.dim.y, box.dim.z;
+      break;
+    }
+    case urdf::Geometry::SPHERE:
+      geometry.shape = CollisionGeometry::Shape::Sphere;
+      geometry.radius = static_cast<const urdf::Sphere&>(*collision.geometry).radius;
+      break;
+    case urdf::Geometry::CYLINDER: {
+      const auto& cylinder = static_cast<const urdf::Cylinder&>(*collision.geometry);
+      geometry.shape = CollisionGeometry::Shape::Cylinder;
+      geometry.radius = cylinder.radius;
+      geometry.length = cylinder.length;
+      break;
+    }
+  }
+  return geometry;
+}
+
+Link convertLink(const urdf::Link& source, const std::filesystem::path& sourceFile) {
+  Link link;
+  link.name = source.name;
+  if (source.inertial) {
+    link.hasInertial = true;
+    const auto& in = *source.inertial;
+    const Eigen::Isometry3d frame = toIsometry(in.origin);
+    Eigen::Matrix3d inertia;
+    inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    link.inertial.mass = in.mass;
+    link.inertial.centerOfMass = frame.translation();
+    // URDF gives the tensor in the rotated inertial frame; arcplan keeps it in link axes.
+    link.inertial.inertiaAboutCom = frame.linear() * inertia * frame.linear().transpose();
+  }
+  for (const auto& collision : source.collision_array) {
+    if (collision) link.collisions.push_back(convertCollision(*collision, source.name, sourceFile));
+  }
+  return link;
+}
+
+std::string knownLinks(const urdf::ModelInterface& urdf) {
+  std::vector<std::string> names;
+  for (const auto& [name, link] : urdf.links_) names.push_back(name);
+  std::sort(names.begin(), names.end());
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+}  // namespace
+
+int RobotModel::linkIndex(const std::string& linkName) const {
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    if (links_[i].name == linkName) return static_cast<int>(i);
+  }
+  std::string names;
+  for (const auto& link : links_) names += (names.empty() ? "" : ", ") + link.name;
+  throw Error("unknown link '" + linkName + "' in robot '" + name_ + "' (links: " + names + ")");
+}
+
+bool RobotModel::hasLink(const std::string& linkName) const {
+  return std::any_of(links_.begin(), links_.end(), [&](const Link& l) { return l.name == linkName; });
+}
+
+RobotModel parseRobotModel(const std::string& urdfXml, const std::filesystem::path& sourceFile,
+                           const ChainSelection& chain) {
+  // Syntax first, with TinyXML (urdfdom's own XML parser) so the message has a line and column.
+  TiXmlDocument document;
+  document.Parse(urdfXml.c_str());
+  if (document.Error()) {
+    std::ostringstream message;
+    message << where(sourceFile) << ":" << document.ErrorRow() << ":" << document.ErrorCol()
+            << ": malformed XML: " << document.ErrorDesc();
+    throw Error(message.str());
+  }
+
+  urdf::ModelInterfaceSharedPtr urdf;
+  {
+    std::lock_guard<std::mutex> lock(consoleBridgeMutex);
+    CollectingOutputHandler handler;
+    console_bridge::useOutputHandler(&handler);
+    urdf = urdf::parseURDF(urdfXml);
+    console_bridge::restorePreviousOutputHandler();
+    if (!urdf) {
+      std::string details;
+      for (const auto& m : handler.messages) details += (details.empty() ? "" : "; ") + m;
+      throw Error(where(sourceFile) + ": invalid URDF: " + (details.empty() ? "urdfdom rejected it" : details));
+    }
+  }
+
+  const auto base = urdf->getLink(chain.baseLink);
+  if (!base) throw Error(where(sourceFile) + ": base link '" + chain.baseLink + "' not found (links: " + knownLinks(*urdf) + ")");
+  const auto tip = urdf->getLink(chain.tipLink);
+  if (!tip) throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' not found (links: " + knownLinks(*urdf) + ")");
+
+  // The moving chain: walk up from the tip to the base.
+  std::vector<urdf::LinkConstSharedPtr> chainLinks;
+  for (urdf::LinkConstSharedPtr link = tip; link; link = link->getParent()) {
+    chainLinks.push_back(link);
+    if (link->name == chain.baseLink) break;
+  }
+  if (chainLinks.back()->name != chain.baseLink) {
+    throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' is not below base link '" + chain.baseLink + "'");
+  }
+  std::reverse(chainLinks.begin(), chainLinks.end());
+
+  RobotModel model;
+  model.name_ = urdf->getName();
+  model.sourceFile_ = sourceFile;
+  std::map<std::string, int> indexOf;
+
+  auto addLink = [&](const urdf::Link& source, int parent) {
+    Link link = convertLink(source, sourceFile);
+    link.parent = parent;
+    if (parent >= 0) {
+      const auto& joint = *source.parent_joint;
+      link.originInParent = toIsometry(joint.parent_to_joint_origin_transform);
+      if (joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS) {
+        link.axis = Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z);
+        if (link.axis.norm() < 1e-12) throw Error(where(sourceFile) + ": joint '" + joint.name + "' has a zero axis");
+        link.axis.normalize();
+        Joint moving;
+        moving.name = joint.name;
+        moving.link = static_cast<int>(model.links_.size());
+        if (joint.type == urdf::Joint::CONTINUOUS || !joint.limits) {
+          moving.limits.lower = -2.0 * M_PI;
+          moving.limits.upper = 2.0 * M_PI;
+        } else {
+          moving.limits.lower = joint.limits->lower;
+          moving.limits.upper = joint.limits->upper;
+        }
+        if (joint.limits) {
+          moving.limits.velocity = joint.limits->velocity;
+          moving.limits.effort = joint.limits->effort;
+        }
+        if (moving.limits.lower > moving.limits.upper) {
+          throw Error(where(sourceFile) + ": joint '" + joint.name + "' has lower limit above upper limit");
+        }
+        link.joint = static_cast<int>(model.joints_.size());
+        model.joints_.push_back(moving);
+      } else if (joint.type != urdf::Joint::FIXED) {
+        throw Error(where(sourceFile) + ": joint '" + joint.name +
+                    "' on the chain is neither revolute, continuous nor fixed (arcplan supports serial revolute arms)");
+      }
+    }
+    indexOf[source.name] = static_cast<int>(model.links_.size());
+    model.links_.push_back(std::move(link));
+  };
+
+  for (std::size_t i = 0; i < chainLinks.size(); ++i) {
+    addLink(*chainLinks[i], i == 0 ? -1 : indexOf.at(chainLinks[i - 1]->name));
+  }
+  // Links rigidly attached to the chain (through fixed joints only) move with it: add them too,
+  // breadth-first so parents come before children.
+  for (std::size_t next = 0; next < model.links_.size(); ++next) {
+    const auto source = urdf->getLink(model.links_[next].name);
+    for (const auto& child : source->child_links) {
+      if (indexOf.count(child->name) != 0) continue;
+      if (child->parent_joint && child->parent_joint->type == urdf::Joint::FIXED) {
+        addLink(*child, static_cast<int>(next));
+      }
+    }
+  }
+  model.tipLink_ = indexOf.at(chain.tipLink);
+  return model;
+}
+
+RobotModel loadRobotModel(const std::filesystem::path& urdfFile, const ChainSelection& chain) {
+  std::ifstream in(urdfFile, std::ios::binary);
+  if (!in) throw Error("cannot open URDF file " + urdfFile.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseRobotModel(text.str(), std::filesystem::absolute(urdfFile), chain);
+}
+
+std::filesystem::path ur10eUrdfPath() { return dataDirectory() / "ur10e" / "ur10e.urdf"; }
+
+const RobotModel& ur10e() {
+  static const RobotModel model = loadRobotModel(ur10eUrdfPath());
+  return model;
+}
+
+}  // namespace arcplan::robot
