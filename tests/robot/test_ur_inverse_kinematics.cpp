@@ -1,0 +1,220 @@
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "arcplan/common/error.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/pose.h"
+#include "arcplan/robot/ur_inverse_kinematics.h"
+#include "support/command.h"
+
+namespace {
+
+using arcplan::robot::rotationDistance;
+using arcplan::robot::UrInverseKinematics;
+using arcplan::robot::Vector6;
+using arcplan::robot::ur10e;
+
+Vector6 randomInLimits(std::mt19937& random, const arcplan::robot::RobotModel& model) {
+  Vector6 q;
+  for (int j = 0; j < 6; ++j) {
+    std::uniform_real_distribution<double> angle(model.joints()[j].limits.lower, model.joints()[j].limits.upper);
+    q[j] = angle(random);
+  }
+  return q;
+}
+
+double angularDistanceModuloTwoPi(const Vector6& a, const Vector6& b) {
+  double worst = 0.0;
+  for (int j = 0; j < 6; ++j) worst = std::max(worst, std::abs(std::remainder(a[j] - b[j], 2 * M_PI)));
+  return worst;
+}
+
+void expectReproducesPose(const arcplan::robot::RobotModel& model, const Vector6& q, const Eigen::Isometry3d& target) {
+  const auto pose = arcplan::robot::tipPose(model, q);
+  EXPECT_LE((pose.translation() - target.translation()).norm(), 1e-9) << q.transpose();
+  EXPECT_LE(rotationDistance(pose.linear(), target.linear()), 1e-9) << q.transpose();
+}
+
+TEST(UrInverseKinematics, ReadsTheDhParametersOffTheUrdf) {
+  const UrInverseKinematics ik(ur10e());
+  const auto& dh = ik.dhParameters();
+  EXPECT_NEAR(dh.d1, 0.1807, 1e-12);
+  EXPECT_NEAR(dh.a2, -0.6127, 1e-12);
+  EXPECT_NEAR(dh.a3, -0.57155, 1e-12);
+  EXPECT_NEAR(dh.d4, 0.17415, 1e-12);
+  EXPECT_NEAR(dh.d5, 0.11985, 1e-12);
+  EXPECT_NEAR(dh.d6, 0.11655, 1e-12);
+}
+
+TEST(UrInverseKinematics, ThousandRandomConfigurationsRoundTrip) {
+  const auto& model = ur10e();
+  const UrInverseKinematics ik(model);
+  std::mt19937 random(2024);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Vector6 q = randomInLimits(random, model);
+    const auto target = arcplan::robot::tipPose(model, q);
+    const auto solutions = ik.solveBranches(target);
+    ASSERT_FALSE(solutions.empty());
+    double closest = 1e9;
+    for (const auto& s : solutions) {
+      expectReproducesPose(model, s, target);
+      closest = std::min(closest, angularDistanceModuloTwoPi(s, q));
+    }
+    EXPECT_LT(closest, 1e-9) << "original configuration not among the solutions: " << q.transpose();
+  }
+}
+
+TEST(UrInverseKinematics, SolveAllGivesEveryInLimitRepresentation) {
+  const auto& model = ur10e();
+  const UrInverseKinematics ik(model);
+  // Thesis pose A has all 8 analytic branches (ur10e-facts §6).
+  const auto target = arcplan::robot::poseFromXyzRpy({0.4, -0.4, 0.25, 0, -M_PI, M_PI_2});
+  ASSERT_EQ(ik.solveBranches(target).size(), 8u);
+  const auto all = ik.solveAll(target);
+  // 8 branches; joints 0,1,3,4,5 with ±2pi limits have two representations each, the elbow one.
+  EXPECT_EQ(all.size(), 8u * 32u);
+  std::set<std::vector<long>> distinct;
+  for (const auto& s : all) {
+    for (int j = 0; j < 6; ++j) {
+      EXPECT_GE(s[j], model.joints()[j].limits.lower);
+      EXPECT_LE(s[j], model.joints()[j].limits.upper);
+    }
+    expectReproducesPose(model, s, target);
+    std::vector<long> key;
+    for (int j = 0; j < 6; ++j) key.push_back(std::lround(s[j] * 1e6));
+    distinct.insert(key);
+  }
+  EXPECT_EQ(distinct.size(), all.size());
+}
+
+TEST(UrInverseKinematics, ThesisPoseAElbowUpWristDown) {
+  const auto& model = ur10e();
+  const UrInverseKinematics ik(model);
+  const auto target = arcplan::robot::poseFromXyzRpy({0.4, -0.4, 0.25, 0, -M_PI, M_PI_2});
+  Vector6 expected;
+  expected << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098;  // ur10e-facts §6
+  bool found = false;
+  for (const auto& s : ik.solveBranches(target)) {
+    expectReproducesPose(model, s, target);
+    if (angularDistanceModuloTwoPi(s, expected) < 1e-3) found = true;
+  }
+  EXPECT_TRUE(found);
+  const auto nearest = ik.solveNearest(target, expected);
+  ASSERT_TRUE(nearest.has_value());
+  EXPECT_LT((*nearest - expected).cwiseAbs().maxCoeff(), 1e-3);
+}
+
+TEST(UrInverseKinematics, NearestPicksTheSeedsBranchAndRepresentation) {
+  const auto& model = ur10e();
+  const UrInverseKinematics ik(model);
+  std::mt19937 random(77);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vector6 q = randomInLimits(random, model);
+    Vector6 seed = q;
+    for (auto& v : seed) v += std::uniform_real_distribution<double>(-0.05, 0.05)(random);
+    const auto nearest = ik.solveNearest(arcplan::robot::tipPose(model, q), seed);
+    ASSERT_TRUE(nearest.has_value());
+    EXPECT_LT((*nearest - q).cwiseAbs().maxCoeff(), 1e-7) << q.transpose();
+    EXPECT_EQ(ik.branchOf(*nearest), ik.branchOf(q));
+  }
+}
+
+TEST(UrInverseKinematics, BranchesAreDistinct) {
+  const UrInverseKinematics ik(ur10e());
+  std::set<int> branches;
+  const auto poseB = arcplan::robot::poseFromXyzRpy({0.5, 0.4, 0.46, 0, -M_PI, M_PI_2});
+  for (const auto& s : ik.solveBranches(poseB)) branches.insert(ik.branchOf(s));
+  EXPECT_EQ(branches.size(), 8u);
+}
+
+TEST(UrInverseKinematics, WristSingularityUsesTheHint) {
+  const auto& model = ur10e();
+  const UrInverseKinematics ik(model);
+  Vector6 q;
+  q << 0.4, -1.3, 1.5, -0.9, 0.0, 0.7;  // q5 = 0: wrist-3 axis parallel to joints 2-4
+  const auto target = arcplan::robot::tipPose(model, q);
+  const auto solutions = ik.solveBranches(target, 0.25);
+  ASSERT_FALSE(solutions.empty());
+  for (const auto& s : solutions) {
+    expectReproducesPose(model, s, target);
+    if (std::abs(std::sin(s[4])) < 1e-6) {
+      EXPECT_NEAR(s[5], 0.25, 1e-12);
+    }
+  }
+}
+
+TEST(UrInverseKinematics, OutOfReachGivesNoSolution) {
+  const UrInverseKinematics ik(ur10e());
+  EXPECT_TRUE(ik.solveBranches(arcplan::robot::poseFromXyzRpy({1.6, 0.2, 0.3, 0, -M_PI, 0})).empty());
+  // Inside the d4-cylinder about the base axis the wrist cannot be placed either.
+  EXPECT_TRUE(ik.solveBranches(arcplan::robot::poseFromXyzRpy({0.0, 0.05, 0.5, 0, -M_PI, 0})).empty());
+}
+
+std::string ur10eUrdfText() { return arcplan::testing::readFile(arcplan::robot::ur10eUrdfPath()); }
+
+std::filesystem::path writeVariant(const std::string& name, const std::string& text) {
+  const auto dir = arcplan::testing::freshTempDirectory(name);
+  // Meshes are referenced relative to the URDF: point them back at the real folder.
+  const auto meshes = arcplan::robot::ur10eUrdfPath().parent_path() / "meshes/";
+  std::ofstream(dir / "robot.urdf") << std::regex_replace(text, std::regex("\"meshes/"), "\"" + meshes.string());
+  return dir / "robot.urdf";
+}
+
+TEST(UrInverseKinematics, WorksWithAToolFrameBeyondTheFlange) {
+  std::string text = ur10eUrdfText();
+  text.replace(text.rfind("</robot>"), 8,
+               R"(<link name="gripper_tip"/><joint name="tool0-gripper_tip" type="fixed"><parent link="tool0"/>
+<child link="gripper_tip"/><origin xyz="0.01 0 0.2" rpy="0 0 0.3"/></joint></robot>)");
+  const auto model = arcplan::robot::loadRobotModel(writeVariant("gripper_tip", text), {"base_link", "gripper_tip"});
+  const UrInverseKinematics ik(model);
+  std::mt19937 random(3);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Vector6 q = randomInLimits(random, model);
+    const auto target = arcplan::robot::tipPose(model, q);
+    double closest = 1e9;
+    for (const auto& s : ik.solveBranches(target)) {
+      expectReproducesPose(model, s, target);
+      closest = std::min(closest, angularDistanceModuloTwoPi(s, q));
+    }
+    EXPECT_LT(closest, 1e-8);
+  }
+}
+
+TEST(UrInverseKinematics, WorksWithCalibrationDigitsOfTheRos2Description) {
+  // The ROS 2 description writes pi/2 as 1.570796327 and has 1e-11 m offsets: no exact DH chain.
+  std::string text = ur10eUrdfText();
+  text = std::regex_replace(text, std::regex("xyz=\"0 -0.11985 0\""), "xyz=\"0 -0.11985 -2.458e-11\"");
+  text = std::regex_replace(text, std::regex("<origin xyz=\"0 0 0\" rpy=\"1.570796326794897 0 0\"/>"),
+                            "<origin xyz=\"0 0 0\" rpy=\"1.570796327 0 0\"/>");
+  const auto model = arcplan::robot::loadRobotModel(writeVariant("calibration_digits", text));
+  const UrInverseKinematics ik(model);
+  std::mt19937 random(4);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vector6 q = randomInLimits(random, model);
+    const auto target = arcplan::robot::tipPose(model, q);
+    for (const auto& s : ik.solveBranches(target)) expectReproducesPose(model, s, target);
+  }
+}
+
+TEST(UrInverseKinematics, RejectsAChainThatIsNotUrType) {
+  // Six parallel z axes: a planar arm, not a UR.
+  std::string urdf = "<robot name=\"planar\"><link name=\"base_link\"/>";
+  std::string parent = "base_link";
+  for (int j = 0; j < 6; ++j) {
+    const std::string child = j == 5 ? "tool0" : "l" + std::to_string(j);
+    urdf += "<link name=\"" + child + "\"/><joint name=\"j" + std::to_string(j) + "\" type=\"revolute\"><parent link=\"" +
+            parent + "\"/><child link=\"" + child +
+            "\"/><origin xyz=\"0.3 0 0\"/><axis xyz=\"0 0 1\"/><limit lower=\"-3\" upper=\"3\" effort=\"1\" velocity=\"1\"/></joint>";
+    parent = child;
+  }
+  urdf += "</robot>";
+  const auto model = arcplan::robot::parseRobotModel(urdf, "planar.urdf");
+  EXPECT_THROW(UrInverseKinematics{model}, arcplan::Error);
+}
+
+}  // namespace
