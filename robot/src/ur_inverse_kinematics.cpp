@@ -81,6 +81,8 @@ UrInverseKinematics::UrInverseKinematics(const RobotModel& model) {
   baseToDh0_.linear().col(2) = z0;
   baseToDh0_.translation() = origin0;
   dh6ToTip_ = (baseToDh0_ * urDhForwardKinematics(dh_, Vector6::Zero())).inverse() * data.linkPoses[model.tipLink()];
+  dh0ToBase_ = baseToDh0_.inverse();
+  tipToDh6_ = dh6ToTip_.inverse();
 
   // The chain must reproduce the DH model everywhere, not only at q = 0.
   std::mt19937 random(7);
@@ -101,11 +103,12 @@ UrInverseKinematics::UrInverseKinematics(const RobotModel& model) {
 }
 
 std::vector<Vector6> UrInverseKinematics::solveBranches(const Eigen::Isometry3d& tipPose, double q6AtWristSingularity) const {
-  const Eigen::Isometry3d t06 = baseToDh0_.inverse() * tipPose * dh6ToTip_.inverse();
+  const Eigen::Isometry3d t06 = dh0ToBase_ * tipPose * tipToDh6_;
   const Eigen::Vector3d n = t06.linear().col(0), o = t06.linear().col(1), a = t06.linear().col(2);
   const Eigen::Vector3d p = t06.translation();
   const auto& [d1, a2, a3, d4, d5, d6] = dh_;
   std::vector<Vector6> solutions;
+  solutions.reserve(8);
 
   // q1: the wrist-2 centre lies at distance d4 from the vertical arm plane.
   const Eigen::Vector3d p5 = p - d6 * a;

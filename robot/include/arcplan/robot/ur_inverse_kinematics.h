@@ -60,6 +60,8 @@ private:
   UrDhParameters dh_;
   Eigen::Isometry3d baseToDh0_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d dh6ToTip_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d dh0ToBase_ = Eigen::Isometry3d::Identity();  // inverses, kept for solveBranches
+  Eigen::Isometry3d tipToDh6_ = Eigen::Isometry3d::Identity();
   Vector6 lower_, upper_;
 };
 
