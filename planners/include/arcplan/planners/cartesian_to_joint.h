@@ -1,0 +1,51 @@
+#pragma once
+// A TCP path to joint waypoints with the analytic UR inverse kinematics, staying on the IK branch of
+// the start configuration: at every sample the in-limit solution nearest to the previous waypoint,
+// steps of any joint bounded (a too-large step is bisected along the path; if that does not help, the
+// path crosses a singularity or changes branch and the conversion fails with the reason).
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "arcplan/planners/arc_path.h"
+#include "arcplan/robot/ur_inverse_kinematics.h"
+
+namespace arcplan::planners {
+
+struct JointConversionOptions {
+  double resolution = 0.01;    // m, largest TCP arc length between samples of the path
+  double maxJointStep = 0.05;  // rad, largest change of any joint between consecutive waypoints
+  int maxBisections = 6;       // a step above maxJointStep is halved along the path at most this often
+};
+
+enum class ConversionStatus {
+  Success,
+  Unreachable,   // no IK solution at some pose (outside the workspace)
+  JointLimits,   // IK solutions exist, none inside the joint limits
+  JointJump,     // a joint step stays above the bound after bisection: singularity or branch flip
+  BranchChange,  // the path leaves the start's IK branch, or arrives on another branch than the goal's
+  GoalMismatch,  // right branch, but the goal state is another 2·pi representation of the goal pose
+};
+const char* toString(ConversionStatus status);
+
+struct JointWaypoints {
+  ConversionStatus status = ConversionStatus::Success;
+  std::string reason;  // for users, empty on success
+  double failedAtArcLength = std::numeric_limits<double>::quiet_NaN();
+  std::vector<robot::Vector6> joints;
+  std::vector<double> arcLengths;  // TCP arc length of each waypoint along the path
+
+  bool ok() const { return status == ConversionStatus::Success; }
+};
+
+// Joints for the part [fromArcLength, toArcLength] of the path. `seed` is the configuration at
+// fromArcLength and becomes the first waypoint unchanged. When `goal` is given the last waypoint must
+// be the goal within 1e-6 rad per joint and is then replaced by it exactly.
+// Throws arcplan::Error for invalid options.
+JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const ArcPath& path, const robot::Vector6& seed,
+                               const std::optional<robot::Vector6>& goal, const JointConversionOptions& options,
+                               double fromArcLength = 0.0,
+                               double toArcLength = std::numeric_limits<double>::infinity());
+
+}  // namespace arcplan::planners

@@ -1,0 +1,135 @@
+// TCP paths to joints on the start's IK branch: every waypoint reproduces its pose (FK), joint steps
+// stay bounded, and each failure mode is reported with its reason.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "arcplan/planners/cartesian_to_joint.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/pose.h"
+#include "arcplan/robot/robot_model.h"
+
+namespace {
+
+using arcplan::planners::ArcPath;
+using arcplan::planners::ConversionStatus;
+using arcplan::planners::convertToJoints;
+using arcplan::planners::Detour;
+using arcplan::planners::JointConversionOptions;
+using arcplan::robot::Vector6;
+
+const arcplan::robot::UrInverseKinematics& ik() {
+  static const arcplan::robot::UrInverseKinematics solver(arcplan::robot::ur10e());
+  return solver;
+}
+
+Eigen::Isometry3d thesisPose(double x, double y, double z) {
+  return arcplan::robot::poseFromXyzRpy({x, y, z, 0.0, -M_PI, M_PI_2});
+}
+
+// ur10e-facts §6: elbow-up, wrist-down solutions of the thesis poses A and B.
+Vector6 nearThesisStart() { return (Vector6() << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098).finished(); }
+Vector6 nearThesisGoal() { return (Vector6() << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399).finished(); }
+
+Vector6 exactSolution(const Eigen::Isometry3d& pose, const Vector6& seed) { return *ik().solveNearest(pose, seed); }
+
+const double kObstacleDistance = 0.375 * std::sqrt(0.6941);
+
+TEST(CartesianToJoint, ThesisArcPathReproducesEveryPoseOnOneBranch) {
+  const Eigen::Isometry3d a = thesisPose(0.4, -0.4, 0.25), b = thesisPose(0.5, 0.4, 0.46);
+  const Vector6 start = exactSolution(a, nearThesisStart()), goal = exactSolution(b, nearThesisGoal());
+  const ArcPath path(a, b, {Detour{kObstacleDistance, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+  JointConversionOptions options;
+  options.resolution = 0.01;
+  options.maxJointStep = 0.05;
+  const auto result = convertToJoints(ik(), path, start, goal, options);
+  ASSERT_TRUE(result.ok()) << result.reason;
+  EXPECT_EQ(result.joints.front(), start);
+  EXPECT_EQ(result.joints.back(), goal);
+  ASSERT_EQ(result.joints.size(), result.arcLengths.size());
+  EXPECT_GE(result.joints.size(), path.sample(options.resolution).size());
+  const int branch = ik().branchOf(start);
+  for (std::size_t i = 0; i < result.joints.size(); ++i) {
+    const Eigen::Isometry3d reached = arcplan::robot::tipPose(arcplan::robot::ur10e(), result.joints[i]);
+    const Eigen::Isometry3d wanted = path.pose(result.arcLengths[i]);
+    EXPECT_LT((reached.translation() - wanted.translation()).norm(), 1e-9) << "waypoint " << i;
+    EXPECT_LE(arcplan::robot::rotationDistance(reached.linear(), a.linear()), 1e-6) << "waypoint " << i;
+    EXPECT_EQ(ik().branchOf(result.joints[i]), branch);
+    if (i > 0) {
+      EXPECT_LE((result.joints[i] - result.joints[i - 1]).cwiseAbs().maxCoeff(), options.maxJointStep);
+      EXPECT_GT(result.arcLengths[i], result.arcLengths[i - 1]);
+    }
+  }
+}
+
+TEST(CartesianToJoint, LargeStepsAreBisectedAlongThePath) {
+  const Eigen::Isometry3d a = thesisPose(0.4, -0.4, 0.25), b = thesisPose(0.5, 0.4, 0.46);
+  const ArcPath path(a, b);
+  JointConversionOptions options;
+  options.resolution = 0.5;     // two samples: joint 0 turns ~1.5 rad over the line
+  options.maxJointStep = 0.05;  // so the converter must insert points on the line
+  const auto result = convertToJoints(ik(), path, exactSolution(a, nearThesisStart()), std::nullopt, options);
+  ASSERT_TRUE(result.ok()) << result.reason;
+  EXPECT_GT(result.joints.size(), 1.5 / 0.05);
+  for (std::size_t i = 1; i < result.joints.size(); ++i) {
+    EXPECT_LE((result.joints[i] - result.joints[i - 1]).cwiseAbs().maxCoeff(), options.maxJointStep);
+    const Eigen::Vector3d tcp = arcplan::robot::tipPose(arcplan::robot::ur10e(), result.joints[i]).translation();
+    EXPECT_LT((tcp - path.position(result.arcLengths[i])).norm(), 1e-9);
+  }
+}
+
+TEST(CartesianToJoint, GoalOnAnotherBranchIsReportedAsBranchChange) {
+  const Eigen::Isometry3d a = thesisPose(0.4, -0.4, 0.25), b = thesisPose(0.5, 0.4, 0.46);
+  Vector6 otherBranchGoal = nearThesisGoal();
+  for (const Vector6& candidate : ik().solveBranches(b)) {
+    if (ik().branchOf(candidate) != ik().branchOf(nearThesisGoal())) otherBranchGoal = candidate;
+  }
+  ASSERT_NE(ik().branchOf(otherBranchGoal), ik().branchOf(nearThesisGoal()));
+  const auto result = convertToJoints(ik(), ArcPath(a, b), exactSolution(a, nearThesisStart()), otherBranchGoal, {});
+  EXPECT_EQ(result.status, ConversionStatus::BranchChange);
+  EXPECT_NE(result.reason.find("branch"), std::string::npos) << result.reason;
+}
+
+TEST(CartesianToJoint, GoalInAnotherRepresentationIsReported) {
+  const Eigen::Isometry3d a = thesisPose(0.4, -0.4, 0.25), b = thesisPose(0.5, 0.4, 0.46);
+  Vector6 goal = exactSolution(b, nearThesisGoal());
+  goal[5] -= 2.0 * M_PI;  // same pose, wrist 3 one turn further (inside its ±2·pi limits)
+  const auto result = convertToJoints(ik(), ArcPath(a, b), exactSolution(a, nearThesisStart()), goal, {});
+  EXPECT_EQ(result.status, ConversionStatus::GoalMismatch);
+  EXPECT_NE(result.reason.find("2*pi"), std::string::npos) << result.reason;
+}
+
+TEST(CartesianToJoint, OutOfReachIsReportedWithItsArcLength) {
+  const Eigen::Isometry3d a = thesisPose(0.4, -0.4, 0.25), far = thesisPose(2.4, -0.4, 0.25);
+  const auto result = convertToJoints(ik(), ArcPath(a, far), exactSolution(a, nearThesisStart()), std::nullopt, {});
+  EXPECT_EQ(result.status, ConversionStatus::Unreachable);
+  // Reach of the wrist centre is about a2 + a3 = 1.18 m from the shoulder: fails well before 2 m.
+  EXPECT_GT(result.failedAtArcLength, 0.5);
+  EXPECT_LT(result.failedAtArcLength, 1.5);
+  EXPECT_NE(result.reason.find("out of reach"), std::string::npos) << result.reason;
+}
+
+TEST(CartesianToJoint, StepAboveTheBoundAfterBisectionIsAJointJump) {
+  const Eigen::Isometry3d a = thesisPose(0.4, -0.4, 0.25), b = thesisPose(0.5, 0.4, 0.46);
+  JointConversionOptions options;
+  options.resolution = 0.05;
+  options.maxJointStep = 1e-3;
+  options.maxBisections = 1;
+  const auto result = convertToJoints(ik(), ArcPath(a, b), exactSolution(a, nearThesisStart()), std::nullopt, options);
+  EXPECT_EQ(result.status, ConversionStatus::JointJump);
+  EXPECT_NE(result.reason.find("would jump"), std::string::npos) << result.reason;
+}
+
+TEST(CartesianToJoint, PartOfThePathStartsFromItsSeed) {
+  const Eigen::Isometry3d a = thesisPose(0.4, -0.4, 0.25), b = thesisPose(0.5, 0.4, 0.46);
+  const ArcPath path(a, b, {Detour{kObstacleDistance, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+  const auto junctions = path.junctions();
+  const Vector6 seed = exactSolution(path.pose(junctions[1]), nearThesisStart());
+  const auto part = convertToJoints(ik(), path, seed, std::nullopt, {}, junctions[1], junctions[4]);
+  ASSERT_TRUE(part.ok()) << part.reason;
+  EXPECT_EQ(part.joints.front(), seed);
+  EXPECT_DOUBLE_EQ(part.arcLengths.front(), junctions[1]);
+  EXPECT_NEAR(part.arcLengths.back(), junctions[4], 1e-12);
+}
+
+}  // namespace
