@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the built arcplan into a temporary prefix, then configures, builds and runs
+# examples/consumer against it with find_package(arcplan): the way users import the library.
+set -euo pipefail
+build_dir="$1"
+source_dir="$2"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build_dir" --prefix "$work/prefix" >/dev/null
+cmake -S "$source_dir/examples/consumer" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/build" -j 2 >/dev/null
+# The installed data (URDF, meshes, scenes) must be found from the install tree, not the sources.
+mv "$work/prefix" "$work/moved_prefix"
+export LD_LIBRARY_PATH="$work/moved_prefix/lib:${LD_LIBRARY_PATH:-}"
+output="$("$work/build/plan_thesis_arc")"
+echo "$output"
+grep -q "tool0 *0.4 *-0.4 *0.25" <<<"$output"
