@@ -139,6 +139,7 @@ ArcPath::ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, 
     addLine(lineStart, entry);
     const Eigen::Vector3d obstaclePoint = a + detour.position * lineDirection_;
     const Eigen::Vector3d away = avoidanceDirection(lineDirection_, detour.planeAngle);
+    const double spanStart = length_;
     for (const PlanarArc& arc : profile.arcs) {
       Piece piece;
       piece.startArcLength = length_;
@@ -151,6 +152,7 @@ ArcPath::ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, 
       pieces_.push_back(piece);
       length_ += piece.length;
     }
+    detourSpans_.emplace_back(spanStart, length_);
     lineStart = exit;
   }
   addLine(lineStart, straightLength_);

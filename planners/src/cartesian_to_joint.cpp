@@ -14,11 +14,13 @@ constexpr double kGoalTolerance = 1e-6;  // rad per joint
 class Converter {
 public:
   Converter(const robot::UrInverseKinematics& ik, const ArcPath& path, const JointConversionOptions& options,
-            JointWaypoints& result, int branch)
-      : ik_(ik), path_(path), options_(options), result_(result), branch_(branch) {}
+            const std::optional<robot::Vector6>& goal, const WaypointCheck& check, JointWaypoints& result)
+      : ik_(ik), path_(path), options_(options), goal_(goal), check_(check), result_(result),
+        branch_(ik.branchOf(result.joints.front())) {}
 
   // Appends the waypoint at `arcLength` (and bisection points before it); false on failure.
-  bool advance(double arcLength, const Eigen::Isometry3d& pose, int depth) {
+  // `arrival`: this is the path's end, where the goal configuration (if any) must be met.
+  bool advance(double arcLength, const Eigen::Isometry3d& pose, bool arrival, int depth = 0) {
     const robot::Vector6& previous = result_.joints.back();
     const double previousArcLength = result_.arcLengths.back();
     const std::optional<robot::Vector6> q = ik_.solveNearest(pose, previous);
@@ -32,7 +34,7 @@ public:
     if (step > options_.maxJointStep) {
       if (depth < options_.maxBisections) {
         const double middle = 0.5 * (previousArcLength + arcLength);
-        return advance(middle, path_.pose(middle), depth + 1) && advance(arcLength, pose, depth + 1);
+        return advance(middle, path_.pose(middle), false, depth + 1) && advance(arcLength, pose, arrival, depth + 1);
       }
       std::ostringstream message;
       message << "joint " << joint << " would jump " << step << " rad within " << arcLength - previousArcLength
@@ -40,13 +42,41 @@ public:
               << " rad): the path passes a singularity or flips IK branch";
       return fail(ConversionStatus::JointJump, arcLength, message.str());
     }
-    if (ik_.branchOf(*q) != branch_) {
+    // Nearest-solution tracking with bounded steps keeps the branch except across a singularity:
+    // checked where the path ends (and against the goal), not at every waypoint.
+    if (arrival && !meetsGoal(*q, arcLength)) return false;
+    const robot::Vector6 accepted = arrival && goal_ ? *goal_ : *q;
+    if (check_ && !check_(previous, accepted, arcLength)) {
+      return fail(ConversionStatus::Rejected, arcLength, "the waypoint check rejected the waypoint");
+    }
+    result_.joints.push_back(accepted);
+    result_.arcLengths.push_back(arcLength);
+    return true;
+  }
+
+  bool meetsGoal(const robot::Vector6& arrival, double arcLength) {
+    const int arrivalBranch = ik_.branchOf(arrival);
+    if (arrivalBranch != branch_) {
       std::ostringstream message;
-      message << "the path leaves the start configuration's IK branch " << branch_ << " (now " << ik_.branchOf(*q) << ")";
+      message << "the path leaves the start configuration's IK branch " << branch_ << " (arrives on " << arrivalBranch
+              << "): it passes a singularity";
       return fail(ConversionStatus::BranchChange, arcLength, message.str());
     }
-    result_.joints.push_back(*q);
-    result_.arcLengths.push_back(arcLength);
+    if (!goal_) return true;
+    const int goalBranch = ik_.branchOf(*goal_);
+    if (arrivalBranch != goalBranch) {
+      std::ostringstream message;
+      message << "the path stays on IK branch " << arrivalBranch << " of the start, but the goal configuration is on branch "
+              << goalBranch << " (a TCP path cannot change branch; give a goal on the start's branch)";
+      return fail(ConversionStatus::BranchChange, arcLength, message.str());
+    }
+    const double difference = (arrival - *goal_).cwiseAbs().maxCoeff();
+    if (difference > kGoalTolerance) {
+      std::ostringstream message;
+      message << "the path reaches the goal pose with joints " << difference
+              << " rad away from the goal configuration (another 2*pi representation of the same pose)";
+      return fail(ConversionStatus::GoalMismatch, arcLength, message.str());
+    }
     return true;
   }
 
@@ -63,6 +93,8 @@ private:
   const robot::UrInverseKinematics& ik_;
   const ArcPath& path_;
   const JointConversionOptions& options_;
+  const std::optional<robot::Vector6>& goal_;
+  const WaypointCheck& check_;
   JointWaypoints& result_;
   int branch_;
 };
@@ -77,13 +109,14 @@ const char* toString(ConversionStatus status) {
     case ConversionStatus::JointJump: return "joint jump";
     case ConversionStatus::BranchChange: return "branch change";
     case ConversionStatus::GoalMismatch: return "goal mismatch";
+    case ConversionStatus::Rejected: return "rejected";
   }
   return "unknown";
 }
 
 JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const ArcPath& path, const robot::Vector6& seed,
                                const std::optional<robot::Vector6>& goal, const JointConversionOptions& options,
-                               double fromArcLength, double toArcLength) {
+                               double fromArcLength, double toArcLength, const WaypointCheck& check) {
   if (!(options.maxJointStep > 0.0) || !std::isfinite(options.maxJointStep)) {
     throw Error("joint conversion: max joint step must be a finite number > 0 rad");
   }
@@ -91,32 +124,16 @@ JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const ArcPa
   JointWaypoints result;
   result.joints.push_back(seed);
   result.arcLengths.push_back(std::max(fromArcLength, 0.0));
-  Converter converter(ik, path, options, result, ik.branchOf(seed));
   constexpr double kEpsilon = 1e-12;
+  const double end = std::min(toArcLength, path.length());
+  // The goal applies only when the conversion runs to the end of the path.
+  const std::optional<robot::Vector6> goalHere = end >= path.length() - kEpsilon ? goal : std::nullopt;
+  Converter converter(ik, path, options, goalHere, check, result);
   for (const PathSample& sample : path.sample(options.resolution)) {
     if (sample.arcLength <= fromArcLength + kEpsilon) continue;
-    if (sample.arcLength > toArcLength + kEpsilon) break;
-    if (!converter.advance(sample.arcLength, sample.pose, 0)) return result;
-  }
-  if (goal) {
-    const robot::Vector6& arrival = result.joints.back();
-    const int arrivalBranch = ik.branchOf(arrival), goalBranch = ik.branchOf(*goal);
-    if (arrivalBranch != goalBranch) {
-      std::ostringstream message;
-      message << "the path stays on IK branch " << arrivalBranch << " of the start, but the goal configuration is on branch "
-              << goalBranch << " (a TCP path cannot change branch; give a goal on the start's branch)";
-      converter.fail(ConversionStatus::BranchChange, result.arcLengths.back(), message.str());
-      return result;
-    }
-    const double difference = (arrival - *goal).cwiseAbs().maxCoeff();
-    if (difference > kGoalTolerance) {
-      std::ostringstream message;
-      message << "the path reaches the goal pose with joints " << difference
-              << " rad away from the goal configuration (another 2*pi representation of the same pose)";
-      converter.fail(ConversionStatus::GoalMismatch, result.arcLengths.back(), message.str());
-      return result;
-    }
-    result.joints.back() = *goal;
+    if (sample.arcLength > end + kEpsilon) break;
+    const bool arrival = sample.arcLength >= end - kEpsilon;
+    if (!converter.advance(sample.arcLength, sample.pose, arrival)) return result;
   }
   return result;
 }

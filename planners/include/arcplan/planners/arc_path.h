@@ -11,6 +11,7 @@
 // about A→B by `planeAngle` (right hand). When A→B is vertical, world x takes the role of up.
 // The tool orientation is constant when start and goal agree, else slerped over the arc length.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -100,6 +101,8 @@ public:
 
   // Arc lengths of A, every junction between pieces, and B, ascending.
   std::vector<double> junctions() const;
+  // Arc lengths where detour i leaves the line and where it rejoins it.
+  std::pair<double, double> detourSpan(std::size_t i) const { return detourSpans_.at(i); }
   // Samples no more than `resolution` apart along the path (each piece split evenly), containing
   // every junction exactly. Throws arcplan::Error if resolution is not positive.
   std::vector<PathSample> sample(double resolution) const;
@@ -125,6 +128,7 @@ private:
   bool constantOrientation_ = true;
   Eigen::Quaterniond startRotation_, goalRotation_;
   std::vector<Piece> pieces_;
+  std::vector<std::pair<double, double>> detourSpans_;
 };
 
 }  // namespace arcplan::planners

@@ -3,6 +3,7 @@
 // the start configuration: at every sample the in-limit solution nearest to the previous waypoint,
 // steps of any joint bounded (a too-large step is bisected along the path; if that does not help, the
 // path crosses a singularity or changes branch and the conversion fails with the reason).
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -26,6 +27,7 @@ enum class ConversionStatus {
   JointJump,     // a joint step stays above the bound after bisection: singularity or branch flip
   BranchChange,  // the path leaves the start's IK branch, or arrives on another branch than the goal's
   GoalMismatch,  // right branch, but the goal state is another 2·pi representation of the goal pose
+  Rejected,      // the caller's waypoint check refused a waypoint (e.g. a collision)
 };
 const char* toString(ConversionStatus status);
 
@@ -39,13 +41,18 @@ struct JointWaypoints {
   bool ok() const { return status == ConversionStatus::Success; }
 };
 
+// Called for each new waypoint (not the seed) as soon as it is computed, with the previous waypoint;
+// returning false stops the conversion with status Rejected (that waypoint is not appended).
+using WaypointCheck = std::function<bool(const robot::Vector6& previous, const robot::Vector6& joints, double arcLength)>;
+
 // Joints for the part [fromArcLength, toArcLength] of the path. `seed` is the configuration at
 // fromArcLength and becomes the first waypoint unchanged. When `goal` is given the last waypoint must
-// be the goal within 1e-6 rad per joint and is then replaced by it exactly.
+// be the goal within 1e-6 rad per joint and is then replaced by it exactly (before `check` sees it).
 // Throws arcplan::Error for invalid options.
 JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const ArcPath& path, const robot::Vector6& seed,
                                const std::optional<robot::Vector6>& goal, const JointConversionOptions& options,
                                double fromArcLength = 0.0,
-                               double toArcLength = std::numeric_limits<double>::infinity());
+                               double toArcLength = std::numeric_limits<double>::infinity(),
+                               const WaypointCheck& check = {});
 
 }  // namespace arcplan::planners
