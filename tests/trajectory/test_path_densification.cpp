@@ -1,0 +1,116 @@
+// Densification of sparse joint paths: bounded joint and TCP steps, original waypoints kept, new
+// waypoints on the joint-space segments, TCP data equal to an independent forward kinematics call.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "arcplan/common/error.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/robot_model.h"
+#include "arcplan/trajectory/path_densification.h"
+
+namespace arcplan::trajectory {
+namespace {
+
+// A sparse path like an RRTConnect result: 4 waypoints, joint steps up to ~1 rad.
+JointPath sparsePath() {
+  robot::Vector6 a, m1, m2, b;
+  a << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098;
+  m1 << -0.6, -1.9, 2.0, -1.5, -1.2, -0.2;
+  m2 << 0.1, -1.3, 1.6, -2.2, -1.9, 0.9;
+  b << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399;
+  return {a, m1, m2, b};
+}
+
+// Distance from q to the joint-space segment [a, b].
+double distanceToSegment(const robot::Vector6& q, const robot::Vector6& a, const robot::Vector6& b) {
+  const robot::Vector6 ab = b - a;
+  const double s = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + s * ab - q).norm();
+}
+
+TEST(PathDensification, StepsAreBoundedAndWaypointsKept) {
+  const auto& model = robot::ur10e();
+  const JointPath path = sparsePath();
+  const DensificationOptions options{0.02, 0.004};
+  const DensePath dense = densifyJointPath(model, path, options);
+
+  ASSERT_EQ(dense.waypoints.size(), dense.tcpPositions.size());
+  ASSERT_EQ(dense.waypoints.size(), dense.tcpArcLength.size());
+  // A lower bound on the count: the joint-step bound alone needs this many segments.
+  std::size_t minimumSegments = 0;
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    minimumSegments += static_cast<std::size_t>(std::ceil((path[i] - path[i - 1]).cwiseAbs().maxCoeff() / 0.02));
+  }
+  EXPECT_GE(dense.waypoints.size(), minimumSegments + 1);
+
+  std::size_t nextOriginal = 0, segment = 0;
+  robot::KinematicsData kinematics(model);
+  for (std::size_t k = 0; k < dense.waypoints.size(); ++k) {
+    const robot::Vector6& q = dense.waypoints[k];
+    if (nextOriginal < path.size() && q == path[nextOriginal]) {
+      segment = nextOriginal;
+      ++nextOriginal;
+    } else {
+      ASSERT_LT(segment + 1, path.size());
+      EXPECT_LT(distanceToSegment(q, path[segment], path[segment + 1]), 1e-12) << "waypoint " << k << " off its segment";
+    }
+    robot::forwardKinematics(model, q, kinematics);
+    EXPECT_LT((kinematics.linkPoses[model.tipLink()].translation() - dense.tcpPositions[k]).norm(), 1e-12);
+    if (k > 0) {
+      EXPECT_LE((q - dense.waypoints[k - 1]).cwiseAbs().maxCoeff(), 0.02 + 1e-12) << "joint step at " << k;
+      const double chord = (dense.tcpPositions[k] - dense.tcpPositions[k - 1]).norm();
+      EXPECT_LE(chord, 0.004 + 1e-12) << "TCP step at " << k;
+      EXPECT_NEAR(dense.tcpArcLength[k] - dense.tcpArcLength[k - 1], chord, 1e-12);
+    }
+  }
+  EXPECT_EQ(nextOriginal, path.size()) << "an original waypoint is missing or out of order";
+  EXPECT_EQ(dense.tcpArcLength.front(), 0.0);
+}
+
+TEST(PathDensification, TcpLengthConvergesAsStepsShrink) {
+  // The chord sum of a finer resampling is longer (a chord is never longer than the arc) and the
+  // difference shrinks quadratically with the step.
+  const auto& model = robot::ur10e();
+  const double coarse = densifyJointPath(model, sparsePath(), {0.05, 0.02}).tcpArcLength.back();
+  const double fine = densifyJointPath(model, sparsePath(), {0.01, 0.002}).tcpArcLength.back();
+  const double finest = densifyJointPath(model, sparsePath(), {0.005, 0.001}).tcpArcLength.back();
+  EXPECT_LT(coarse, fine);
+  EXPECT_LT(fine, finest);
+  EXPECT_LT(finest - fine, 0.5 * (fine - coarse));
+}
+
+TEST(PathDensification, RepeatedWaypointsAreDropped) {
+  const auto& model = robot::ur10e();
+  JointPath path = sparsePath();
+  path.insert(path.begin() + 2, path[1]);
+  const DensePath withRepeat = densifyJointPath(model, path);
+  const DensePath without = densifyJointPath(model, sparsePath());
+  EXPECT_EQ(withRepeat.waypoints.size(), without.waypoints.size());
+  for (std::size_t k = 1; k < withRepeat.waypoints.size(); ++k) {
+    EXPECT_GT((withRepeat.waypoints[k] - withRepeat.waypoints[k - 1]).norm(), 0.0);
+  }
+}
+
+TEST(PathDensification, DensePathIsKeptAsIs) {
+  const auto& model = robot::ur10e();
+  JointPath path;
+  for (int i = 0; i <= 50; ++i) path.push_back(sparsePath()[0] + 0.0001 * i * robot::Vector6::Ones());
+  EXPECT_EQ(densifyJointPath(model, path).waypoints.size(), path.size());
+}
+
+TEST(PathDensification, BadInput) {
+  const auto& model = robot::ur10e();
+  EXPECT_THROW(densifyJointPath(model, sparsePath(), {0.0, 0.002}), Error);
+  EXPECT_THROW(densifyJointPath(model, sparsePath(), {0.01, -1.0}), Error);
+  EXPECT_THROW(densifyJointPath(model, {sparsePath()[0]}), Error);
+  try {
+    densifyJointPath(model, {sparsePath()[0], sparsePath()[0]});
+    FAIL() << "a path without motion was accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("same configuration"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace arcplan::trajectory

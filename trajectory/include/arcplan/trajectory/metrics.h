@@ -1,0 +1,38 @@
+#pragma once
+// The trajectory metrics of DESIGN.md §6, one implementation for `plan`, `scale` and `bench`.
+#include <functional>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "arcplan/trajectory/joint_path.h"
+#include "arcplan/trajectory/timed_trajectory.h"
+
+namespace arcplan::trajectory {
+
+struct TrajectoryMetrics {
+  double tcpPathLength = 0.0;       // m, TCP curve of the densified path
+  double jointPathLength = 0.0;     // rad, joint-space length of the planner's path
+  double executionTime = 0.0;       // s
+  double meanTcpSpeed = 0.0;        // m/s, tcpPathLength / executionTime
+  double peakTcpSpeed = 0.0;        // m/s, largest sampled TCP speed
+  double timeAboveLimit = 0.0;      // s, time with TCP speed above the trajectory's limit
+  double minClearance = std::numeric_limits<double>::quiet_NaN();  // m, NaN when not computed
+  double maxJointSpeedRatio = 0.0;  // max over samples and joints of |qd| / joint speed limit
+};
+
+// Smallest robot–obstacle distance at a configuration (supplied by the caller, e.g. the collision
+// module, so that trajectory does not depend on it).
+using ClearanceFunction = std::function<double(const robot::Vector6&)>;
+
+// `path` is the planner's path (joint length); the clearance, when given, is evaluated at every
+// waypoint of the trajectory's densified path.
+TrajectoryMetrics computeMetrics(const JointPath& path, const TimedTrajectory& trajectory,
+                                 const ClearanceFunction& clearance = {});
+
+// Keys exactly as DESIGN.md §6: tcp_path_length_m, joint_path_length_rad, execution_time_s,
+// mean_tcp_speed_mps, peak_tcp_speed_mps, time_above_limit_s, min_clearance_m (null when not
+// computed), max_joint_speed_ratio.
+nlohmann::json toJson(const TrajectoryMetrics& metrics);
+
+}  // namespace arcplan::trajectory

@@ -1,0 +1,36 @@
+#pragma once
+// Time scaling of a joint path under a TCP linear-speed limit (thesis §4.3, DESIGN.md §5).
+//
+// Steps: densify the path (path_densification.h); cumulative TCP arc length by forward kinematics;
+// a ramp–cruise–brake speed profile along the path, cruising at maxTcpSpeed, ramping up and braking
+// with constant acceleration (maxTcpSpeed / riseTime, or maxTcpAcceleration), and slower wherever a
+// joint would otherwise exceed its speed limit (the model's URDF velocity limits); times by
+// integrating that profile; PCHIP knots on the dense path at uniform times of the profile and a PCHIP
+// per joint in time (at rest at both ends); then a check on a uniform time grid (step ≤
+// checkTimeStep) with forward kinematics and the Jacobian, stretching the time of the offending
+// knot intervals until no sampled TCP speed exceeds maxTcpSpeed and no sampled joint speed exceeds
+// its limit.
+#include <optional>
+
+#include "arcplan/robot/robot_model.h"
+#include "arcplan/trajectory/joint_path.h"
+#include "arcplan/trajectory/timed_trajectory.h"
+
+namespace arcplan::trajectory {
+
+struct TimeScalingOptions {
+  double maxTcpSpeed = 0.25;                  // m/s, ISO/TS 15066 collaborative limit used by the thesis
+  double riseTime = 0.2;                      // s, time to reach maxTcpSpeed from rest (and to brake)
+  std::optional<double> maxTcpAcceleration;   // m/s², replaces maxTcpSpeed / riseTime when set
+  double checkTimeStep = 0.002;               // s, grid of the verification and of the output samples
+  double maxJointStep = 0.01;                 // rad, densification
+  double maxTcpStep = 0.002;                  // m, densification
+};
+
+// Throws arcplan::Error naming the option for invalid options (non-positive or non-finite speed,
+// rise time, acceleration or steps) and for an invalid path (fewer than 2 waypoints, non-finite
+// values, joints outside the model's limits). The model must have 6 joints.
+TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath& path,
+                                const TimeScalingOptions& options = {});
+
+}  // namespace arcplan::trajectory

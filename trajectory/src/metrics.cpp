@@ -1,0 +1,63 @@
+#include "arcplan/trajectory/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace arcplan::trajectory {
+namespace {
+
+// Time during which the speed, linear between samples, is above the limit.
+double timeAbove(const std::vector<double>& time, const std::vector<double>& speed, double limit) {
+  double total = 0.0;
+  for (std::size_t i = 1; i < time.size(); ++i) {
+    const double a = speed[i - 1] - limit, b = speed[i] - limit, dt = time[i] - time[i - 1];
+    if (a > 0.0 && b > 0.0) {
+      total += dt;
+    } else if (a > 0.0 || b > 0.0) {
+      total += dt * std::max(a, b) / std::abs(b - a);
+    }
+  }
+  return total;
+}
+
+}  // namespace
+
+TrajectoryMetrics computeMetrics(const JointPath& path, const TimedTrajectory& trajectory,
+                                 const ClearanceFunction& clearance) {
+  TrajectoryMetrics metrics;
+  metrics.tcpPathLength = trajectory.tcpPathLength;
+  metrics.jointPathLength = jointPathLength(path);
+  metrics.executionTime = trajectory.duration();
+  metrics.meanTcpSpeed = metrics.executionTime > 0.0 ? metrics.tcpPathLength / metrics.executionTime : 0.0;
+  if (!trajectory.tcpSpeed.empty()) {
+    metrics.peakTcpSpeed = *std::max_element(trajectory.tcpSpeed.begin(), trajectory.tcpSpeed.end());
+  }
+  metrics.timeAboveLimit = timeAbove(trajectory.time, trajectory.tcpSpeed, trajectory.tcpSpeedLimit);
+  for (const auto& velocity : trajectory.velocity) {
+    for (int j = 0; j < 6; ++j) {
+      if (trajectory.jointSpeedLimits[j] > 0.0) {
+        metrics.maxJointSpeedRatio =
+            std::max(metrics.maxJointSpeedRatio, std::abs(velocity[j]) / trajectory.jointSpeedLimits[j]);
+      }
+    }
+  }
+  if (clearance) {
+    metrics.minClearance = std::numeric_limits<double>::infinity();
+    for (const auto& q : trajectory.densePath) metrics.minClearance = std::min(metrics.minClearance, clearance(q));
+  }
+  return metrics;
+}
+
+nlohmann::json toJson(const TrajectoryMetrics& metrics) {
+  const auto numberOrNull = [](double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); };
+  return {{"tcp_path_length_m", metrics.tcpPathLength},
+          {"joint_path_length_rad", metrics.jointPathLength},
+          {"execution_time_s", metrics.executionTime},
+          {"mean_tcp_speed_mps", metrics.meanTcpSpeed},
+          {"peak_tcp_speed_mps", metrics.peakTcpSpeed},
+          {"time_above_limit_s", metrics.timeAboveLimit},
+          {"min_clearance_m", numberOrNull(metrics.minClearance)},
+          {"max_joint_speed_ratio", metrics.maxJointSpeedRatio}};
+}
+
+}  // namespace arcplan::trajectory
