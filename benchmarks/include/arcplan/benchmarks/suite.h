@@ -1,0 +1,73 @@
+#pragma once
+// A benchmark suite (benchmarks/suites/*.yaml): the problems, the planner configurations and how
+// every planner is run on every problem (runs, time limit, TCP speed limit for the scaling).
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "arcplan/collision/scene.h"
+
+namespace arcplan::benchmarks {
+
+// One planner as it appears in the logs and the ranking: a registry planner with fixed parameters.
+struct PlannerConfiguration {
+  std::string label;    // unique in the suite; the planner name in the logs ("arc-h0.75r")
+  std::string planner;  // planner registry name ("arc", "RRTConnect")
+  std::map<std::string, std::string> parameters;  // OMPL declared parameters, set by name
+};
+
+// One planning problem: a scene and the query to solve in it.
+struct Problem {
+  std::string name;    // unique in the suite, [A-Za-z0-9_-]
+  std::string kind;    // "scene file", or the generator's family ("line-sphere", "pillar", "shelf", ...)
+  std::string origin;  // where it came from: the scene file, or "generator seed S problem I"
+  collision::Scene scene;
+  std::string query;   // query name in `scene`
+};
+
+// Seeded random problems around the UR10e on its table (generated_problems.h).
+struct GeneratorSettings {
+  std::uint64_t seed = 1;
+  int lineObstacles = 40;  // one sphere/box/cylinder on or near the straight TCP line
+  int pillars = 5;         // a floor-to-ceiling pillar on the line: no arc detour clears it
+  int shelves = 5;         // a shelf unit between start and goal: the tool must go over or around it
+};
+
+struct Suite {
+  std::string name;  // [A-Za-z0-9_-]
+  std::string description;
+  std::filesystem::path sourceFile;
+  unsigned runs = 10;
+  double timeLimit = 1.0;  // s per run
+  double vMax = 0.25;      // TCP speed limit of the time scaling, m/s
+  std::vector<Problem> problems;
+  std::vector<PlannerConfiguration> planners;
+  std::optional<GeneratorSettings> generator;  // set when some problems are generated
+  std::vector<std::string> plotProblems;       // problems that get TCP speed-profile and 3D path plots
+
+  const Problem& problem(const std::string& name) const;  // throws arcplan::Error listing the names
+};
+
+// Reads a suite file. Scene paths are relative to the suite file's folder or to the data folder.
+// Throws arcplan::Error naming file, line and field: unknown keys, missing fields, duplicate or
+// malformed names, non-positive runs/time/v_max, unknown plot problems, bad scene files.
+Suite loadSuite(const std::filesystem::path& file);
+
+// "thesis" -> the built-in suite file (suiteDirectory()/thesis.yaml); an existing path as given.
+// Throws arcplan::Error listing the built-in suites when neither exists.
+std::filesystem::path findSuite(const std::string& nameOrFile);
+
+// $ARCPLAN_SUITE_DIR, else the installed share/arcplan/suites, else the source tree's benchmarks/suites.
+std::filesystem::path suiteDirectory();
+
+// Restricts `suite` to the named planner labels, in the given order. A label the suite does not
+// configure is taken as a registry planner with its default parameters (checked when the campaign starts).
+void selectPlanners(Suite& suite, const std::vector<std::string>& labels);
+
+// True for names usable in file names, OMPL experiment names and SQL values: [A-Za-z0-9_.+-]+.
+bool isPlainName(const std::string& name);
+
+}  // namespace arcplan::benchmarks

@@ -1,0 +1,262 @@
+#include "arcplan/benchmarks/suite.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+#include <yaml-cpp/yaml.h>
+
+#include "arcplan/benchmarks/generated_problems.h"
+#include "arcplan/common/error.h"
+#include "arcplan/common/resources.h"
+
+namespace arcplan::benchmarks {
+namespace {
+
+// Reading context for messages: "suites/x.yaml:12: field 'runs': ..."
+struct SuiteReader {
+  std::filesystem::path file;
+
+  std::string at(const YAML::Node& node) const {
+    const auto mark = node.Mark();
+    return file.string() + (mark.line >= 0 ? ":" + std::to_string(mark.line + 1) : std::string());
+  }
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
+    throw Error(at(node) + ": " + message);
+  }
+
+  void expectKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what) const {
+    if (!map.IsMap()) fail(map, what + " must be a map");
+    for (const auto& entry : map) {
+      const auto key = entry.first.as<std::string>();
+      if (allowed.count(key) == 0) {
+        std::string list;
+        for (const auto& name : allowed) list += (list.empty() ? "" : ", ") + name;
+        fail(entry.first, "unknown field '" + key + "' in " + what + " (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  std::string text(const YAML::Node& map, const std::string& key, const std::string& what) const {
+    const auto node = map[key];
+    if (!node) fail(map, what + ": missing field '" + key + "'");
+    if (!node.IsScalar()) fail(node, what + ": field '" + key + "' must be a text value");
+    return node.as<std::string>();
+  }
+
+  std::string name(const YAML::Node& map, const std::string& key, const std::string& what) const {
+    auto value = text(map, key, what);
+    if (!isPlainName(value)) {
+      fail(map[key], what + ": field '" + key + "' is '" + value +
+                         "', expected a plain name of letters, digits and _ . + - (it names files and log entries)");
+    }
+    return value;
+  }
+
+  double positive(const YAML::Node& map, const std::string& key, const std::string& what) const {
+    const auto node = map[key];
+    double value = 0.0;
+    try {
+      value = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(node, what + ": field '" + key + "' must be a number");
+    }
+    if (!std::isfinite(value) || value <= 0.0) fail(node, what + ": field '" + key + "' must be > 0");
+    return value;
+  }
+
+  long long count(const YAML::Node& map, const std::string& key, const std::string& what, long long minimum) const {
+    const auto node = map[key];
+    long long value = 0;
+    try {
+      value = node.as<long long>();
+    } catch (const YAML::Exception&) {
+      fail(node, what + ": field '" + key + "' must be a whole number");
+    }
+    if (value < minimum) fail(node, what + ": field '" + key + "' must be >= " + std::to_string(minimum));
+    return value;
+  }
+
+  std::filesystem::path scenePath(const YAML::Node& problem) const {
+    const std::filesystem::path given = text(problem, "scene", "problem");
+    if (given.is_absolute()) return given;
+    const auto besideSuite = file.parent_path() / given;
+    if (std::filesystem::exists(besideSuite)) return besideSuite;
+    const auto inData = resolveDataPath(given);
+    if (std::filesystem::exists(inData)) return inData;
+    fail(problem["scene"], "scene file '" + given.string() + "' not found (looked next to the suite and in " +
+                               dataDirectory().string() + ")");
+  }
+
+  Problem problemFromFile(const YAML::Node& node) const {
+    expectKeys(node, {"name", "scene", "query"}, "problem");
+    Problem problem;
+    problem.name = name(node, "name", "problem");
+    problem.kind = "scene file";
+    const auto path = scenePath(node);
+    problem.origin = path.string();
+    try {
+      problem.scene = collision::loadScene(path);
+    } catch (const Error& e) {
+      fail(node, "problem '" + problem.name + "': " + e.what());
+    }
+    const std::string query = node["query"] ? text(node, "query", "problem") : std::string();
+    try {
+      problem.query = problem.scene.query(query).name;
+    } catch (const Error& e) {
+      fail(node, "problem '" + problem.name + "': " + e.what());
+    }
+    return problem;
+  }
+
+  PlannerConfiguration planner(const YAML::Node& node) const {
+    PlannerConfiguration configuration;
+    if (node.IsScalar()) {  // "- RRTConnect": the planner with its defaults, labelled by its name
+      configuration.label = node.as<std::string>();
+      configuration.planner = configuration.label;
+      if (!isPlainName(configuration.label)) fail(node, "planner name '" + configuration.label + "' is not a plain name");
+      return configuration;
+    }
+    expectKeys(node, {"name", "planner", "params"}, "planner");
+    configuration.label = name(node, "name", "planner");
+    configuration.planner = node["planner"] ? text(node, "planner", "planner") : configuration.label;
+    if (const auto params = node["params"]) {
+      if (!params.IsMap()) fail(params, "planner '" + configuration.label + "': params must be a map name: value");
+      for (const auto& entry : params) {
+        if (!entry.second.IsScalar()) fail(entry.second, "planner '" + configuration.label + "': parameter '" +
+                                                              entry.first.as<std::string>() + "' must be a single value");
+        configuration.parameters[entry.first.as<std::string>()] = entry.second.as<std::string>();
+      }
+    }
+    return configuration;
+  }
+
+  GeneratorSettings generator(const YAML::Node& node) const {
+    expectKeys(node, {"seed", "line_obstacles", "pillars", "shelves"}, "generate");
+    GeneratorSettings settings;
+    if (!node["seed"]) fail(node, "generate: missing field 'seed' (problems must be reproducible)");
+    settings.seed = static_cast<std::uint64_t>(count(node, "seed", "generate", 0));
+    if (node["line_obstacles"]) settings.lineObstacles = static_cast<int>(count(node, "line_obstacles", "generate", 0));
+    if (node["pillars"]) settings.pillars = static_cast<int>(count(node, "pillars", "generate", 0));
+    if (node["shelves"]) settings.shelves = static_cast<int>(count(node, "shelves", "generate", 0));
+    return settings;
+  }
+};
+
+}  // namespace
+
+bool isPlainName(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.' || c == '+' || c == '-';
+  });
+}
+
+const Problem& Suite::problem(const std::string& wanted) const {
+  for (const auto& candidate : problems) {
+    if (candidate.name == wanted) return candidate;
+  }
+  std::string list;
+  for (const auto& candidate : problems) list += (list.empty() ? "" : ", ") + candidate.name;
+  throw Error("suite '" + name + "' has no problem '" + wanted + "' (problems: " + list + ")");
+}
+
+Suite loadSuite(const std::filesystem::path& file) {
+  if (!std::filesystem::exists(file)) throw Error("suite file " + file.string() + " not found");
+  const SuiteReader reader{file};
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file.string());
+  } catch (const YAML::Exception& e) {
+    throw Error(file.string() + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  if (!root || !root.IsMap()) throw Error(file.string() + ": a suite must be a YAML map (name, runs, problems, planners)");
+  reader.expectKeys(root, {"name", "description", "runs", "time_limit", "v_max", "problems", "generate", "planners", "plots"},
+                    "suite");
+
+  Suite suite;
+  suite.sourceFile = file;
+  suite.name = reader.name(root, "name", "suite");
+  if (root["description"]) suite.description = reader.text(root, "description", "suite");
+  if (root["runs"]) suite.runs = static_cast<unsigned>(reader.count(root, "runs", "suite", 1));
+  if (root["time_limit"]) suite.timeLimit = reader.positive(root, "time_limit", "suite");
+  if (root["v_max"]) suite.vMax = reader.positive(root, "v_max", "suite");
+
+  if (const auto problems = root["problems"]) {
+    if (!problems.IsSequence()) reader.fail(problems, "problems must be a list");
+    for (const auto& node : problems) suite.problems.push_back(reader.problemFromFile(node));
+  }
+  if (const auto generate = root["generate"]) {
+    suite.generator = reader.generator(generate);
+    for (auto& problem : generateProblems(*suite.generator)) suite.problems.push_back(std::move(problem));
+  }
+  if (suite.problems.empty()) reader.fail(root, "suite '" + suite.name + "' has no problems (give 'problems' or 'generate')");
+  std::set<std::string> problemNames;
+  for (const auto& problem : suite.problems) {
+    if (!problemNames.insert(problem.name).second) reader.fail(root["problems"], "duplicate problem name '" + problem.name + "'");
+  }
+
+  const auto planners = root["planners"];
+  if (!planners || !planners.IsSequence() || planners.size() == 0) {
+    reader.fail(planners ? planners : root, "suite '" + suite.name + "': 'planners' must be a non-empty list");
+  }
+  std::set<std::string> labels;
+  for (const auto& node : planners) {
+    auto configuration = reader.planner(node);
+    if (!labels.insert(configuration.label).second) reader.fail(node, "duplicate planner name '" + configuration.label + "'");
+    suite.planners.push_back(std::move(configuration));
+  }
+
+  if (const auto plots = root["plots"]) {
+    if (!plots.IsSequence()) reader.fail(plots, "plots must be a list of problem names");
+    for (const auto& node : plots) {
+      const auto problem = node.as<std::string>();
+      if (problemNames.count(problem) == 0) reader.fail(node, "plots: no problem named '" + problem + "' in this suite");
+      suite.plotProblems.push_back(problem);
+    }
+  }
+  return suite;
+}
+
+std::filesystem::path suiteDirectory() {
+  if (const char* value = std::getenv("ARCPLAN_SUITE_DIR"); value != nullptr && *value != '\0') return value;
+  const auto installed = dataDirectory() / "suites";
+  if (std::filesystem::exists(installed)) return installed;
+  return ARCPLAN_SOURCE_SUITE_DIR;
+}
+
+std::filesystem::path findSuite(const std::string& nameOrFile) {
+  if (std::filesystem::exists(nameOrFile)) return nameOrFile;
+  if (isPlainName(nameOrFile)) {
+    const auto builtIn = suiteDirectory() / (nameOrFile + ".yaml");
+    if (std::filesystem::exists(builtIn)) return builtIn;
+  }
+  std::string list;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(suiteDirectory(), ec)) {
+    if (entry.path().extension() == ".yaml") list += (list.empty() ? "" : ", ") + entry.path().stem().string();
+  }
+  throw Error("--suite: '" + nameOrFile + "' is neither a suite file nor a built-in suite (built-in: " +
+              (list.empty() ? std::string("none found in " + suiteDirectory().string()) : list) + ")");
+}
+
+void selectPlanners(Suite& suite, const std::vector<std::string>& labels) {
+  std::vector<PlannerConfiguration> selected;
+  for (const auto& label : labels) {
+    if (std::any_of(selected.begin(), selected.end(), [&](const auto& p) { return p.label == label; })) continue;
+    const auto found = std::find_if(suite.planners.begin(), suite.planners.end(),
+                                    [&](const PlannerConfiguration& p) { return p.label == label; });
+    if (found != suite.planners.end()) {
+      selected.push_back(*found);
+    } else if (isPlainName(label)) {
+      selected.push_back({label, label, {}});  // a registry planner with its defaults
+    } else {
+      throw Error("--planners: '" + label + "' is not a plain planner name");
+    }
+  }
+  if (selected.empty()) throw Error("--planners: the list is empty");
+  suite.planners = std::move(selected);
+}
+
+}  // namespace arcplan::benchmarks

@@ -1,0 +1,185 @@
+// The generated suite's problems: reproducible from the seed, valid and reachable, obstacles where
+// the generator promises them, and scene files that read back identically.
+#include <cmath>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "arcplan/benchmarks/generated_problems.h"
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/common/atomic_file.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/pose.h"
+#include "arcplan/robot/robot_model.h"
+#include "arcplan/robot/ur_inverse_kinematics.h"
+#include "support/command.h"
+
+namespace arcplan::benchmarks {
+namespace {
+
+// A small mix of every family keeps the test fast; the full suite uses the same code paths.
+GeneratorSettings smallSettings(std::uint64_t seed) {
+  GeneratorSettings settings;
+  settings.seed = seed;
+  settings.lineObstacles = 6;
+  settings.pillars = 2;
+  settings.shelves = 2;
+  return settings;
+}
+
+std::vector<std::string> asYaml(const std::vector<Problem>& problems) {
+  std::vector<std::string> documents;
+  for (const auto& problem : problems) documents.push_back(sceneToYaml(problem.scene));
+  return documents;
+}
+
+const std::vector<Problem>& problemsOfSeed7() {
+  static const auto problems = generateProblems(smallSettings(7));
+  return problems;
+}
+
+TEST(GeneratedProblems, SameSeedGivesIdenticalProblems) {
+  const auto again = generateProblems(smallSettings(7));
+  ASSERT_EQ(again.size(), problemsOfSeed7().size());
+  EXPECT_EQ(asYaml(again), asYaml(problemsOfSeed7()));
+  for (std::size_t i = 0; i < again.size(); ++i) {
+    EXPECT_EQ(again[i].name, problemsOfSeed7()[i].name);
+    EXPECT_EQ(again[i].origin, problemsOfSeed7()[i].origin);
+  }
+}
+
+TEST(GeneratedProblems, OtherSeedGivesOtherProblems) {
+  const auto other = generateProblems(smallSettings(8));
+  const auto a = asYaml(problemsOfSeed7()), b = asYaml(other);
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NE(a[i], b[i]) << "problem " << i;
+}
+
+TEST(GeneratedProblems, FamiliesAreIndependentStreams) {
+  // Asking for more line problems leaves pillars and shelves as they were.
+  auto settings = smallSettings(7);
+  settings.lineObstacles = 7;
+  const auto more = generateProblems(settings);
+  ASSERT_EQ(more.size(), problemsOfSeed7().size() + 1);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(sceneToYaml(more[more.size() - 1 - i].scene),
+              sceneToYaml(problemsOfSeed7()[problemsOfSeed7().size() - 1 - i].scene));
+  }
+}
+
+TEST(GeneratedProblems, NamesAndFamiliesAsRequested) {
+  const auto& problems = problemsOfSeed7();
+  ASSERT_EQ(problems.size(), 10u);
+  std::set<std::string> names;
+  for (const auto& problem : problems) names.insert(problem.name);
+  EXPECT_EQ(names.size(), problems.size());
+  EXPECT_EQ(problems[0].name, "line-sphere-000");
+  EXPECT_EQ(problems[1].name, "line-box-001");
+  EXPECT_EQ(problems[2].name, "line-cylinder-002");
+  EXPECT_EQ(problems[6].name, "pillar-000");
+  EXPECT_EQ(problems[9].name, "shelf-001");
+  for (const auto& problem : problems) {
+    EXPECT_EQ(problem.query, "main");
+    ASSERT_EQ(problem.scene.queries.size(), 1u);
+    EXPECT_TRUE(problem.scene.queries[0].start.joints.has_value());
+    EXPECT_TRUE(problem.scene.queries[0].goal.joints.has_value());
+  }
+}
+
+TEST(GeneratedProblems, StartAndGoalAreValidReachableToolDownPoses) {
+  const auto& model = robot::ur10e();
+  const robot::UrInverseKinematics ik(model);
+  const Eigen::Vector3d down(0.0, 0.0, -1.0);
+  for (const auto& problem : problemsOfSeed7()) {
+    SCOPED_TRACE(problem.name);
+    const auto collisionModel = collision::makeCollisionModel(problem.scene);
+    collision::CollisionData data(*collisionModel);
+    const auto& query = problem.scene.queries.front();
+    for (const auto& q : {*query.start.joints, *query.goal.joints}) {
+      for (int j = 0; j < 6; ++j) {
+        EXPECT_GE(q[j], model.joints()[j].limits.lower);
+        EXPECT_LE(q[j], model.joints()[j].limits.upper);
+      }
+      // Every colliding pair, not just the first: none may be reported.
+      const auto report = collision::collide(*collisionModel, data, q);
+      EXPECT_TRUE(report.valid) << (report.collisions.empty() ? "" : report.collisions[0].first + " / " + report.collisions[0].second);
+      const auto pose = robot::tipPose(model, q);
+      EXPECT_NEAR((pose.linear() * Eigen::Vector3d::UnitZ() - down).norm(), 0.0, 1e-9) << "tool not pointing down";
+      EXPECT_GT(pose.translation().z(), 0.1);
+      // Reachable: the analytic IK reproduces this configuration from its pose.
+      bool found = false;
+      for (const auto& solution : ik.solveAll(pose)) found = found || (solution - q).norm() < 1e-6;
+      EXPECT_TRUE(found);
+    }
+    // The straight line between them is walked on one IK branch.
+    EXPECT_EQ(ik.branchOf(*query.start.joints), ik.branchOf(*query.goal.joints));
+  }
+}
+
+double distanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+  return (a + t * (b - a) - p).norm();
+}
+
+TEST(GeneratedProblems, LineObstaclesSitOnOrNearTheStraightTcpLine) {
+  const auto& model = robot::ur10e();
+  int blocking = 0, lineProblems = 0;
+  for (const auto& problem : problemsOfSeed7()) {
+    if (problem.kind.rfind("line-", 0) != 0) continue;
+    SCOPED_TRACE(problem.name);
+    ++lineProblems;
+    const auto& query = problem.scene.queries.front();
+    const Eigen::Vector3d a = robot::tipPose(model, *query.start.joints).translation();
+    const Eigen::Vector3d b = robot::tipPose(model, *query.goal.joints).translation();
+    ASSERT_EQ(problem.scene.obstacles.size(), 2u);  // table + obstacle
+    const auto& obstacle = problem.scene.obstacles[1];
+    const double offLine = distanceToSegment(obstacle.boundingCenter(), a, b);
+    EXPECT_LE(offLine, 1.2 * obstacle.boundingRadius() + 1e-9);
+    EXPECT_GE((obstacle.boundingCenter() - a).norm(), obstacle.boundingRadius() + 0.15 - 1e-9);
+    EXPECT_GE((obstacle.boundingCenter() - b).norm(), obstacle.boundingRadius() + 0.15 - 1e-9);
+    if (offLine < obstacle.boundingRadius()) ++blocking;
+  }
+  EXPECT_EQ(lineProblems, 6);
+  EXPECT_GE(blocking, 1) << "some obstacles must sit on the line";
+}
+
+TEST(GeneratedProblems, ClutteredScenesAreTallerThanAnyArcDetour) {
+  for (const auto& problem : problemsOfSeed7()) {
+    if (problem.kind == "pillar") {
+      const auto& pillar = problem.scene.obstacles.back();
+      EXPECT_EQ(pillar.shape, collision::Obstacle::Shape::Cylinder);
+      EXPECT_NEAR(pillar.pose.translation().z() - pillar.length / 2, 0.0, 1e-12);  // stands on the table
+      EXPECT_GE(pillar.length, 1.5);
+    } else if (problem.kind == "shelf") {
+      EXPECT_EQ(problem.scene.obstacles.size(), 7u);  // table, back, 2 sides, 3 boards
+    }
+  }
+}
+
+TEST(GeneratedProblems, SceneYamlReadsBackAsTheSameScene) {
+  const auto dir = testing::freshTempDirectory("generated_yaml");
+  for (const auto& problem : problemsOfSeed7()) {
+    SCOPED_TRACE(problem.name);
+    const auto file = dir / (problem.name + ".yaml");
+    writeFileAtomically(file, sceneToYaml(problem.scene));
+    const auto loaded = collision::loadScene(file);
+    ASSERT_EQ(loaded.obstacles.size(), problem.scene.obstacles.size());
+    for (std::size_t i = 0; i < loaded.obstacles.size(); ++i) {
+      const auto& original = problem.scene.obstacles[i];
+      const auto& read = loaded.obstacles[i];
+      EXPECT_EQ(read.name, original.name);
+      EXPECT_EQ(read.shape, original.shape);
+      EXPECT_NEAR(read.radius, original.radius, 1e-12);
+      EXPECT_NEAR(read.length, original.length, 1e-12);
+      EXPECT_NEAR((read.size - original.size).norm(), 0.0, 1e-12);
+      EXPECT_NEAR((read.pose.translation() - original.pose.translation()).norm(), 0.0, 1e-12);
+      EXPECT_NEAR(robot::rotationDistance(read.pose.linear(), original.pose.linear()), 0.0, 1e-9);
+    }
+    ASSERT_EQ(loaded.queries.size(), 1u);
+    EXPECT_NEAR((*loaded.queries[0].start.joints - *problem.scene.queries[0].start.joints).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((*loaded.queries[0].goal.joints - *problem.scene.queries[0].goal.joints).norm(), 0.0, 1e-12);
+    EXPECT_EQ(loaded.allowedCollisions, problem.scene.allowedCollisions);
+  }
+}
+
+}  // namespace
+}  // namespace arcplan::benchmarks
