@@ -1,0 +1,438 @@
+// The effect catalogue of DESIGN.md §8. Each class is one physical term; the typical values are
+// what a UR10e shows (currents fitted on the real logs in shared/data/ur10e_real) and only serve
+// `arcplan model simulate` when a model file gives no parameters.
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <map>
+
+#include "arcplan/model/dataset.h"
+#include "arcplan/model/effect.h"
+
+namespace arcplan::model {
+namespace {
+
+// Per-joint typical values for a UR10e (joints beyond the sixth reuse the last one).
+double typical(const std::vector<double>& values, int channel) {
+  return values[static_cast<std::size_t>(std::min<int>(channel, static_cast<int>(values.size()) - 1))];
+}
+const std::vector<double> kDriveGain{0.085, 0.085, 0.10, 0.095, 0.09, 0.08};  // A/(N·m)
+const std::vector<double> kCoulomb{1.4, 1.3, 0.65, 0.26, 0.3, 0.24};           // A
+const std::vector<double> kViscous{1.75, 1.63, 1.09, 0.33, 0.24, 0.29};        // A·s/rad
+const std::vector<double> kTorqueScale{10.0, 70.0, 30.0, 2.5, 0.5, 0.3};       // typical |τ| in N·m
+const std::vector<double> kRotorInertia{1.5, 1.5, 0.8, 0.15, 0.15, 0.15};      // kg·m² at the joint
+
+double sgn(const Dataset& data, double velocity) { return smoothSign(velocity, data.settings().velocitySmoothing); }
+
+bool isJointKind(ModelKind kind) { return kind == ModelKind::JointCurrent || kind == ModelKind::JointTracking; }
+
+class RigidBody : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override {
+    return "inertia, Coriolis and gravity torques of the arm computed from the URDF inertials";
+  }
+  std::string term() const override { return "a·g(q) + b·(M(q)·qdd + C(q,qd)·qd)"; }
+  std::string residualPattern() const override {
+    return "follows the arm's own rigid-body torque (gravity and inertia of the URDF links)";
+  }
+  bool appliesTo(ModelKind kind) const override { return kind == ModelKind::JointCurrent; }
+  std::vector<std::string> requiredSignals() const override { return {"rb_gravity", "rb_inertial"}; }
+  std::vector<std::string> parameterNames() const override { return {"gravity_gain", "inertial_gain"}; }
+  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    columns.col(0) = data.signal("rb_gravity", c);
+    columns.col(1) = data.signal("rb_inertial", c);
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override {
+    // The arm's inertia 30 % above what the load-torque source assumes.
+    return {0.0, 0.3 * typical(kDriveGain, c)};
+  }
+};
+
+class DriveGain : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override {
+    return "torque per amp of the drive (gear ratio x motor torque constant); for a gearbox, the slope of the "
+           "force-transfer line";
+  }
+  std::string term() const override { return "current = tau / k  (coefficient 1/k)"; }
+  std::string residualPattern() const override { return "is proportional to the load torque"; }
+  bool appliesTo(ModelKind kind) const override { return kind != ModelKind::JointTracking; }
+  std::vector<std::string> requiredSignals() const override { return {"tau"}; }
+  std::vector<std::string> parameterNames() const override { return {"per_torque"}; }
+  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    columns.col(0) = data.signal("tau", c);
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override { return {typical(kDriveGain, c)}; }
+};
+
+class Offset : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override { return "constant sensor or current offset"; }
+  std::string term() const override { return "c"; }
+  std::string residualPattern() const override { return "has a constant offset"; }
+  bool appliesTo(ModelKind) const override { return true; }
+  std::vector<std::string> requiredSignals() const override { return {}; }
+  std::vector<std::string> parameterNames() const override { return {"offset"}; }
+  void regressor(const Dataset&, int, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    columns.col(0).setOnes();
+  }
+  std::vector<double> typicalParameters(ModelKind kind, int c) const override {
+    const std::vector<double> amps{0.02, -0.05, 0.01, 0.01, 0.015, 0.005};
+    return {kind == ModelKind::JointTracking ? 1e-4 : typical(amps, c)};
+  }
+};
+
+class Coulomb : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override { return "dry (Coulomb) friction, constant against the motion"; }
+  std::string term() const override { return "Fc·sgn(qd)  (sgn smoothed as tanh(qd/velocity_smoothing))"; }
+  std::string residualPattern() const override { return "jumps by a constant step whenever the motion reverses"; }
+  bool appliesTo(ModelKind kind) const override { return kind != ModelKind::JointTracking; }
+  std::vector<std::string> requiredSignals() const override { return {"qd"}; }
+  std::vector<std::string> parameterNames() const override { return {"Fc"}; }
+  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    const auto& qd = data.signal("qd", c);
+    for (Eigen::Index k = 0; k < qd.size(); ++k) columns(k, 0) = sgn(data, qd[k]);
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override { return {typical(kCoulomb, c)}; }
+};
+
+class Viscous : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override { return "viscous friction of the lubricated gear and bearings"; }
+  std::string term() const override { return "Fv·qd"; }
+  std::string residualPattern() const override { return "grows linearly with the joint speed"; }
+  bool appliesTo(ModelKind kind) const override { return kind == ModelKind::JointCurrent; }
+  std::vector<std::string> requiredSignals() const override { return {"qd"}; }
+  std::vector<std::string> parameterNames() const override { return {"Fv"}; }
+  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    columns.col(0) = data.signal("qd", c);
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override { return {typical(kViscous, c)}; }
+};
+
+class Stribeck : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override {
+    return "breakaway friction above the Coulomb level at low speed (Stribeck effect of lubricated contacts)";
+  }
+  std::string term() const override { return "Fs·exp(-(qd/vs)^2)·sgn(qd), vs searched"; }
+  std::string residualPattern() const override {
+    return "peaks just after the motion starts or reverses and fades as the joint speeds up";
+  }
+  bool appliesTo(ModelKind kind) const override { return kind == ModelKind::JointCurrent; }
+  std::vector<std::string> requiredSignals() const override { return {"qd"}; }
+  std::vector<std::string> parameterNames() const override { return {"Fs"}; }
+  std::optional<NonlinearParameter> nonlinearParameter() const override {
+    NonlinearParameter p{"stribeck_velocity", "rad/s", {}, false};
+    for (int i = 0; i <= 32; ++i) p.grid.push_back(0.002 * std::pow(250.0, i / 32.0));  // 0.002 .. 0.5 rad/s
+    return p;
+  }
+  void regressor(const Dataset& data, int c, double vs, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    const auto& qd = data.signal("qd", c);
+    for (Eigen::Index k = 0; k < qd.size(); ++k) {
+      const double ratio = qd[k] / vs;
+      columns(k, 0) = std::exp(-ratio * ratio) * sgn(data, qd[k]);
+    }
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override { return {0.5 * typical(kCoulomb, c)}; }
+  double typicalNonlinear(int) const override { return 0.03; }
+};
+
+class LoadFriction : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override {
+    return "friction that rises with the transmitted load (Harmonic Drive force-transfer law, linear + parabolic)";
+  }
+  std::string term() const override { return "(mu1·|tau| + mu2·tau^2)·sgn(qd)"; }
+  std::string residualPattern() const override { return "grows with |load torque| in both directions"; }
+  bool appliesTo(ModelKind kind) const override { return kind != ModelKind::JointTracking; }
+  std::vector<std::string> requiredSignals() const override { return {"tau", "qd"}; }
+  std::vector<std::string> parameterNames() const override { return {"mu1", "mu2"}; }
+  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    const auto& tau = data.signal("tau", c);
+    const auto& qd = data.signal("qd", c);
+    for (Eigen::Index k = 0; k < tau.size(); ++k) {
+      const double s = sgn(data, qd[k]);
+      columns(k, 0) = std::abs(tau[k]) * s;
+      columns(k, 1) = tau[k] * tau[k] * s;
+    }
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override {
+    const double scale = typical(kTorqueScale, c);
+    return {0.15 * typical(kCoulomb, c) / scale, 0.1 * typical(kCoulomb, c) / (scale * scale)};
+  }
+};
+
+class DirectionAsymmetry : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override {
+    return "friction differs between DIRECT (motoring, load and motion in the same sense) and INDIRECT "
+           "(regenerating) power flow";
+  }
+  std::string term() const override { return "dFc·sgn(qd)·[tau·qd > 0]"; }
+  std::string residualPattern() const override {
+    return "differs between motoring (load torque and motion in the same sense) and regenerating phases";
+  }
+  bool appliesTo(ModelKind kind) const override { return kind != ModelKind::JointTracking; }
+  std::vector<std::string> requiredSignals() const override { return {"tau", "qd"}; }
+  std::vector<std::string> parameterNames() const override { return {"dFc"}; }
+  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    const auto& tau = data.signal("tau", c);
+    const auto& qd = data.signal("qd", c);
+    for (Eigen::Index k = 0; k < tau.size(); ++k) columns(k, 0) = tau[k] * qd[k] > 0.0 ? sgn(data, qd[k]) : 0.0;
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override { return {0.3 * typical(kCoulomb, c)}; }
+};
+
+class TemperatureFriction : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override { return "friction falls as the joints warm up (lubricant viscosity)"; }
+  std::string term() const override { return "(a·sgn(qd) + b·qd)·(T - T0)"; }
+  std::string residualPattern() const override { return "drifts as the joint temperature changes"; }
+  bool appliesTo(ModelKind kind) const override { return kind == ModelKind::JointCurrent; }
+  std::vector<std::string> requiredSignals() const override { return {"temperature", "qd"}; }
+  std::vector<std::string> parameterNames() const override { return {"a", "b"}; }
+  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    const auto& temperature = data.signal("temperature", c);
+    const auto& qd = data.signal("qd", c);
+    const double reference = data.settings().referenceTemperature;
+    for (Eigen::Index k = 0; k < qd.size(); ++k) {
+      const double warming = temperature[k] - reference;
+      columns(k, 0) = sgn(data, qd[k]) * warming;
+      columns(k, 1) = qd[k] * warming;
+    }
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override {
+    return {-0.02 * typical(kCoulomb, c), -0.01 * typical(kViscous, c)};
+  }
+};
+
+class PositionRipple : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override {
+    return "periodic in the joint angle: gear meshing and the wave generator of the Harmonic Drive";
+  }
+  std::string term() const override { return "sum_k a_k·cos(k·n·q) + b_k·sin(k·n·q), n cycles per revolution searched"; }
+  std::string residualPattern() const override { return "repeats periodically with the joint angle"; }
+  bool appliesTo(ModelKind kind) const override { return isJointKind(kind); }
+  std::vector<std::string> requiredSignals() const override { return {"q"}; }
+  std::vector<std::string> optionNames() const override { return {"harmonics"}; }
+  int harmonics() const { return std::max(1, static_cast<int>(option("harmonics").value_or(1.0))); }
+  std::vector<std::string> parameterNames() const override {
+    std::vector<std::string> names;
+    for (int k = 1; k <= harmonics(); ++k) {
+      names.push_back("a" + std::to_string(k));
+      names.push_back("b" + std::to_string(k));
+    }
+    return names;
+  }
+  std::optional<NonlinearParameter> nonlinearParameter() const override {
+    NonlinearParameter p{"cycles_per_revolution", "1/rev", {}, true};
+    for (int n = kMinCycles; n <= kMaxCycles; ++n) p.grid.push_back(n);
+    return p;
+  }
+  void regressor(const Dataset& data, int c, double cycles, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    const auto& q = data.signal("q", c);
+    for (int k = 1; k <= harmonics(); ++k) {
+      for (Eigen::Index i = 0; i < q.size(); ++i) {
+        const double phase = k * cycles * q[i];
+        columns(i, 2 * (k - 1)) = std::cos(phase);
+        columns(i, 2 * (k - 1) + 1) = std::sin(phase);
+      }
+    }
+  }
+
+  // All 500 frequencies at once: the sums Σ r·e^{inq} and Σ e^{imq} come from one complex
+  // recurrence per point, and the points are the residual binned finely in q (bins a 32nd of the
+  // shortest period, so the phase error stays below 0.1 rad) when that is fewer than the samples.
+  double searchNonlinear(const Dataset& data, int c, const Eigen::VectorXd& residual) const override {
+    if (const auto fixed = option("cycles_per_revolution")) return *fixed;
+    const auto& q = data.signal("q", c);
+    const double low = q.minCoeff(), high = q.maxCoeff();
+    const double width = 2.0 * M_PI / kMaxCycles / 32.0;
+    const auto binCount = static_cast<Eigen::Index>(std::floor((high - low) / width)) + 1;
+    std::vector<double> position, weight, sum;
+    if (binCount < q.size()) {
+      std::vector<double> qSum(binCount, 0.0), count(binCount, 0.0), rSum(binCount, 0.0);
+      for (Eigen::Index i = 0; i < q.size(); ++i) {
+        const auto b = std::min<Eigen::Index>(binCount - 1, static_cast<Eigen::Index>((q[i] - low) / width));
+        qSum[b] += q[i];
+        count[b] += 1.0;
+        rSum[b] += residual[i];
+      }
+      for (Eigen::Index b = 0; b < binCount; ++b) {
+        if (count[b] == 0.0) continue;
+        position.push_back(qSum[b] / count[b]);
+        weight.push_back(count[b]);
+        sum.push_back(rSum[b]);
+      }
+    } else {
+      position.assign(q.data(), q.data() + q.size());
+      weight.assign(q.size(), 1.0);
+      sum.assign(residual.data(), residual.data() + residual.size());
+    }
+    // moments[m] = Σ w·e^{imq} (m ≤ 2·max), projections[n] = Σ r·e^{inq} (n ≤ max)
+    std::vector<std::complex<double>> moments(2 * kMaxCycles + 1, 0.0), projections(kMaxCycles + 1, 0.0);
+    for (std::size_t i = 0; i < position.size(); ++i) {
+      const std::complex<double> step = std::polar(1.0, position[i]);
+      std::complex<double> power = 1.0;
+      for (int m = 1; m <= 2 * kMaxCycles; ++m) {
+        power *= step;
+        if (m % 64 == 0) power = std::polar(1.0, m * position[i]);  // stop rounding drift
+        moments[m] += weight[i] * power;
+        if (m <= kMaxCycles) projections[m] += sum[i] * power;
+      }
+    }
+    double total = 0.0;
+    for (double w : weight) total += w;
+    int best = kMinCycles;
+    double bestReduction = -1.0;
+    for (int n = kMinCycles; n <= kMaxCycles; ++n) {
+      // Gram of [cos nq, sin nq] from the double-angle moments.
+      const double cc = 0.5 * (total + moments[2 * n].real()), ss = 0.5 * (total - moments[2 * n].real());
+      const double cs = 0.5 * moments[2 * n].imag();
+      const double rc = projections[n].real(), rs = projections[n].imag();
+      const double det = cc * ss - cs * cs;
+      if (det <= 1e-9 * total * total) continue;
+      const double reduction = (ss * rc * rc - 2.0 * cs * rc * rs + cc * rs * rs) / det;
+      if (reduction > bestReduction) {
+        bestReduction = reduction;
+        best = n;
+      }
+    }
+    return best;
+  }
+  std::vector<double> typicalParameters(ModelKind kind, int c) const override {
+    std::vector<double> values(2 * harmonics(), 0.0);
+    values[0] = kind == ModelKind::JointTracking ? 2e-4 : 0.2 * typical(kCoulomb, c);
+    values[1] = kind == ModelKind::JointTracking ? 1e-4 : 0.1 * typical(kCoulomb, c);
+    return values;
+  }
+  double typicalNonlinear(int) const override { return 50.0; }
+
+private:
+  static constexpr int kMinCycles = 1;
+  static constexpr int kMaxCycles = 500;
+};
+
+class Payload : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override { return "an unmodelled mass at the tool (gravity and inertia of a point mass)"; }
+  std::string term() const override { return "Y_payload(q,qd,qdd)·[m, m·cx, m·cy, m·cz]"; }
+  std::string residualPattern() const override {
+    return "follows the gravity and acceleration torque of a mass carried at the tool";
+  }
+  bool appliesTo(ModelKind kind) const override { return kind == ModelKind::JointCurrent; }
+  std::vector<std::string> requiredSignals() const override {
+    return {"payload_m", "payload_mx", "payload_my", "payload_mz"};
+  }
+  std::vector<std::string> parameterNames() const override { return {"m", "m_cx", "m_cy", "m_cz"}; }
+  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    columns.col(0) = data.signal("payload_m", c);
+    columns.col(1) = data.signal("payload_mx", c);
+    columns.col(2) = data.signal("payload_my", c);
+    columns.col(3) = data.signal("payload_mz", c);
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override {
+    // 3 kg, 5 cm out along the tool axis, seen through the drive gain.
+    const double gain = typical(kDriveGain, c);
+    return {3.0 * gain, 0.0, 0.0, 0.15 * gain};
+  }
+};
+
+class RotorInertia : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override { return "inertia of the motor rotor reflected through the gear ratio"; }
+  std::string term() const override { return "Ir·qdd"; }
+  std::string residualPattern() const override { return "follows the joint acceleration"; }
+  bool appliesTo(ModelKind kind) const override { return kind == ModelKind::JointCurrent; }
+  std::vector<std::string> requiredSignals() const override { return {"qdd"}; }
+  std::vector<std::string> parameterNames() const override { return {"Ir"}; }
+  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    columns.col(0) = data.signal("qdd", c);
+  }
+  std::vector<double> typicalParameters(ModelKind, int c) const override {
+    return {typical(kRotorInertia, c) * typical(kDriveGain, c)};
+  }
+};
+
+class TrackingDelay : public Effect {
+public:
+  using Effect::Effect;
+  std::string meaning() const override { return "controller and servo lag: the joint follows its target late"; }
+  std::string term() const override { return "actual(t) = target(t - d)  (scale·[target(t-d) - target(t)]), d searched"; }
+  std::string residualPattern() const override {
+    return "follows the commanded joint speed with the opposite sign: the actual position lags the target";
+  }
+  bool appliesTo(ModelKind kind) const override { return kind == ModelKind::JointTracking; }
+  std::vector<std::string> requiredSignals() const override { return {"target_q", "target_qd", "time"}; }
+  std::vector<std::string> parameterNames() const override { return {"scale"}; }
+  std::optional<NonlinearParameter> nonlinearParameter() const override {
+    NonlinearParameter p{"delay", "s", {}, false};
+    for (int i = 0; i <= 50; ++i) p.grid.push_back(0.002 * i);  // 0 .. 100 ms
+    return p;
+  }
+  // target(t - d) by cubic Hermite interpolation of target_q with its velocity target_qd.
+  void regressor(const Dataset& data, int c, double delay, Eigen::Ref<Eigen::MatrixXd> columns) const override {
+    const auto& time = data.signal("time", c);
+    const auto& position = data.signal("target_q", c);
+    const auto& velocity = data.signal("target_qd", c);
+    const Eigen::Index n = time.size();
+    Eigen::Index segment = 0;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double t = time[k] - delay;
+      double shifted;
+      if (t <= time[0]) {
+        shifted = position[0] + velocity[0] * (t - time[0]);
+      } else {
+        while (segment + 2 < n && time[segment + 1] < t) ++segment;
+        const double h = time[segment + 1] - time[segment];
+        const double s = std::min(1.0, (t - time[segment]) / h);
+        const double s2 = s * s, s3 = s2 * s;
+        shifted = (2 * s3 - 3 * s2 + 1) * position[segment] + (s3 - 2 * s2 + s) * h * velocity[segment] +
+                  (-2 * s3 + 3 * s2) * position[segment + 1] + (s3 - s2) * h * velocity[segment + 1];
+      }
+      columns(k, 0) = shifted - position[k];
+    }
+  }
+  std::vector<double> typicalParameters(ModelKind, int) const override { return {1.0}; }
+  double typicalNonlinear(int) const override { return 0.008; }
+};
+
+template <typename T>
+EffectFactory factory() {
+  return [](const EffectSpec& spec) { return std::make_unique<T>(spec); };
+}
+
+}  // namespace
+
+void addCatalogueEffects(std::map<std::string, EffectFactory>& factories) {
+  factories["rigid_body"] = factory<RigidBody>();
+  factories["drive_gain"] = factory<DriveGain>();
+  factories["offset"] = factory<Offset>();
+  factories["coulomb"] = factory<Coulomb>();
+  factories["viscous"] = factory<Viscous>();
+  factories["stribeck"] = factory<Stribeck>();
+  factories["load_friction"] = factory<LoadFriction>();
+  factories["direction_asymmetry"] = factory<DirectionAsymmetry>();
+  factories["temperature_friction"] = factory<TemperatureFriction>();
+  factories["position_ripple"] = factory<PositionRipple>();
+  factories["payload"] = factory<Payload>();
+  factories["rotor_inertia"] = factory<RotorInertia>();
+  factories["tracking_delay"] = factory<TrackingDelay>();
+}
+
+}  // namespace arcplan::model

@@ -1,0 +1,323 @@
+#include "arcplan/model/model_spec.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "arcplan/common/atomic_file.h"
+#include "arcplan/common/error.h"
+#include "arcplan/common/text_parsing.h"
+#include "arcplan/model/effect.h"
+
+namespace arcplan::model {
+namespace {
+
+std::string at(const std::filesystem::path& source, const YAML::Node& node) {
+  std::string text = source.empty() ? std::string("model") : source.string();
+  if (node.Mark().line >= 0) text += ":" + std::to_string(node.Mark().line + 1);
+  return text;
+}
+
+double number(const YAML::Node& node, const std::filesystem::path& source, const std::string& field) {
+  double value = 0.0;
+  if (!node.IsScalar() || !YAML::convert<double>::decode(node, value) || !std::isfinite(value)) {
+    throw Error(at(source, node) + ": " + field + ": expected a finite number");
+  }
+  return value;
+}
+
+std::vector<double> numbers(const YAML::Node& node, const std::filesystem::path& source, const std::string& field) {
+  if (!node.IsSequence()) throw Error(at(source, node) + ": " + field + ": expected a list of numbers");
+  std::vector<double> values;
+  for (const auto& item : node) {
+    // .nan marks a channel the effect does not apply to.
+    double value = 0.0;
+    if (!item.IsScalar() || !YAML::convert<double>::decode(item, value)) {
+      throw Error(at(source, item) + ": " + field + ": expected a list of numbers");
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
+std::vector<int> jointList(const YAML::Node& node, const std::filesystem::path& source, const std::string& field) {
+  std::vector<int> joints;
+  for (double value : numbers(node, source, field)) {
+    if (value < 0 || value != std::floor(value)) {
+      throw Error(at(source, node) + ": " + field + ": joint indices are 0-based integers");
+    }
+    joints.push_back(static_cast<int>(value));
+  }
+  return joints;
+}
+
+void checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::filesystem::path& source,
+               const std::string& where) {
+  for (const auto& entry : map) {
+    const auto key = entry.first.as<std::string>();
+    if (!allowed.count(key)) {
+      std::string names;
+      for (const auto& a : allowed) names += (names.empty() ? "" : ", ") + a;
+      throw Error(at(source, entry.first) + ": " + where + "unknown key '" + key + "' (expected: " + names + ")");
+    }
+  }
+}
+
+EffectSpec parseEffect(const YAML::Node& node, const std::filesystem::path& source, std::size_t index) {
+  const std::string where = "effects[" + std::to_string(index) + "]";
+  EffectSpec spec;
+  if (node.IsScalar()) {
+    try {
+      spec = parseEffectArgument(node.as<std::string>());
+    } catch (const Error& e) {
+      throw Error(at(source, node) + ": " + where + ": " + e.what());
+    }
+    return spec;
+  }
+  if (!node.IsMap() || !node["id"]) {
+    throw Error(at(source, node) + ": " + where + ": expected an effect id or a map with 'id'");
+  }
+  spec.id = node["id"].as<std::string>();
+  for (const auto& entry : node) {
+    const auto key = entry.first.as<std::string>();
+    const std::string field = where + "." + key;
+    if (key == "id") continue;
+    if (key == "joints") {
+      spec.joints = jointList(entry.second, source, field);
+    } else if (key == "expression") {
+      if (entry.second.IsSequence()) {
+        for (const auto& e : entry.second) spec.expressions.push_back(e.as<std::string>());
+      } else {
+        spec.expressions.push_back(entry.second.as<std::string>());
+      }
+    } else if (key == "explanation") {
+      spec.explanation = entry.second.as<std::string>();
+    } else if (key == "parameters" || key == "standard_errors") {
+      if (!entry.second.IsMap()) throw Error(at(source, entry.second) + ": " + field + ": expected name: [values per joint]");
+      auto& target = key == "parameters" ? spec.parameters : spec.standardErrors;
+      for (const auto& parameter : entry.second) {
+        const auto name = parameter.first.as<std::string>();
+        target[name] = numbers(parameter.second, source, field + "." + name);
+      }
+    } else {
+      spec.options[key] = number(entry.second, source, field);
+    }
+  }
+  try {
+    const auto effect = createEffect(spec);  // validates the id and the options
+    for (const auto* values : {&spec.parameters, &spec.standardErrors}) {
+      for (const auto& [name, list] : *values) {
+        const auto names = effect->parameterNames();
+        const auto nonlinear = effect->nonlinearParameter();
+        if (std::find(names.begin(), names.end(), name) == names.end() && !(nonlinear && nonlinear->name == name)) {
+          std::string known;
+          for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+          if (nonlinear) known += ", " + nonlinear->name;
+          throw Error("unknown parameter '" + name + "' (parameters: " + known + ")");
+        }
+      }
+    }
+  } catch (const Error& e) {
+    throw Error(at(source, node) + ": " + where + ": " + e.what());
+  }
+  return spec;
+}
+
+ModelKind parseKind(const YAML::Node& node, const std::filesystem::path& source) {
+  const auto text = node.as<std::string>();
+  if (text == "joint_current") return ModelKind::JointCurrent;
+  if (text == "joint_tracking") return ModelKind::JointTracking;
+  if (text == "gearbox_ftd") return ModelKind::GearboxFtd;
+  throw Error(at(source, node) + ": kind: unknown kind '" + text + "' (expected joint_current, joint_tracking or gearbox_ftd)");
+}
+
+LoadTorqueSource parseLoadTorque(const YAML::Node& node, const std::filesystem::path& source) {
+  const auto text = node.as<std::string>();
+  if (text == "target_moment") return LoadTorqueSource::TargetMoment;
+  if (text == "rigid_body") return LoadTorqueSource::RigidBody;
+  throw Error(at(source, node) + ": load_torque: unknown source '" + text + "' (expected target_moment or rigid_body)");
+}
+
+Eigen::Vector3d vector3(const YAML::Node& node, const std::filesystem::path& source, const std::string& field) {
+  const auto values = numbers(node, source, field);
+  if (values.size() != 3) throw Error(at(source, node) + ": " + field + ": expected 3 numbers");
+  return {values[0], values[1], values[2]};
+}
+
+void emitList(YAML::Emitter& out, const std::vector<double>& values) {
+  out << YAML::Flow << YAML::BeginSeq;
+  for (double v : values) out << v;  // NaN (effect not applied on that channel) is written as .nan
+  out << YAML::EndSeq;
+}
+
+}  // namespace
+
+std::string toString(ModelKind kind) {
+  switch (kind) {
+    case ModelKind::JointCurrent: return "joint_current";
+    case ModelKind::JointTracking: return "joint_tracking";
+    case ModelKind::GearboxFtd: return "gearbox_ftd";
+  }
+  return "?";
+}
+
+std::string toString(LoadTorqueSource source) {
+  return source == LoadTorqueSource::TargetMoment ? "target_moment" : "rigid_body";
+}
+
+bool ModelSpec::hasEffect(const std::string& id) const {
+  return std::any_of(effects.begin(), effects.end(), [&](const EffectSpec& e) { return e.id == id; });
+}
+
+EffectSpec parseEffectArgument(const std::string& text) {
+  EffectSpec spec;
+  const auto colon = text.find(':');
+  spec.id = std::string(trim(text.substr(0, colon)));
+  if (spec.id.empty()) throw Error("effect '" + text + "': empty effect name");
+  if (colon != std::string::npos) {
+    for (double value : parseNumberList(text.substr(colon + 1), "effect '" + text + "' joints")) {
+      if (value < 0 || value != std::floor(value)) throw Error("effect '" + text + "': joints are 0-based integers");
+      spec.joints.push_back(static_cast<int>(value));
+    }
+  }
+  createEffect(spec);  // throws for an unknown id
+  return spec;
+}
+
+ModelSpec parseModelYaml(const std::string& yaml, const std::filesystem::path& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml);
+  } catch (const YAML::Exception& e) {
+    throw Error((source.empty() ? std::string("model") : source.string()) + ":" + std::to_string(e.mark.line + 1) +
+                ": malformed YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw Error(at(source, root) + ": a model file is a map with at least 'kind' and 'effects'");
+  checkKeys(root,
+            {"name", "kind", "load_torque", "joints", "urdf", "gravity", "payload", "derivative_cutoff_hz",
+             "velocity_smoothing", "reference_temperature", "effects"},
+            source, "");
+  ModelSpec spec;
+  spec.source = source;
+  try {
+    if (!root["kind"]) throw Error(at(source, root) + ": missing 'kind' (joint_current, joint_tracking or gearbox_ftd)");
+    spec.kind = parseKind(root["kind"], source);
+    if (root["name"]) spec.name = root["name"].as<std::string>();
+    if (root["load_torque"]) spec.loadTorque = parseLoadTorque(root["load_torque"], source);
+    if (root["joints"]) {
+      const double joints = number(root["joints"], source, "joints");
+      if (joints < 1 || joints != std::floor(joints)) throw Error(at(source, root["joints"]) + ": joints: expected a positive integer");
+      spec.joints = static_cast<int>(joints);
+    }
+    if (root["urdf"]) {
+      spec.urdf = root["urdf"].as<std::string>();
+      if (spec.urdf.is_relative() && !source.empty()) spec.urdf = source.parent_path() / spec.urdf;
+    }
+    if (root["gravity"]) spec.dynamics.gravity = vector3(root["gravity"], source, "gravity");
+    if (const auto payload = root["payload"]) {
+      if (!payload.IsMap()) throw Error(at(source, payload) + ": payload: expected {mass, center_of_mass}");
+      checkKeys(payload, {"mass", "center_of_mass"}, source, "payload: ");
+      if (payload["mass"]) spec.dynamics.payload.mass = number(payload["mass"], source, "payload.mass");
+      if (payload["center_of_mass"]) {
+        spec.dynamics.payload.centerOfMass = vector3(payload["center_of_mass"], source, "payload.center_of_mass");
+      }
+    }
+    if (root["derivative_cutoff_hz"]) spec.derivativeCutoffHz = number(root["derivative_cutoff_hz"], source, "derivative_cutoff_hz");
+    if (root["velocity_smoothing"]) spec.velocitySmoothing = number(root["velocity_smoothing"], source, "velocity_smoothing");
+    if (spec.velocitySmoothing <= 0.0) throw Error(at(source, root["velocity_smoothing"]) + ": velocity_smoothing must be positive");
+    if (root["reference_temperature"]) {
+      spec.referenceTemperature = number(root["reference_temperature"], source, "reference_temperature");
+    }
+    const auto effects = root["effects"];
+    if (!effects) throw Error(at(source, root) + ": missing 'effects' (a list, possibly empty: effects: [])");
+    if (!effects.IsSequence()) throw Error(at(source, effects) + ": effects: expected a list");
+    for (std::size_t i = 0; i < effects.size(); ++i) {
+      auto effect = parseEffect(effects[i], source, i);
+      const auto instance = createEffect(effect);
+      if (!instance->appliesTo(spec.kind)) {
+        throw Error(at(source, effects[i]) + ": effects[" + std::to_string(i) + "]: effect '" + effect.id +
+                    "' does not apply to kind " + toString(spec.kind));
+      }
+      if (spec.hasEffect(effect.id)) {
+        throw Error(at(source, effects[i]) + ": effects[" + std::to_string(i) + "]: effect '" + effect.id + "' is listed twice");
+      }
+      spec.effects.push_back(std::move(effect));
+    }
+  } catch (const YAML::Exception& e) {
+    throw Error((source.empty() ? std::string("model") : source.string()) + ":" + std::to_string(e.mark.line + 1) +
+                ": " + e.msg);
+  }
+  return spec;
+}
+
+ModelSpec loadModelFile(const std::filesystem::path& file) {
+  if (!std::filesystem::exists(file)) throw Error("model file " + file.string() + " does not exist");
+  std::ifstream in(file);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseModelYaml(text.str(), file);
+}
+
+std::string toYaml(const ModelSpec& spec) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(10);
+  out << YAML::BeginMap;
+  if (!spec.name.empty()) out << YAML::Key << "name" << YAML::Value << spec.name;
+  out << YAML::Key << "kind" << YAML::Value << toString(spec.kind);
+  if (spec.kind != ModelKind::GearboxFtd) out << YAML::Key << "load_torque" << YAML::Value << toString(spec.loadTorque);
+  if (spec.joints > 0) out << YAML::Key << "joints" << YAML::Value << spec.joints;
+  if (!spec.urdf.empty()) out << YAML::Key << "urdf" << YAML::Value << std::filesystem::absolute(spec.urdf).string();
+  const robot::DynamicsParameters defaults;
+  if (spec.dynamics.gravity != defaults.gravity) {
+    out << YAML::Key << "gravity" << YAML::Value;
+    emitList(out, {spec.dynamics.gravity.x(), spec.dynamics.gravity.y(), spec.dynamics.gravity.z()});
+  }
+  if (spec.dynamics.payload.mass != 0.0) {
+    const auto& c = spec.dynamics.payload.centerOfMass;
+    out << YAML::Key << "payload" << YAML::Value << YAML::BeginMap << YAML::Key << "mass" << YAML::Value
+        << spec.dynamics.payload.mass << YAML::Key << "center_of_mass" << YAML::Value;
+    emitList(out, {c.x(), c.y(), c.z()});
+    out << YAML::EndMap;
+  }
+  const ModelSpec plain;
+  if (spec.derivativeCutoffHz != plain.derivativeCutoffHz) out << YAML::Key << "derivative_cutoff_hz" << YAML::Value << spec.derivativeCutoffHz;
+  if (spec.velocitySmoothing != plain.velocitySmoothing) out << YAML::Key << "velocity_smoothing" << YAML::Value << spec.velocitySmoothing;
+  if (spec.referenceTemperature != plain.referenceTemperature) {
+    out << YAML::Key << "reference_temperature" << YAML::Value << spec.referenceTemperature;
+  }
+  out << YAML::Key << "effects" << YAML::Value << YAML::BeginSeq;
+  for (const auto& effect : spec.effects) {
+    const bool simple = effect.joints.empty() && effect.expressions.empty() && effect.explanation.empty() &&
+                        effect.options.empty() && effect.parameters.empty();
+    if (simple) {
+      out << effect.id;
+      continue;
+    }
+    out << YAML::BeginMap << YAML::Key << "id" << YAML::Value << effect.id;
+    if (!effect.joints.empty()) out << YAML::Key << "joints" << YAML::Value << YAML::Flow << effect.joints;
+    if (effect.expressions.size() == 1) out << YAML::Key << "expression" << YAML::Value << effect.expressions.front();
+    if (effect.expressions.size() > 1) out << YAML::Key << "expression" << YAML::Value << effect.expressions;
+    if (!effect.explanation.empty()) out << YAML::Key << "explanation" << YAML::Value << effect.explanation;
+    for (const auto& [name, value] : effect.options) out << YAML::Key << name << YAML::Value << value;
+    for (const auto* group : {&effect.parameters, &effect.standardErrors}) {
+      if (group->empty()) continue;
+      out << YAML::Key << (group == &effect.parameters ? "parameters" : "standard_errors") << YAML::Value << YAML::BeginMap;
+      for (const auto& [name, values] : *group) {
+        out << YAML::Key << name << YAML::Value;
+        emitList(out, values);
+      }
+      out << YAML::EndMap;
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+void saveModelFile(const ModelSpec& spec, const std::filesystem::path& file) { writeFileAtomically(file, toYaml(spec)); }
+
+}  // namespace arcplan::model
