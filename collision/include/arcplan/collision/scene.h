@@ -3,6 +3,7 @@
 // poses, extra allowed-collision pairs, and named queries (start/goal as a tool0 pose or joints).
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -10,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "arcplan/robot/mesh.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 
 namespace arcplan::collision {
@@ -23,6 +25,9 @@ struct Obstacle {
   Eigen::Vector3d size = Eigen::Vector3d::Zero();        // box edge lengths
   std::filesystem::path meshFile;                        // mesh (resolved path)
   Eigen::Vector3d meshScale = Eigen::Vector3d::Ones();   // mesh
+  // The mesh, scaled, in the obstacle frame; loadScene fills it (checking the file once). When it
+  // is empty, users of the obstacle load meshFile themselves.
+  std::shared_ptr<const robot::TriangleMesh> meshData;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // in base_link
 
   // A ball that contains the whole obstacle: the thesis' "circumscribed ball" (centre in base_link).

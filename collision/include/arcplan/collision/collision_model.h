@@ -1,0 +1,120 @@
+#pragma once
+// Collision checking of one robot configuration against a scene and against itself (FCL).
+//
+// CollisionModel is immutable after construction and shared between threads; each thread passes
+// its own CollisionData workspace to the free query functions. Robot collision geometry (URDF
+// meshes through robot::loadMesh, boxes, spheres, cylinders) and scene obstacles become "parts":
+// every closed component of a mesh is a part with its own FCL BVH and a bounding capsule. A query
+// first tests the capsules of each non-allowed pair (exact segment distances, so conservative),
+// sends only overlapping pairs to FCL, and also catches a part lying entirely inside another
+// (FCL compares surfaces, so a small particle inside a link would otherwise go unnoticed).
+#include <algorithm>
+#include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "arcplan/collision/allowed_collisions.h"
+#include "arcplan/collision/scene.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/robot_model.h"
+
+namespace arcplan::collision {
+
+// FCL 0.7 bounding-volume types for the BVH of mesh parts.
+enum class BoundingVolume { AABB, OBB, RSS, kIOS, OBBRSS };
+const char* toString(BoundingVolume boundingVolume);
+
+// Narrow-phase choices. Measured per state in the thesis scene (perf/perf_collision.cpp; table in
+// docs/collision.md): among FCL's BVH types OBB is the fastest for boolean queries (AABB and RSS are
+// 5x-15,000x slower: AABB copies and transforms the mesh on every call, RSS traverses badly against
+// the large table box) and OBBRSS for distances (FCL has mesh distances only for RSS, kIOS, OBBRSS).
+// FCL's GJK on the convex parts matches OBB on collision-free states, beats it near contact
+// (2.0 vs 3.2 µs) and beats OBBRSS distances 16x (12 vs 190 µs), so it is the default for both.
+struct CollisionModelOptions {
+  // BVH types for parts that are not convex (open or concave meshes, e.g. a scanned obstacle).
+  BoundingVolume collisionBoundingVolume = BoundingVolume::OBB;
+  BoundingVolume distanceBoundingVolume = BoundingVolume::OBBRSS;
+  // Closed convex mesh components (every part of arcplan's UR10e links) and primitives are also
+  // kept as one fcl::Convex shape; these switches send pairs of such parts to FCL's GJK (libccd)
+  // instead of the BVHs. GJK sees solids, so a part inside another counts as touching either way.
+  bool convexCollision = true;
+  bool convexDistance = true;
+  // false sends every non-allowed pair straight to FCL (the naive baseline, for measurements).
+  bool broadPhase = true;
+};
+
+class CollisionModel {
+public:
+  // Throws arcplan::Error when a mesh cannot be loaded or an allowed pair names an unknown body.
+  CollisionModel(std::shared_ptr<const robot::RobotModel> robot, const Scene& scene, AllowedCollisionMatrix allowed,
+                 CollisionModelOptions options = {});
+  ~CollisionModel();
+  CollisionModel(const CollisionModel&) = delete;
+  CollisionModel& operator=(const CollisionModel&) = delete;
+
+  const robot::RobotModel& robot() const { return *robot_; }
+  const std::shared_ptr<const robot::RobotModel>& robotPointer() const { return robot_; }
+  // Links that have collision geometry, in chain order.
+  const std::vector<std::string>& linkNames() const { return linkNames_; }
+  const std::vector<std::string>& obstacleNames() const { return obstacleNames_; }
+  const AllowedCollisionMatrix& allowedCollisions() const { return allowed_; }
+  const CollisionModelOptions& options() const { return options_; }
+  // Non-allowed pairs that queries test: (link, obstacle) and (link, link) counts.
+  std::size_t robotObstaclePairCount() const;
+  std::size_t selfPairCount() const;
+
+  struct Implementation;
+  const Implementation& implementation() const { return *implementation_; }
+
+private:
+  std::shared_ptr<const robot::RobotModel> robot_;
+  std::vector<std::string> linkNames_;
+  std::vector<std::string> obstacleNames_;
+  AllowedCollisionMatrix allowed_;
+  CollisionModelOptions options_;
+  std::unique_ptr<Implementation> implementation_;
+};
+
+// The robot a scene names (arcplan's UR10e or the scene's URDF), its default allowed pairs
+// (defaultAllowedCollisions) plus the scene's own.
+std::shared_ptr<const CollisionModel> makeCollisionModel(const Scene& scene, CollisionModelOptions options = {});
+
+// Per-thread scratch space: link poses, the world poses of the robot's parts and their bounding capsules.
+struct CollisionData {
+  explicit CollisionData(const CollisionModel& model);
+  robot::KinematicsData kinematics;
+  std::vector<Eigen::Isometry3d> partPoses;
+  std::vector<Eigen::Vector3d> capsuleStarts, capsuleEnds;          // per part
+  std::vector<Eigen::Vector3d> linkCapsuleStarts, linkCapsuleEnds;  // per link with geometry
+  std::vector<std::pair<double, int>> distanceOrder;  // (lower bound, pair) for distance queries
+};
+
+using NamePair = std::pair<std::string, std::string>;
+
+struct CollisionReport {
+  bool valid = true;
+  std::vector<NamePair> collisions;  // (link, obstacle) or (link, link), each colliding pair once
+};
+
+// Distances are 0 for a colliding pair (FCL gives no reliable penetration depth for meshes), and
+// +infinity with empty names when there is no pair to measure (no obstacles, every self pair allowed).
+struct DistanceReport {
+  double obstacleDistance = std::numeric_limits<double>::infinity();  // robot–obstacle minimum [m]
+  NamePair obstaclePair;                                              // (link, obstacle)
+  double selfDistance = std::numeric_limits<double>::infinity();      // robot–robot, non-allowed pairs [m]
+  NamePair selfPair;                                                  // (link, link)
+  double minimum() const { return std::min(obstacleDistance, selfDistance); }
+};
+
+// Fast path: stops at the first colliding pair. q has robot().dof() entries.
+bool isCollisionFree(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
+// Every colliding pair.
+CollisionReport collide(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
+// Minimum distances (pairs whose bounding capsules are already farther than the best are skipped).
+DistanceReport distance(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
+
+}  // namespace arcplan::collision

@@ -1,0 +1,364 @@
+#include "arcplan/collision/collision_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include "arcplan/common/error.h"
+#include "parts.h"
+
+namespace arcplan::collision {
+
+// Robot parts move with their link; obstacle parts are fixed in base_link, so their bounding
+// volumes are precomputed in world coordinates.
+struct CollisionModel::Implementation {
+  std::vector<detail::Part> robotParts;  // Part::body indexes linkNames()
+  std::vector<int> robotPartLink;        // index into robot().links(), for forward kinematics
+  // Per link with geometry (indexed like linkNames()): a capsule around all its parts, in the link
+  // frame, so far-apart link pairs are dismissed with one test instead of one per part pair.
+  std::vector<detail::Capsule> linkCapsules;
+  std::vector<int> linkCapsuleLink;
+  std::vector<detail::Part> obstacleParts;  // Part::body indexes obstacleNames(), Part::offset is the world pose
+  std::vector<Eigen::Vector3d> obstacleCapsuleStarts, obstacleCapsuleEnds;
+  std::vector<Eigen::Isometry3d> obstacleInversePoses;
+
+  // The parts of one non-allowed body pair; `second` is an obstacle part for robot–obstacle groups.
+  struct PairGroup {
+    int firstBody = -1, secondBody = -1;
+    bool self = false;
+    std::vector<std::pair<int, int>> parts;
+  };
+  std::vector<PairGroup> obstacleGroups, selfGroups;
+  // Every part pair of every group, for distance queries (which order them by their bounds).
+  struct PartPair {
+    const PairGroup* group;
+    int first, second;
+  };
+  std::vector<PartPair> partPairs;
+};
+
+namespace {
+
+using Implementation = CollisionModel::Implementation;
+using detail::Part;
+
+void updateRobot(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
+  if (q.size() != model.robot().dof()) {
+    throw Error("collision query: expected " + std::to_string(model.robot().dof()) + " joint values, got " +
+                std::to_string(q.size()));
+  }
+  const Implementation& impl = model.implementation();
+  robot::forwardKinematics(model.robot(), q, data.kinematics);
+  for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
+    const Part& part = impl.robotParts[i];
+    data.partPoses[i] = data.kinematics.linkPoses[impl.robotPartLink[i]] * part.offset;
+    data.capsuleStarts[i] = data.partPoses[i] * part.capsule.start;
+    data.capsuleEnds[i] = data.partPoses[i] * part.capsule.end;
+  }
+  for (std::size_t b = 0; b < impl.linkCapsules.size(); ++b) {
+    const Eigen::Isometry3d& linkPose = data.kinematics.linkPoses[impl.linkCapsuleLink[b]];
+    data.linkCapsuleStarts[b] = linkPose * impl.linkCapsules[b].start;
+    data.linkCapsuleEnds[b] = linkPose * impl.linkCapsules[b].end;
+  }
+}
+
+// Lower bound of the distance between robot part i and part j (robot part if `self`, else obstacle
+// part) from their bounding volumes; <= 0 when the volumes overlap.
+double boundGap(const Implementation& impl, const CollisionData& data, int i, int j, bool self) {
+  const double radius = impl.robotParts[i].capsule.radius;
+  if (self) {
+    return detail::segmentDistance(data.capsuleStarts[i], data.capsuleEnds[i], data.capsuleStarts[j],
+                                   data.capsuleEnds[j]) -
+           radius - impl.robotParts[j].capsule.radius;
+  }
+  const Part& obstacle = impl.obstacleParts[j];
+  if (obstacle.boxBound) {
+    const Eigen::Isometry3d& toBox = impl.obstacleInversePoses[j];
+    return detail::capsuleBoxLowerBound(toBox * data.capsuleStarts[i], toBox * data.capsuleEnds[i], radius,
+                                        obstacle.boxHalfExtents);
+  }
+  return detail::segmentDistance(data.capsuleStarts[i], data.capsuleEnds[i], impl.obstacleCapsuleStarts[j],
+                                 impl.obstacleCapsuleEnds[j]) -
+         radius - obstacle.capsule.radius;
+}
+
+// FCL compares surfaces; a part entirely inside the other has no intersecting surfaces, so one
+// point of each is tested against the other's solid as well.
+bool oneInsideOther(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB) {
+  return a.solid.contains(poseA.inverse() * (poseB * b.referencePoint)) ||
+         b.solid.contains(poseB.inverse() * (poseA * a.referencePoint));
+}
+
+bool partsCollide(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+                  const CollisionModelOptions& options) {
+  static const fcl::CollisionRequestd request;  // one contact, no contact details: boolean answer
+  fcl::CollisionResultd result;
+  if (options.convexCollision && a.convexGeometry && b.convexGeometry) {
+    return fcl::collide(a.convexGeometry.get(), poseA, b.convexGeometry.get(), poseB, request, result) > 0;
+  }
+  if (fcl::collide(a.collisionGeometry.get(), poseA, b.collisionGeometry.get(), poseB, request, result) > 0) return true;
+  return oneInsideOther(a, poseA, b, poseB);
+}
+
+double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+                     bool boundsOverlap, const CollisionModelOptions& options) {
+  // No relative or absolute error allowance. libccd's GJK stops once an iteration improves the
+  // distance by less than distance_tolerance; FCL's default 1e-6 left errors up to 4e-5 m against the
+  // exact triangle distances of the BVHs, 1e-9 agrees with them to 1e-6 m.
+  static const fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-9);
+  fcl::DistanceResultd result;
+  double d = 0.0;
+  if (options.convexDistance && a.convexGeometry && b.convexGeometry) {
+    d = fcl::distance(a.convexGeometry.get(), poseA, b.convexGeometry.get(), poseB, request, result);
+  } else {
+    if (boundsOverlap && oneInsideOther(a, poseA, b, poseB)) return 0.0;
+    d = fcl::distance(a.distanceGeometry.get(), poseA, b.distanceGeometry.get(), poseB, request, result);
+  }
+  return std::max(d, 0.0);  // FCL reports -1 or 0 for intersecting shapes
+}
+
+const Part& secondPart(const Implementation& impl, const Implementation::PairGroup& group, int j) {
+  return group.self ? impl.robotParts[j] : impl.obstacleParts[j];
+}
+
+const Eigen::Isometry3d& secondPose(const Implementation& impl, const CollisionData& data,
+                                    const Implementation::PairGroup& group, int j) {
+  return group.self ? data.partPoses[j] : impl.obstacleParts[j].offset;
+}
+
+bool groupCollides(const CollisionModel& model, const CollisionData& data, const Implementation::PairGroup& group) {
+  const Implementation& impl = model.implementation();
+  const bool broadPhase = model.options().broadPhase;
+  if (broadPhase && group.self) {
+    const int a = group.firstBody, b = group.secondBody;
+    const double gap = detail::segmentDistance(data.linkCapsuleStarts[a], data.linkCapsuleEnds[a],
+                                               data.linkCapsuleStarts[b], data.linkCapsuleEnds[b]) -
+                       impl.linkCapsules[a].radius - impl.linkCapsules[b].radius;
+    if (gap > 0.0) return false;
+  }
+  for (const auto& [i, j] : group.parts) {
+    if (broadPhase && boundGap(impl, data, i, j, group.self) > 0.0) continue;
+    if (partsCollide(impl.robotParts[i], data.partPoses[i], secondPart(impl, group, j), secondPose(impl, data, group, j),
+                     model.options())) {
+      return true;
+    }
+  }
+  return false;
+}
+
+NamePair namesOf(const CollisionModel& model, const Implementation::PairGroup& group) {
+  return {model.linkNames()[group.firstBody],
+          group.self ? model.linkNames()[group.secondBody] : model.obstacleNames()[group.secondBody]};
+}
+
+}  // namespace
+
+const char* toString(BoundingVolume boundingVolume) {
+  switch (boundingVolume) {
+    case BoundingVolume::AABB: return "AABB";
+    case BoundingVolume::OBB: return "OBB";
+    case BoundingVolume::RSS: return "RSS";
+    case BoundingVolume::kIOS: return "kIOS";
+    case BoundingVolume::OBBRSS: return "OBBRSS";
+  }
+  return "?";
+}
+
+CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, const Scene& scene,
+                               AllowedCollisionMatrix allowed, CollisionModelOptions options)
+    : robot_(std::move(robot)), allowed_(std::move(allowed)), options_(options),
+      implementation_(std::make_unique<Implementation>()) {
+  if (!robot_) throw Error("collision model: no robot model");
+  if (options_.distanceBoundingVolume == BoundingVolume::OBB) {
+    throw Error("collision model: FCL 0.7 computes no mesh–mesh distance with OBB; use RSS, kIOS or OBBRSS");
+  }
+  Implementation& impl = *implementation_;
+  const auto& links = robot_->links();
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    if (links[l].collisions.empty()) continue;
+    const int body = static_cast<int>(linkNames_.size());
+    linkNames_.push_back(links[l].name);
+    std::vector<detail::Capsule> partCapsules;
+    for (const auto& geometry : links[l].collisions) {
+      std::vector<Part> parts;
+      switch (geometry.shape) {
+        case robot::CollisionGeometry::Shape::Mesh:
+          try {
+            parts = detail::meshParts(robot::loadMesh(geometry.meshFile, geometry.meshScale), options_);
+          } catch (const Error& e) {
+            throw Error("link " + links[l].name + ": " + e.what());
+          }
+          break;
+        case robot::CollisionGeometry::Shape::Box: parts.push_back(detail::boxPart(geometry.boxSize)); break;
+        case robot::CollisionGeometry::Shape::Sphere: parts.push_back(detail::spherePart(geometry.radius)); break;
+        case robot::CollisionGeometry::Shape::Cylinder:
+          parts.push_back(detail::cylinderPart(geometry.radius, geometry.length));
+          break;
+      }
+      for (auto& part : parts) {
+        part.body = body;
+        part.offset = geometry.origin;
+        partCapsules.push_back({part.offset * part.capsule.start, part.offset * part.capsule.end, part.capsule.radius});
+        impl.robotParts.push_back(std::move(part));
+        impl.robotPartLink.push_back(static_cast<int>(l));
+      }
+    }
+    impl.linkCapsules.push_back(detail::enclosingCapsule(partCapsules));
+    impl.linkCapsuleLink.push_back(static_cast<int>(l));
+  }
+
+  for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
+    const Obstacle& obstacle = scene.obstacles[o];
+    obstacleNames_.push_back(obstacle.name);
+    std::vector<Part> parts;
+    switch (obstacle.shape) {
+      case Obstacle::Shape::Sphere: parts.push_back(detail::spherePart(obstacle.radius)); break;
+      case Obstacle::Shape::Box:
+        parts.push_back(detail::boxPart(obstacle.size));
+        parts.back().boxBound = true;
+        break;
+      case Obstacle::Shape::Cylinder: parts.push_back(detail::cylinderPart(obstacle.radius, obstacle.length)); break;
+      case Obstacle::Shape::Mesh:
+        try {
+          parts = detail::meshParts(obstacle.meshData ? *obstacle.meshData : robot::loadMesh(obstacle.meshFile, obstacle.meshScale),
+                                    options_);
+        } catch (const Error& e) {
+          throw Error("obstacle " + obstacle.name + ": " + e.what());
+        }
+        break;
+    }
+    for (auto& part : parts) {
+      part.body = static_cast<int>(o);
+      part.offset = obstacle.pose;
+      impl.obstacleCapsuleStarts.push_back(obstacle.pose * part.capsule.start);
+      impl.obstacleCapsuleEnds.push_back(obstacle.pose * part.capsule.end);
+      impl.obstacleInversePoses.push_back(obstacle.pose.inverse());
+      impl.obstacleParts.push_back(std::move(part));
+    }
+  }
+
+  std::set<std::string> known(obstacleNames_.begin(), obstacleNames_.end());
+  for (const auto& link : links) known.insert(link.name);
+  for (const auto& [first, second] : allowed_.pairs()) {
+    for (const auto& name : {first, second}) {
+      if (!known.count(name)) {
+        std::string list;
+        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+        throw Error("allowed collisions: unknown link or obstacle '" + name + "' (pair " + first + ", " + second +
+                    "); known: " + list);
+      }
+    }
+  }
+
+  for (int a = 0; a < static_cast<int>(linkNames_.size()); ++a) {
+    for (int b = 0; b < static_cast<int>(obstacleNames_.size()); ++b) {
+      if (allowed_.isAllowed(linkNames_[a], obstacleNames_[b])) continue;
+      Implementation::PairGroup group{a, b, false, {}};
+      for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
+        for (std::size_t j = 0; j < impl.obstacleParts.size(); ++j) {
+          if (impl.robotParts[i].body == a && impl.obstacleParts[j].body == b) group.parts.emplace_back(i, j);
+        }
+      }
+      impl.obstacleGroups.push_back(std::move(group));
+    }
+    for (int b = a + 1; b < static_cast<int>(linkNames_.size()); ++b) {
+      if (allowed_.isAllowed(linkNames_[a], linkNames_[b])) continue;
+      Implementation::PairGroup group{a, b, true, {}};
+      for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
+        for (std::size_t j = 0; j < impl.robotParts.size(); ++j) {
+          if (impl.robotParts[i].body == a && impl.robotParts[j].body == b) group.parts.emplace_back(i, j);
+        }
+      }
+      impl.selfGroups.push_back(std::move(group));
+    }
+  }
+  for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
+    for (const auto& group : *groups) {
+      for (const auto& [i, j] : group.parts) impl.partPairs.push_back({&group, i, j});
+    }
+  }
+}
+
+CollisionModel::~CollisionModel() = default;
+
+std::size_t CollisionModel::robotObstaclePairCount() const { return implementation_->obstacleGroups.size(); }
+std::size_t CollisionModel::selfPairCount() const { return implementation_->selfGroups.size(); }
+
+std::shared_ptr<const CollisionModel> makeCollisionModel(const Scene& scene, CollisionModelOptions options) {
+  auto robot = scene.robotUrdf.empty() ? std::make_shared<const robot::RobotModel>(robot::ur10e())
+                                       : std::make_shared<const robot::RobotModel>(robot::loadRobotModel(scene.robotUrdf));
+  AllowedCollisionMatrix allowed = defaultAllowedCollisions(*robot);
+  for (const auto& [first, second] : scene.allowedCollisions) allowed.allow(first, second);
+  return std::make_shared<const CollisionModel>(std::move(robot), scene, std::move(allowed), options);
+}
+
+CollisionData::CollisionData(const CollisionModel& model)
+    : kinematics(model.robot()),
+      partPoses(model.implementation().robotParts.size()),
+      capsuleStarts(model.implementation().robotParts.size()),
+      capsuleEnds(model.implementation().robotParts.size()),
+      linkCapsuleStarts(model.linkNames().size()),
+      linkCapsuleEnds(model.linkNames().size()) {
+  distanceOrder.reserve(model.implementation().partPairs.size());
+}
+
+bool isCollisionFree(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
+  updateRobot(model, data, q);
+  const Implementation& impl = model.implementation();
+  for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
+    for (const auto& group : *groups) {
+      if (groupCollides(model, data, group)) return false;
+    }
+  }
+  return true;
+}
+
+CollisionReport collide(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
+  updateRobot(model, data, q);
+  const Implementation& impl = model.implementation();
+  CollisionReport report;
+  for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
+    for (const auto& group : *groups) {
+      if (groupCollides(model, data, group)) report.collisions.push_back(namesOf(model, group));
+    }
+  }
+  report.valid = report.collisions.empty();
+  return report;
+}
+
+DistanceReport distance(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
+  updateRobot(model, data, q);
+  const Implementation& impl = model.implementation();
+  // Part pairs nearest first by the lower bound their bounding volumes give; a pair whose bound
+  // is not below the best distance found so far cannot improve it.
+  data.distanceOrder.clear();
+  for (std::size_t k = 0; k < impl.partPairs.size(); ++k) {
+    const auto& pair = impl.partPairs[k];
+    const double bound = model.options().broadPhase ? boundGap(impl, data, pair.first, pair.second, pair.group->self) : 0.0;
+    data.distanceOrder.emplace_back(bound, static_cast<int>(k));
+  }
+  std::sort(data.distanceOrder.begin(), data.distanceOrder.end());
+
+  DistanceReport report;
+  for (const auto& [bound, index] : data.distanceOrder) {
+    const auto& candidate = impl.partPairs[index];
+    const bool self = candidate.group->self;
+    double& best = self ? report.selfDistance : report.obstacleDistance;
+    if (bound >= std::max(report.selfDistance, report.obstacleDistance)) break;
+    if (bound >= best) continue;
+    const double d = partsDistance(impl.robotParts[candidate.first], data.partPoses[candidate.first],
+                                   secondPart(impl, *candidate.group, candidate.second),
+                                   secondPose(impl, data, *candidate.group, candidate.second), bound <= 0.0,
+                                   model.options());
+    if (d < best) {
+      best = d;
+      (self ? report.selfPair : report.obstaclePair) = namesOf(model, *candidate.group);
+    }
+  }
+  return report;
+}
+
+}  // namespace arcplan::collision

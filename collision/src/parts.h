@@ -1,0 +1,68 @@
+#pragma once
+// Internal building blocks of CollisionModel: a "part" is one convex-ish piece of a body (a closed
+// component of a link mesh, a URDF primitive, an obstacle) with its FCL geometries, a conservative
+// bounding volume for the broad phase and a solid description for containment tests.
+#include <memory>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <fcl/geometry/collision_geometry.h>
+
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/robot/mesh.h"
+
+namespace arcplan::collision::detail {
+
+struct Capsule {
+  Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
+// What containment tests know about a part's volume (in the part frame).
+struct Solid {
+  enum class Kind { None, Convex, ClosedMesh, Sphere, Box, Cylinder };
+  Kind kind = Kind::None;
+  std::vector<Eigen::Vector4d> planes;  // Convex: inside ⇔ n·x <= d for every (n, d)
+  robot::TriangleMesh mesh;             // ClosedMesh: outward triangles
+  double radius = 0.0, halfLength = 0.0;
+  Eigen::Vector3d halfExtents = Eigen::Vector3d::Zero();
+
+  bool contains(const Eigen::Vector3d& point) const;
+};
+
+struct Part {
+  int body = -1;
+  Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();  // part frame in the body frame (world for obstacles)
+  std::shared_ptr<fcl::CollisionGeometryd> collisionGeometry, distanceGeometry;
+  // The part as one convex FCL shape (fcl::Convex of a closed convex component, or the primitive)
+  // for GJK queries, which also see a part lying entirely inside the other; null otherwise.
+  std::shared_ptr<fcl::CollisionGeometryd> convexGeometry;
+  // Broad phase: a capsule in the part frame, or (obstacle boxes) the box itself.
+  bool boxBound = false;
+  Capsule capsule;
+  Eigen::Vector3d boxHalfExtents = Eigen::Vector3d::Zero();
+  Solid solid;
+  Eigen::Vector3d referencePoint = Eigen::Vector3d::Zero();  // a point of the part, in the part frame
+};
+
+// One part per closed component of the mesh (edge-connected triangles after welding identical
+// vertices); meshes with very many components become a single part.
+std::vector<Part> meshParts(const robot::TriangleMesh& mesh, const CollisionModelOptions& options);
+Part spherePart(double radius);
+Part boxPart(const Eigen::Vector3d& size);
+Part cylinderPart(double radius, double length);
+
+// A capsule containing all the given capsules (fitted to their end points, radius grown by the largest radius).
+Capsule enclosingCapsule(const std::vector<Capsule>& capsules);
+
+// Smallest distance between the segments [p0, p1] and [q0, q1].
+double segmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                       const Eigen::Vector3d& q1);
+
+// A lower bound of the distance between a capsule (end points, radius, in the box frame) and a box
+// centred at the origin with the given half extents: the gap between the capsule's bounding box and
+// the box. <= 0 means the bounding volumes overlap.
+double capsuleBoxLowerBound(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                            const Eigen::Vector3d& halfExtents);
+
+}  // namespace arcplan::collision::detail

@@ -1,0 +1,163 @@
+// OMPL glue: the joint state space, validity and clearance, the motion validator, use by a real
+// OMPL planner, and calls from several threads.
+#include <cmath>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "arcplan/collision/ompl_validity.h"
+#include "arcplan/common/resources.h"
+
+namespace {
+
+using namespace arcplan::collision;
+namespace ob = ompl::base;
+using arcplan::robot::Vector6;
+
+const Vector6 kSolutionA = (Vector6() << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098).finished();
+const Vector6 kSolutionB = (Vector6() << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399).finished();
+
+std::shared_ptr<const CollisionModel> sceneModel(const char* name) {
+  return makeCollisionModel(loadScene(arcplan::dataDirectory() / "scenes" / name));
+}
+
+ob::ScopedState<> stateOf(const ob::SpaceInformationPtr& si, const Vector6& q) {
+  ob::ScopedState<> state(si);
+  for (int j = 0; j < 6; ++j) state[j] = q[j];
+  return state;
+}
+
+TEST(OmplValidity, JointSpaceHasTheUrdfBoundsAndNames) {
+  const auto& robot = arcplan::robot::ur10e();
+  const auto space = makeJointStateSpace(robot);
+  ASSERT_EQ(space->getDimension(), 6u);
+  const auto& bounds = space->as<ob::RealVectorStateSpace>()->getBounds();
+  // facts §3: ±2pi except the elbow, ±pi.
+  for (int j = 0; j < 6; ++j) {
+    const double limit = j == 2 ? M_PI : 2 * M_PI;
+    EXPECT_NEAR(bounds.low[j], -limit, 1e-6) << j;
+    EXPECT_NEAR(bounds.high[j], limit, 1e-6) << j;
+  }
+  EXPECT_EQ(space->as<ob::RealVectorStateSpace>()->getDimensionName(0), "shoulder_pan_joint");
+  EXPECT_EQ(space->as<ob::RealVectorStateSpace>()->getDimensionName(5), "wrist_3_joint");
+}
+
+TEST(OmplValidity, CheckerAgreesWithTheCollisionModel) {
+  const auto model = sceneModel("thesis_obstacle.yaml");
+  const auto si = makeSpaceInformation(model);
+  CollisionData data(*model);
+  EXPECT_TRUE(si->isValid(stateOf(si, kSolutionA).get()));
+  Vector6 folded;
+  folded << 0.0, -M_PI / 2, M_PI, 0.0, M_PI / 2, 0.0;
+  EXPECT_FALSE(si->isValid(stateOf(si, folded).get()));
+  // Out of bounds is invalid even where nothing collides.
+  Vector6 outside = kSolutionA;
+  outside[2] = 3.5;
+  EXPECT_FALSE(si->isValid(stateOf(si, outside).get()));
+
+  const auto checker = si->getStateValidityChecker();
+  double clearance = -1.0;
+  EXPECT_TRUE(checker->isValid(stateOf(si, kSolutionA).get(), clearance));
+  EXPECT_DOUBLE_EQ(clearance, distance(*model, data, kSolutionA).minimum());
+  EXPECT_DOUBLE_EQ(checker->clearance(stateOf(si, folded).get()), 0.0);
+}
+
+TEST(OmplValidity, MotionValidatorCatchesAnObstacleBetweenValidEndpoints) {
+  // A ball where tool0 is halfway through a shoulder-pan swing from A - 0.3 rad to A + 0.3 rad:
+  // both ends are 0.17 m away from it (0.566 m from the base axis times 0.3 rad), the middle hits it.
+  auto scene = loadScene(arcplan::dataDirectory() / "scenes" / "thesis_free.yaml");
+  Obstacle ball;
+  ball.name = "ball";
+  ball.radius = 0.03;
+  ball.pose.translation() = arcplan::robot::tipPose(arcplan::robot::ur10e(), kSolutionA).translation();
+  scene.obstacles.push_back(ball);
+  const auto si = makeSpaceInformation(makeCollisionModel(scene), 0.01);
+  Vector6 from = kSolutionA, to = kSolutionA;
+  from[0] -= 0.3;
+  to[0] += 0.3;
+  const auto start = stateOf(si, from), goal = stateOf(si, to);
+  ASSERT_TRUE(si->isValid(start.get()));
+  ASSERT_TRUE(si->isValid(goal.get()));
+  EXPECT_FALSE(si->checkMotion(start.get(), goal.get()));
+  EXPECT_FALSE(si->checkMotion(goal.get(), start.get()));
+
+  ob::ScopedState<> last(si);
+  std::pair<ob::State*, double> lastValid{last.get(), -1.0};
+  EXPECT_FALSE(si->getMotionValidator()->checkMotion(start.get(), goal.get(), lastValid));
+  // The ball (radius 0.03) plus the flange (radius ~0.045) block about ±0.13 rad around the middle.
+  EXPECT_GT(lastValid.second, 0.2);
+  EXPECT_LT(lastValid.second, 0.5);
+  EXPECT_TRUE(si->isValid(last.get()));
+  EXPECT_NEAR(last[0], from[0] + lastValid.second * 0.6, 1e-12);
+
+  // Swinging the other way round the ball (lifting the shoulder) is free.
+  Vector6 raisedFrom = from, raisedTo = to;
+  raisedFrom[1] -= 0.4;
+  raisedTo[1] -= 0.4;
+  EXPECT_TRUE(si->checkMotion(stateOf(si, raisedFrom).get(), stateOf(si, raisedTo).get()));
+}
+
+TEST(OmplValidity, SegmentCountFollowsTheLargestJointStep) {
+  const auto si = makeSpaceInformation(sceneModel("thesis_free.yaml"), 0.05);
+  const auto* validator = dynamic_cast<const JointMotionValidator*>(si->getMotionValidator().get());
+  ASSERT_NE(validator, nullptr);
+  Vector6 to = kSolutionA;
+  to[3] += 0.26;  // 5.2 steps of 0.05 rad
+  to[0] -= 0.1;
+  EXPECT_EQ(validator->segmentCount(stateOf(si, kSolutionA).get(), stateOf(si, to).get()), 6);
+  EXPECT_EQ(validator->segmentCount(stateOf(si, kSolutionA).get(), stateOf(si, kSolutionA).get()), 1);
+}
+
+TEST(OmplValidity, RrtConnectSolvesAToBInTheFreeScene) {
+  ompl::RNG::setSeed(7);
+  const auto si = makeSpaceInformation(sceneModel("thesis_free.yaml"));
+  ompl::geometric::SimpleSetup setup(si);
+  setup.setStartAndGoalStates(stateOf(si, kSolutionA), stateOf(si, kSolutionB));
+  setup.setPlanner(std::make_shared<ompl::geometric::RRTConnect>(si));
+  ASSERT_EQ(setup.solve(10.0), ob::PlannerStatus::EXACT_SOLUTION);
+  auto& path = setup.getSolutionPath();
+  ASSERT_GE(path.getStateCount(), 2u);
+  for (std::size_t k = 0; k < path.getStateCount(); ++k) EXPECT_TRUE(si->isValid(path.getState(k))) << k;
+  for (std::size_t k = 1; k < path.getStateCount(); ++k) {
+    EXPECT_TRUE(si->checkMotion(path.getState(k - 1), path.getState(k))) << k;
+  }
+  // Densified to the validator's resolution, every state is collision-free too.
+  path.interpolate();
+  for (std::size_t k = 0; k < path.getStateCount(); ++k) EXPECT_TRUE(si->isValid(path.getState(k))) << k;
+}
+
+TEST(OmplValidity, ConcurrentCallersGetTheSequentialAnswers) {
+  const auto si = makeSpaceInformation(sceneModel("thesis_obstacle.yaml"));
+  std::vector<ob::ScopedState<>> states;
+  for (int k = 0; k < 400; ++k) {
+    ob::ScopedState<> state(si);
+    state.random();
+    states.push_back(state);
+  }
+  std::vector<int> sequential(states.size());
+  for (std::size_t k = 0; k < states.size(); ++k) sequential[k] = si->isValid(states[k].get());
+  std::vector<int> first(states.size()), second(states.size());
+  std::vector<double> clearances(states.size());
+  std::thread a([&] {
+    for (std::size_t k = 0; k < states.size(); ++k) first[k] = si->isValid(states[k].get());
+  });
+  std::thread b([&] {
+    for (std::size_t k = states.size(); k-- > 0;) {
+      second[k] = si->isValid(states[k].get());
+      clearances[k] = si->getStateValidityChecker()->clearance(states[k].get());
+    }
+  });
+  a.join();
+  b.join();
+  EXPECT_EQ(first, sequential);
+  EXPECT_EQ(second, sequential);
+  for (std::size_t k = 0; k < states.size(); ++k) EXPECT_EQ(clearances[k] > 0.0, sequential[k] == 1) << k;
+}
+
+}  // namespace
