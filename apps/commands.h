@@ -6,5 +6,6 @@
 namespace arcplan::apps {
 
 void registerRobotCommand(CLI::App& app);
+void registerScaleCommand(CLI::App& app);
 
 }  // namespace arcplan::apps

@@ -1,5 +1,6 @@
-// Densification of sparse joint paths: bounded joint and TCP steps, original waypoints kept, new
-// waypoints on the joint-space segments, TCP data equal to an independent forward kinematics call.
+// Densification of joint paths: bounded joint and TCP steps, original waypoints kept, new waypoints
+// on the joint-space segments of sparse paths and on a smooth curve through dense ones, TCP data
+// equal to an independent forward kinematics call.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/robot_model.h"
 #include "arcplan/trajectory/path_densification.h"
+#include "straight_line.h"
 
 namespace arcplan::trajectory {
 namespace {
@@ -68,6 +70,56 @@ TEST(PathDensification, StepsAreBoundedAndWaypointsKept) {
   EXPECT_EQ(dense.tcpArcLength.front(), 0.0);
 }
 
+// Largest distance of the dense TCP points from the thesis line A→B.
+double largestDistanceFromLine(const DensePath& dense) {
+  const Eigen::Vector3d a = testing::thesisPoseA().translation();
+  const Eigen::Vector3d direction = (testing::thesisPoseB().translation() - a).normalized();
+  double largest = 0.0;
+  for (const auto& p : dense.tcpPositions) {
+    const Eigen::Vector3d offset = p - a;
+    largest = std::max(largest, (offset - offset.dot(direction) * direction).norm());
+  }
+  return largest;
+}
+
+// Largest angle between consecutive joint-space steps of the dense path: corners of the curve.
+double largestTurn(const DensePath& dense) {
+  double largest = 0.0;
+  for (std::size_t k = 2; k < dense.waypoints.size(); ++k) {
+    const robot::Vector6 before = (dense.waypoints[k - 1] - dense.waypoints[k - 2]).normalized();
+    const robot::Vector6 after = (dense.waypoints[k] - dense.waypoints[k - 1]).normalized();
+    largest = std::max(largest, std::acos(std::clamp(before.dot(after), -1.0, 1.0)));
+  }
+  return largest;
+}
+
+TEST(PathDensification, CloseWaypointsAreJoinedSmoothly) {
+  // The straight TCP line by IK every ~1 cm (joint steps ~0.03 rad). Straight joint-space chords
+  // turn at every original waypoint (a joint-velocity jump when timed); a C¹ curve through the
+  // waypoints turns a little at every dense step instead. Both stay on the TCP line within 0.1 mm.
+  const auto& model = robot::ur10e();
+  const JointPath path = testing::straightLinePath(model, 83);
+  DensificationOptions straight;
+  straight.smoothWaypointSpacing = 0.0;
+  const DensePath chords = densifyJointPath(model, path, straight);
+  const DensePath smooth = densifyJointPath(model, path);
+  EXPECT_LT(largestTurn(smooth), 0.5 * largestTurn(chords));
+  EXPECT_LT(largestDistanceFromLine(smooth), 1e-4);
+  EXPECT_LT(largestDistanceFromLine(chords), 1e-4);
+  // Original waypoints kept, new ones inside the joint box of their segment.
+  std::size_t next = 0;
+  for (const auto& q : smooth.waypoints) {
+    if (next < path.size() && q == path[next]) {
+      ++next;
+      continue;
+    }
+    ASSERT_GT(next, 0u);
+    const robot::Vector6 low = path[next - 1].cwiseMin(path[next]), high = path[next - 1].cwiseMax(path[next]);
+    EXPECT_TRUE((q.array() >= low.array() - 1e-12).all() && (q.array() <= high.array() + 1e-12).all());
+  }
+  EXPECT_EQ(next, path.size());
+}
+
 TEST(PathDensification, TcpLengthConvergesAsStepsShrink) {
   // The chord sum of a finer resampling is longer (a chord is never longer than the arc) and the
   // difference shrinks quadratically with the step.
@@ -103,6 +155,7 @@ TEST(PathDensification, BadInput) {
   const auto& model = robot::ur10e();
   EXPECT_THROW(densifyJointPath(model, sparsePath(), {0.0, 0.002}), Error);
   EXPECT_THROW(densifyJointPath(model, sparsePath(), {0.01, -1.0}), Error);
+  EXPECT_THROW(densifyJointPath(model, sparsePath(), {0.01, 0.002, -0.1}), Error);
   EXPECT_THROW(densifyJointPath(model, {sparsePath()[0]}), Error);
   try {
     densifyJointPath(model, {sparsePath()[0], sparsePath()[0]});

@@ -6,6 +6,7 @@
 
 #include "arcplan/common/error.h"
 #include "arcplan/robot/kinematics.h"
+#include "arcplan/trajectory/pchip.h"
 
 namespace arcplan::trajectory {
 namespace {
@@ -22,7 +23,26 @@ void requirePositive(double value, const char* name) {
 DensePath densifyJointPath(const robot::RobotModel& model, const JointPath& path, const DensificationOptions& options) {
   requirePositive(options.maxJointStep, "maxJointStep (rad)");
   requirePositive(options.maxTcpStep, "maxTcpStep (m)");
+  if (!(options.smoothWaypointSpacing >= 0.0)) {
+    throw Error("path densification: smoothWaypointSpacing (rad) must be >= 0, got " +
+                std::to_string(options.smoothWaypointSpacing));
+  }
   if (path.size() < 2) throw Error("path densification: a path needs at least 2 waypoints, got " + std::to_string(path.size()));
+
+  JointPath distinct{path.front()};
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    if (path[i] != distinct.back()) distinct.push_back(path[i]);  // an exact repeat adds no motion
+  }
+  if (distinct.size() < 2) throw Error("path densification: all waypoints of the path are the same configuration");
+
+  // Curve through the waypoints over cumulative joint-space distance, for the short segments.
+  std::vector<double> jointDistance(distinct.size(), 0.0);
+  Eigen::MatrixXd values(distinct.size(), 6);
+  for (std::size_t i = 0; i < distinct.size(); ++i) {
+    if (i > 0) jointDistance[i] = jointDistance[i - 1] + (distinct[i] - distinct[i - 1]).norm();
+    values.row(i) = distinct[i].transpose();
+  }
+  const Pchip curve(jointDistance, values);
 
   robot::KinematicsData kinematics(model);
   const auto tcpOf = [&](const robot::Vector6& q) {
@@ -31,37 +51,45 @@ DensePath densifyJointPath(const robot::RobotModel& model, const JointPath& path
   };
 
   DensePath dense;
-  dense.waypoints.reserve(path.size());
-  dense.tcpPositions.reserve(path.size());
-  dense.waypoints.push_back(path.front());
-  dense.tcpPositions.push_back(tcpOf(path.front()));
+  dense.waypoints.reserve(distinct.size());
+  dense.tcpPositions.reserve(distinct.size());
+  dense.waypoints.push_back(distinct.front());
+  dense.tcpPositions.push_back(tcpOf(distinct.front()));
 
+  JointPath pieceJoints;
   std::vector<Eigen::Vector3d> pieceTcp;
-  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
-    const robot::Vector6 start = path[i];
-    const robot::Vector6 step = path[i + 1] - start;
-    if (step.cwiseAbs().maxCoeff() == 0.0) continue;  // an exact repeat adds no motion
-    long pieces = std::max(1L, static_cast<long>(std::ceil(step.cwiseAbs().maxCoeff() / options.maxJointStep)));
+  for (std::size_t i = 0; i + 1 < distinct.size(); ++i) {
+    const robot::Vector6 step = distinct[i + 1] - distinct[i];
+    const double largestJointStep = step.cwiseAbs().maxCoeff();
+    const bool smooth = largestJointStep <= options.smoothWaypointSpacing;
+    const auto pointAt = [&](double fraction) {
+      robot::Vector6 q;
+      if (smooth) {
+        curve.evaluate(jointDistance[i] + fraction * (jointDistance[i + 1] - jointDistance[i]), q);
+      } else {
+        q = distinct[i] + fraction * step;
+      }
+      return q;
+    };
+    long pieces = std::max(1L, static_cast<long>(std::ceil(largestJointStep / options.maxJointStep)));
     // The TCP chord of a piece is only known after FK: refine until every chord is short enough.
     while (true) {
+      pieceJoints.clear();
       pieceTcp.clear();
       double longestChord = 0.0;
       Eigen::Vector3d previous = dense.tcpPositions.back();
       for (long p = 1; p <= pieces; ++p) {
-        const Eigen::Vector3d tcp = tcpOf(p == pieces ? path[i + 1] : robot::Vector6(start + step * (double(p) / pieces)));
-        longestChord = std::max(longestChord, (tcp - previous).norm());
-        pieceTcp.push_back(tcp);
-        previous = tcp;
+        pieceJoints.push_back(p == pieces ? distinct[i + 1] : pointAt(double(p) / pieces));
+        pieceTcp.push_back(tcpOf(pieceJoints.back()));
+        longestChord = std::max(longestChord, (pieceTcp.back() - previous).norm());
+        previous = pieceTcp.back();
       }
       if (longestChord <= options.maxTcpStep) break;
       pieces = std::max(pieces + 1, static_cast<long>(std::ceil(pieces * longestChord / options.maxTcpStep)));
     }
-    for (long p = 1; p <= pieces; ++p) {
-      dense.waypoints.push_back(p == pieces ? path[i + 1] : robot::Vector6(start + step * (double(p) / pieces)));
-      dense.tcpPositions.push_back(pieceTcp[p - 1]);
-    }
+    dense.waypoints.insert(dense.waypoints.end(), pieceJoints.begin(), pieceJoints.end());
+    dense.tcpPositions.insert(dense.tcpPositions.end(), pieceTcp.begin(), pieceTcp.end());
   }
-  if (dense.waypoints.size() < 2) throw Error("path densification: all waypoints of the path are the same configuration");
 
   dense.tcpArcLength.resize(dense.tcpPositions.size());
   dense.tcpArcLength[0] = 0.0;

@@ -274,7 +274,7 @@ TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath&
   const robot::Vector6 jointSpeedLimits = jointSpeedLimitsOf(model);
   const double acceleration = options.maxTcpAcceleration.value_or(options.maxTcpSpeed / options.riseTime);
 
-  DensificationOptions densification{options.maxJointStep, options.maxTcpStep};
+  DensificationOptions densification{options.maxJointStep, options.maxTcpStep, options.smoothWaypointSpacing};
   DensePath dense = densifyJointPath(model, path, densification);
   if (dense.waypoints.size() == 2) {  // a profile from rest to rest needs an interior waypoint
     densification.maxJointStep = 0.5 * (dense.waypoints[1] - dense.waypoints[0]).cwiseAbs().maxCoeff();

@@ -4,8 +4,14 @@
 // TCP curve is well described by its samples and an interpolation through them stays near the
 // path the planner validated.
 //
-// New waypoints lie on the straight joint-space segments between the original ones (the motion a
-// planner's motion validator checked); every original waypoint is kept. Exact repeats are dropped.
+// Every original waypoint is kept; exact repeats are dropped. Between two waypoints far apart (an
+// RRT edge) the new waypoints lie on the straight joint-space segment, the motion a planner's motion
+// validator checked. Waypoints close together (any joint within smoothWaypointSpacing) are samples
+// of a smooth curve (an arc path converted by IK every centimetre): there the new waypoints follow a
+// PCHIP through the original waypoints, parameterised by joint-space distance, so joint velocities
+// do not jump at every original waypoint. PCHIP never leaves the joint box of the two waypoints
+// around it, so the deviation from the straight segment is below smoothWaypointSpacing per joint
+// (in practice micro-radians on a smooth path).
 #include <vector>
 
 #include <Eigen/Core>
@@ -18,6 +24,7 @@ namespace arcplan::trajectory {
 struct DensificationOptions {
   double maxJointStep = 0.01;  // rad, largest change of any joint between consecutive waypoints
   double maxTcpStep = 0.002;   // m, largest TCP displacement between consecutive waypoints
+  double smoothWaypointSpacing = 0.05;  // rad, see above; 0 keeps every segment straight
 };
 
 struct DensePath {
@@ -26,7 +33,8 @@ struct DensePath {
   std::vector<double> tcpArcLength;           // cumulative TCP chord length, starts at 0 (m)
 };
 
-// Throws arcplan::Error for non-positive steps or a path with fewer than 2 waypoints.
+// Throws arcplan::Error for non-positive steps, a negative smoothWaypointSpacing or a path with
+// fewer than 2 distinct waypoints.
 DensePath densifyJointPath(const robot::RobotModel& model, const JointPath& path,
                            const DensificationOptions& options = {});
 

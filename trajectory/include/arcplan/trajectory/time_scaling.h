@@ -25,6 +25,7 @@ struct TimeScalingOptions {
   double checkTimeStep = 0.002;               // s, grid of the verification and of the output samples
   double maxJointStep = 0.01;                 // rad, densification
   double maxTcpStep = 0.002;                  // m, densification
+  double smoothWaypointSpacing = 0.05;        // rad, densification: closer waypoints are joined smoothly
 };
 
 // Throws arcplan::Error naming the option for invalid options (non-positive or non-finite speed,

@@ -1,0 +1,152 @@
+// arcplan scale — PCHIP time scaling of a joint path under a TCP speed limit (thesis §4.3), with the
+// DESIGN.md §6 metrics, the dense timed trajectory and a speed-profile plot.
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <unistd.h>
+
+#include "arcplan/collision/scene.h"
+#include "arcplan/common/error.h"
+#include "arcplan/common/plotting.h"
+#include "arcplan/common/resources.h"
+#include "arcplan/robot/robot_model.h"
+#include "arcplan/trajectory/joint_path.h"
+#include "arcplan/trajectory/metrics.h"
+#include "arcplan/trajectory/time_scaling.h"
+#include "cli_support.h"
+#include "commands.h"
+
+namespace arcplan::apps {
+namespace {
+
+struct ScaleOptions {
+  std::string scene;
+  std::string urdf;
+  std::string pathCsv;
+  double maxTcpSpeed = 0.25;
+  double riseTime = 0.2;
+  std::optional<double> maxTcpAcceleration;
+  std::string json;
+  std::string trajectoryCsv;
+  std::string plot;
+};
+
+void requirePositive(double value, const char* option, const char* unit) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    std::ostringstream message;
+    message << option << " must be a positive number (" << unit << "), got " << value;
+    throw Error(message.str());
+  }
+}
+
+robot::RobotModel loadRobot(const ScaleOptions& options) {
+  std::filesystem::path urdf = options.urdf;
+  if (!options.scene.empty()) urdf = collision::loadScene(resolveDataPath(options.scene)).robotUrdf;
+  if (urdf.empty()) return robot::ur10e();
+  if (!std::filesystem::exists(urdf)) throw Error("URDF file " + urdf.string() + " does not exist");
+  return robot::loadRobotModel(urdf);
+}
+
+void printMetrics(const trajectory::TrajectoryMetrics& metrics, const trajectory::TimedTrajectory& trajectory,
+                  std::size_t waypoints) {
+  std::cout << std::fixed << std::setprecision(4) << "waypoints           " << waypoints << " (dense path "
+            << trajectory.densePath.size() << ", PCHIP knots " << trajectory.knots.size() << ", samples "
+            << trajectory.time.size() << ")\n"
+            << "tcp path length     " << metrics.tcpPathLength << " m\n"
+            << "joint path length   " << metrics.jointPathLength << " rad\n"
+            << "execution time      " << metrics.executionTime << " s\n"
+            << "mean tcp speed      " << metrics.meanTcpSpeed << " m/s\n"
+            << "peak tcp speed      " << metrics.peakTcpSpeed << " m/s (limit " << trajectory.tcpSpeedLimit << ")\n"
+            << "time above limit    " << metrics.timeAboveLimit << " s\n"
+            << "max joint speed     " << std::setprecision(1) << 100.0 * metrics.maxJointSpeedRatio
+            << " % of its limit\n";
+}
+
+void plotTrajectory(const trajectory::TimedTrajectory& trajectory, const ScaleOptions& options) {
+  // The script reads the samples from a CSV: the requested one, or a temporary copy.
+  std::filesystem::path csv = options.trajectoryCsv;
+  const bool temporary = csv.empty();
+  if (temporary) {
+    csv = std::filesystem::temp_directory_path() / ("arcplan_scale_" + std::to_string(::getpid()) + ".csv");
+    trajectory::writeTimedTrajectoryCsv(csv, trajectory);
+  }
+  std::ostringstream limit;
+  limit << trajectory.tcpSpeedLimit;
+  std::vector<std::string> arguments{csv.string(), options.plot, "--vmax", limit.str(),
+                                     "--title", std::filesystem::path(options.pathCsv).filename().string()};
+  for (int j = 0; j < 6; ++j) {
+    std::ostringstream jointLimit;
+    jointLimit << std::setprecision(10) << trajectory.jointSpeedLimits[j];
+    arguments.insert(arguments.end(), {"--joint-limit", jointLimit.str()});
+  }
+  const PlotOutcome outcome = runPlotScript("plot_trajectory.py", arguments);
+  if (temporary) std::filesystem::remove(csv);
+  if (!outcome.ok) {
+    std::cerr << "arcplan: warning: " << outcome.message << "\n";
+  } else {
+    std::cout << "plot                " << options.plot << "\n";
+  }
+}
+
+void runScale(const ScaleOptions& options) {
+  requirePositive(options.maxTcpSpeed, "--vmax", "m/s");
+  requirePositive(options.riseTime, "--rise", "s");
+  if (options.maxTcpAcceleration) requirePositive(*options.maxTcpAcceleration, "--max-acc", "m/s²");
+  if (!options.plot.empty() && std::filesystem::path(options.plot).extension() != ".png") {
+    throw Error("--plot: expected a .png file name, got " + options.plot);
+  }
+
+  const robot::RobotModel model = loadRobot(options);
+  const trajectory::JointPath path = trajectory::readJointPathCsv(options.pathCsv, model);
+  trajectory::TimeScalingOptions scaling;
+  scaling.maxTcpSpeed = options.maxTcpSpeed;
+  scaling.riseTime = options.riseTime;
+  scaling.maxTcpAcceleration = options.maxTcpAcceleration;
+  const trajectory::TimedTrajectory timed = trajectory::scaleToTcpSpeed(model, path, scaling);
+  const trajectory::TrajectoryMetrics metrics = trajectory::computeMetrics(path, timed);
+
+  printMetrics(metrics, timed, path.size());
+  if (!options.json.empty()) {
+    nlohmann::json document = trajectory::toJson(metrics);
+    document["settings"] = {{"path_csv", options.pathCsv},
+                            {"vmax_mps", options.maxTcpSpeed},
+                            {"rise_time_s", options.maxTcpAcceleration ? nlohmann::json() : nlohmann::json(options.riseTime)},
+                            {"max_tcp_acceleration_mps2", options.maxTcpAcceleration ? nlohmann::json(*options.maxTcpAcceleration)
+                                                                                   : nlohmann::json()}};
+    writeJson(options.json, document);
+  }
+  if (!options.trajectoryCsv.empty()) trajectory::writeTimedTrajectoryCsv(options.trajectoryCsv, timed);
+  if (!options.plot.empty()) plotTrajectory(timed, options);
+}
+
+}  // namespace
+
+void registerScaleCommand(CLI::App& app) {
+  auto options = std::make_shared<ScaleOptions>();
+  auto* scale = app.add_subcommand(
+      "scale",
+      "time-scale a joint path (PCHIP) so the TCP speed never exceeds --vmax: ramp up over --rise, cruise, brake; "
+      "slower where a joint speed limit requires it; checked with forward kinematics every 2 ms");
+  auto* scene = scale->add_option("--scene", options->scene, "scene YAML; its robot is used (default: built-in UR10e)");
+  scale->add_option("--urdf", options->urdf, "robot URDF instead of a scene")->excludes(scene);
+  scale->add_option("--path-csv", options->pathCsv, "joint path: header q0,...,q5, one waypoint [rad] per line")
+      ->required();
+  scale->add_option("--vmax", options->maxTcpSpeed, "TCP speed limit [m/s] (ISO/TS 15066 collaborative: 0.25)")
+      ->capture_default_str();
+  scale->add_option("--rise", options->riseTime, "time to reach --vmax from rest and to brake [s]")
+      ->capture_default_str();
+  scale->add_option_function<double>(
+      "--max-acc", [options](double value) { options->maxTcpAcceleration = value; },
+      "TCP acceleration limit [m/s²] for the ramps, instead of --rise");
+  scale->add_option("--json", options->json, "write the metrics (DESIGN §6 keys) as JSON to this file ('-' for stdout)");
+  scale->add_option("--traj-csv", options->trajectoryCsv,
+                    "write the timed trajectory: t, q0..5, qd0..5, qdd0..5, tcp_speed, tcp_x/y/z every <= 2 ms");
+  scale->add_option("--plot", options->plot, "PNG of the TCP speed profile, joint positions and velocities");
+  scale->callback([options] { runScale(*options); });
+}
+
+}  // namespace arcplan::apps
