@@ -180,6 +180,18 @@ TEST(TimeScaling, PureWristRotationTakesFiniteTime) {
   EXPECT_NEAR(trajectory.position.back()[5], goal[5], 1e-12);
 }
 
+TEST(TimeScaling, TinyTwoWaypointMotion) {
+  // One densification step only (1 mrad): still a rest-to-rest motion within the limits.
+  robot::Vector6 start = testing::thesisSeedA(), goal = start;
+  goal[0] += 0.001;
+  const TimedTrajectory trajectory = scaleToTcpSpeed(robot::ur10e(), {start, goal}, {});
+  EXPECT_GT(trajectory.duration(), 0.0);
+  EXPECT_LT(trajectory.duration(), 0.5);
+  EXPECT_LE(peakSpeed(trajectory), 0.25);
+  EXPECT_EQ(trajectory.position.back(), goal);
+  EXPECT_LT(trajectory.velocity.back().norm(), 1e-12);
+}
+
 TEST(TimeScaling, SparseRrtLikePathRespectsTheLimits) {
   robot::Vector6 a = testing::thesisSeedA(), m1, m2, b;
   m1 << -0.6, -1.9, 2.0, -1.5, -1.2, -0.2;
