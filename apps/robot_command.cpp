@@ -1,9 +1,12 @@
 // arcplan robot fk|ik|check — kinematics and collision queries on one configuration.
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 
+#include "arcplan/collision/collision_model.h"
 #include "arcplan/common/error.h"
+#include "arcplan/common/resources.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/robot_model.h"
@@ -40,10 +43,10 @@ void printVector(const robot::Vector6& q) {
   std::cout << "\n";
 }
 
-void runForwardKinematics(const RobotOptions& options, const std::string& jointText) {
-  const auto model = loadModel(options);
+// --joints q0,...: one value per joint of `model`, each inside its limits.
+Eigen::VectorXd parseJoints(const robot::RobotModel& model, const std::string& jointText) {
   const auto values = parseVector(jointText, "--joints", static_cast<std::size_t>(model.dof()));
-  const Eigen::Map<const Eigen::VectorXd> q(values.data(), static_cast<Eigen::Index>(values.size()));
+  const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
   for (int j = 0; j < model.dof(); ++j) {
     const auto& limits = model.joints()[j].limits;
     if (q[j] < limits.lower || q[j] > limits.upper) {
@@ -51,6 +54,13 @@ void runForwardKinematics(const RobotOptions& options, const std::string& jointT
                   " is outside its limits [" + std::to_string(limits.lower) + ", " + std::to_string(limits.upper) + "]");
     }
   }
+  return q;
+}
+
+void runForwardKinematics(const RobotOptions& options, const std::string& jointText) {
+  const auto model = loadModel(options);
+  const Eigen::VectorXd q = parseJoints(model, jointText);
+  const std::vector<double> values(q.data(), q.data() + q.size());
   const Eigen::Isometry3d pose = robot::tipPose(model, q);
   const auto xyzRpy = robot::xyzRpyFromPose(pose);
   std::cout << std::fixed << std::setprecision(6) << options.tip << " in base_link\n"
@@ -100,6 +110,81 @@ void runInverseKinematics(const RobotOptions& options, const std::string& poseTe
   if (!options.json.empty()) writeJson(options.json, result);
 }
 
+struct CheckOptions {
+  std::string scene;
+  std::string joints;
+  std::string query;
+  std::string json;
+};
+
+// A query endpoint as joints: given directly, or the IK solution of its pose nearest to its seed
+// (to the zero configuration without one).
+robot::Vector6 endpointJoints(const collision::Scene& scene, const collision::Query& query, const char* end,
+                              const collision::QueryEndpoint& endpoint, const robot::RobotModel& model) {
+  if (endpoint.joints) return *endpoint.joints;
+  const robot::UrInverseKinematics ik(model);
+  const auto& p = *endpoint.pose;
+  const auto solution = ik.solveNearest(robot::poseFromXyzRpy(p), endpoint.seed.value_or(robot::Vector6::Zero()));
+  if (!solution) {
+    throw Error(scene.sourceFile.string() + ": query '" + query.name + "' " + end +
+                " pose is out of reach or outside the joint limits");
+  }
+  return *solution;
+}
+
+nlohmann::json checkConfiguration(const collision::CollisionModel& model, const Eigen::VectorXd& q) {
+  collision::CollisionData data(model);
+  const auto report = collision::collide(model, data, q);
+  const auto distances = collision::distance(model, data, q);
+  const auto finiteOrNull = [](double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); };
+  nlohmann::json collisions = nlohmann::json::array();
+  for (const auto& [first, second] : report.collisions) collisions.push_back({first, second});
+  std::cout << "  joints        " << std::setprecision(6) << q.transpose() << "\n"
+            << "  valid         " << (report.valid ? "yes" : "no (in collision)") << "\n";
+  for (const auto& [first, second] : report.collisions) std::cout << "  collision     " << first << " - " << second << "\n";
+  std::cout << std::fixed << std::setprecision(4);
+  if (std::isfinite(distances.obstacleDistance)) {
+    std::cout << "  obstacle      " << distances.obstacleDistance << " m (" << distances.obstaclePair.first << " - "
+              << distances.obstaclePair.second << ")\n";
+  }
+  if (std::isfinite(distances.selfDistance)) {
+    std::cout << "  self          " << distances.selfDistance << " m (" << distances.selfPair.first << " - "
+              << distances.selfPair.second << ")\n";
+  }
+  std::cout << "  clearance     " << distances.minimum() << " m\n";
+  std::cout.unsetf(std::ios::floatfield);
+  return {{"joints", std::vector<double>(q.data(), q.data() + q.size())},
+          {"valid", report.valid},
+          {"collisions", collisions},
+          {"clearance_m", finiteOrNull(distances.minimum())},
+          {"obstacle_distance_m", finiteOrNull(distances.obstacleDistance)},
+          {"obstacle_pair", distances.obstaclePair.first.empty() ? nlohmann::json()
+                                                                 : nlohmann::json{distances.obstaclePair.first, distances.obstaclePair.second}},
+          {"self_distance_m", finiteOrNull(distances.selfDistance)},
+          {"self_pair", distances.selfPair.first.empty() ? nlohmann::json()
+                                                         : nlohmann::json{distances.selfPair.first, distances.selfPair.second}}};
+}
+
+void runCollisionCheck(const CheckOptions& options) {
+  if (options.joints.empty() == options.query.empty()) throw Error("give exactly one of --joints or --query");
+  const collision::Scene scene = collision::loadScene(resolveDataPath(options.scene));
+  const auto model = collision::makeCollisionModel(scene);
+  std::cout << "scene " << scene.name << " (" << scene.sourceFile.string() << "), " << model->robot().name() << "\n";
+  nlohmann::json result{{"scene", scene.name}};
+  if (!options.joints.empty()) {
+    result.update(checkConfiguration(*model, parseJoints(model->robot(), options.joints)));
+  } else {
+    const auto& query = scene.query(options.query);
+    result["query"] = query.name;
+    for (const auto& [end, endpoint] : {std::make_pair("start", &query.start), std::make_pair("goal", &query.goal)}) {
+      std::cout << "query " << query.name << " " << end << "\n";
+      result[end] = checkConfiguration(*model, endpointJoints(scene, query, end, *endpoint, model->robot()));
+    }
+    result["valid"] = result["start"]["valid"].get<bool>() && result["goal"]["valid"].get<bool>();
+  }
+  if (!options.json.empty()) writeJson(options.json, result);
+}
+
 }  // namespace
 
 void registerRobotCommand(CLI::App& app) {
@@ -120,6 +205,20 @@ void registerRobotCommand(CLI::App& app) {
   ik->add_option("--seed", *seed, "joint vector; also report the solution nearest to it");
   addRobotOptions(*ik, *options);
   ik->callback([options, pose, seed] { runInverseKinematics(*options, *pose, *seed); });
+
+  auto checkOptions = std::make_shared<CheckOptions>();
+  auto* check = robotCommand->add_subcommand(
+      "check", "collision check of one configuration in a scene: validity, colliding pairs, clearance "
+               "(exit code 0 whether or not it collides; non-zero only for bad input)");
+  check->add_option("--scene", checkOptions->scene, "scene YAML (a path, or relative to arcplan's data folder, "
+                                                   "e.g. scenes/thesis_obstacle.yaml)")
+      ->required();
+  check->add_option("--joints", checkOptions->joints, "joint angles q0,...,q5 [rad]");
+  check->add_option("--query", checkOptions->query, "check the start and goal of this scene query instead "
+                                                   "(poses solved by IK nearest to their seed)");
+  check->add_option("--json", checkOptions->json, "write valid, collisions, clearance_m (and distances) as JSON to "
+                                                 "this file ('-' for stdout)");
+  check->callback([checkOptions] { runCollisionCheck(*checkOptions); });
 }
 
 }  // namespace arcplan::apps

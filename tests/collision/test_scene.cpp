@@ -51,7 +51,8 @@ TEST(Scene, ThesisObstacleSceneHasTheIssuesNumbers) {
   EXPECT_TRUE(particle.pose.translation().isApprox(Eigen::Vector3d(0.4375, -0.1, 0.32875), 1e-15));
   EXPECT_TRUE(particle.boundingCenter().isApprox(Eigen::Vector3d(0.4375, -0.1, 0.32875), 1e-15));
   EXPECT_DOUBLE_EQ(particle.boundingRadius(), 0.01);
-  ASSERT_EQ(scene.allowedCollisions.size(), 1u);
+  ASSERT_EQ(scene.allowedCollisions.size(), 2u);
+  EXPECT_EQ(scene.allowedCollisions[0], std::make_pair(std::string("table"), std::string("base_link_inertia")));
 
   const auto& query = scene.query("A_to_B");
   ASSERT_TRUE(query.start.pose && query.goal.pose);
