@@ -6,6 +6,7 @@
 namespace arcplan::apps {
 
 void registerRobotCommand(CLI::App& app);
+void registerPlanCommand(CLI::App& app);
 void registerScaleCommand(CLI::App& app);
 
 }  // namespace arcplan::apps

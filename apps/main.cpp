@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(ARCPLAN_VERSION));
   arcplan::apps::registerRobotCommand(app);
+  arcplan::apps::registerPlanCommand(app);
   arcplan::apps::registerScaleCommand(app);
   try {
     app.parse(argc, argv);

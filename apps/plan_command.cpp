@@ -1,0 +1,227 @@
+// arcplan plan — solve one scene query with the arc planner or an OMPL planner (DESIGN.md §9): status,
+// reason, the DESIGN.md §6 metrics of the path, and the joint path as CSV.
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/common/error.h"
+#include "arcplan/common/resources.h"
+#include "arcplan/planners/arc_planner.h"
+#include "arcplan/planners/planner_registry.h"
+#include "arcplan/planners/planning_problem.h"
+#include "arcplan/trajectory/joint_path.h"
+#include "arcplan/trajectory/metrics.h"
+#include "arcplan/trajectory/path_densification.h"
+#include "arcplan/trajectory/time_scaling.h"
+#include "cli_support.h"
+#include "commands.h"
+
+namespace arcplan::apps {
+namespace {
+
+struct PlanOptions {
+  std::string scene;
+  std::string query;
+  std::string planner = "arc";
+  std::vector<std::string> parameters;
+  double time = 5.0;
+  std::optional<std::uint32_t> seed;
+  std::optional<double> maxTcpSpeed;
+  std::string json;
+  std::string pathCsv;
+  bool verbose = false;
+};
+
+std::string statusName(const ompl::base::PlannerStatus& status, bool haveExact) {
+  if (haveExact) return "exact";
+  return status == ompl::base::PlannerStatus::APPROXIMATE_SOLUTION ? "approximate" : "failed";
+}
+
+// Why an OMPL planner ended without an exact path.
+std::string omplReason(const ompl::base::PlannerStatus& status, const ompl::geometric::SimpleSetup& setup, double time) {
+  std::ostringstream reason;
+  switch (ompl::base::PlannerStatus::StatusType(status)) {
+    case ompl::base::PlannerStatus::APPROXIMATE_SOLUTION:
+      reason << "no exact path within " << time << " s; the best path ends "
+             << setup.getProblemDefinition()->getSolutionDifference() << " (joint-space distance) from the goal";
+      break;
+    case ompl::base::PlannerStatus::TIMEOUT: reason << "no path within the time limit of " << time << " s"; break;
+    case ompl::base::PlannerStatus::INVALID_START: reason << "invalid start state"; break;
+    case ompl::base::PlannerStatus::INVALID_GOAL: reason << "invalid goal state"; break;
+    default: reason << "planner status: " << status.asString();
+  }
+  return reason.str();
+}
+
+trajectory::JointPath jointPathOf(const ompl::geometric::PathGeometric& path) {
+  trajectory::JointPath joints;
+  for (std::size_t i = 0; i < path.getStateCount(); ++i) {
+    robot::Vector6 q;
+    for (int j = 0; j < 6; ++j) {
+      q[j] = *path.getSpaceInformation()->getStateSpace()->getValueAddressAtIndex(path.getState(i), j);
+    }
+    joints.push_back(q);
+  }
+  return joints;
+}
+
+nlohmann::json arcDetails(const planners::ArcPlannerResult& result) {
+  nlohmann::json detours = nlohmann::json::array();
+  for (const planners::Detour& detour : result.detours) {
+    detours.push_back({{"position_m", detour.position},
+                       {"sagitta_m", detour.shape.sagitta},
+                       {"half_chord_m", detour.shape.halfChord},
+                       {"entry_radius_m", detour.shape.entryRadius},
+                       {"exit_radius_m", detour.shape.exitRadius},
+                       {"plane_angle_rad", detour.planeAngle}});
+  }
+  return {{"detours", detours},
+          {"obstacles", result.obstacles},
+          {"analytic_tcp_path_length_m", result.tcpPathLength},
+          {"candidates_checked", result.candidatesTried}};
+}
+
+void runPlan(const PlanOptions& options) {
+  // OMPL's seed is process-global and must be set before anything random exists.
+  if (options.seed) ompl::RNG::setSeed(*options.seed);
+  ompl::msg::setLogLevel(options.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+  if (!(options.time > 0.0) || !std::isfinite(options.time)) throw Error("--time must be a positive number of seconds");
+  if (options.maxTcpSpeed && (!(*options.maxTcpSpeed > 0.0) || !std::isfinite(*options.maxTcpSpeed))) {
+    throw Error("--vmax must be a positive TCP speed in m/s");
+  }
+  std::vector<std::pair<std::string, std::string>> parameters;
+  for (const std::string& text : options.parameters) parameters.push_back(planners::parseParameterAssignment(text));
+  const std::string plannerName = planners::canonicalPlannerName(options.planner);
+
+  const auto scene = std::make_shared<const collision::Scene>(collision::loadScene(resolveDataPath(options.scene)));
+  planners::PlanningProblem problem = planners::makePlanningProblem(scene, options.query);
+  ompl::geometric::SimpleSetup& setup = *problem.setup;
+  const ompl::base::PlannerPtr planner =
+      planners::makePlanner(plannerName, setup.getSpaceInformation(), problem.plannerContext(), parameters);
+  setup.setPlanner(planner);
+  setup.setup();
+  const ompl::base::PlannerStatus status = setup.solve(options.time);
+  const bool haveExact = setup.haveExactSolutionPath();
+  const bool havePath = setup.haveSolutionPath();
+  const auto* arc = dynamic_cast<const planners::ArcPlanner*>(planner.get());
+
+  // The arc path is already the TCP path; sampling planners' paths get OMPL's shortcutting.
+  if (havePath && arc == nullptr) setup.simplifySolution();
+
+  nlohmann::json document = {{"scene", scene->name},
+                             {"query", problem.queryName},
+                             {"planner", plannerName},
+                             {"status", statusName(status, haveExact)},
+                             {"solve_time_s", arc ? arc->lastResult().solveTime : setup.getLastPlanComputationTime()},
+                             {"time_limit_s", options.time}};
+  std::map<std::string, std::string> parameterValues;
+  planner->params().getParams(parameterValues);
+  document["parameters"] = parameterValues;
+  if (options.seed) document["seed"] = *options.seed;
+  std::string reason;
+  if (!haveExact) reason = arc ? arc->lastResult().reason : omplReason(status, setup, options.time);
+  if (!reason.empty()) document["reason"] = reason;
+  if (arc) document["arc"] = arcDetails(arc->lastResult());
+
+  trajectory::JointPath path;
+  if (havePath) {
+    path = jointPathOf(setup.getSolutionPath());
+    const collision::CollisionModel& model = *problem.collisionModel;
+    collision::CollisionData data(model);
+    const trajectory::ClearanceFunction clearance = [&](const robot::Vector6& q) {
+      return collision::distance(model, data, q).obstacleDistance;
+    };
+    document["waypoints"] = path.size();
+    if (options.maxTcpSpeed) {
+      trajectory::TimeScalingOptions scaling;
+      scaling.maxTcpSpeed = *options.maxTcpSpeed;
+      const trajectory::TimedTrajectory timed = trajectory::scaleToTcpSpeed(model.robot(), path, scaling);
+      document.update(trajectory::toJson(trajectory::computeMetrics(path, timed, clearance)));
+      document["vmax_mps"] = *options.maxTcpSpeed;
+    } else {
+      // The same densification as the metrics of a scaled trajectory (DESIGN.md §6).
+      const trajectory::DensePath dense = trajectory::densifyJointPath(model.robot(), path);
+      double minClearance = std::numeric_limits<double>::infinity();
+      for (const robot::Vector6& q : dense.waypoints) minClearance = std::min(minClearance, clearance(q));
+      document["tcp_path_length_m"] = dense.tcpArcLength.back();
+      document["joint_path_length_rad"] = trajectory::jointPathLength(path);
+      document["min_clearance_m"] = std::isfinite(minClearance) ? nlohmann::json(minClearance) : nlohmann::json(nullptr);
+    }
+  }
+
+  std::cout << "plan: scene " << scene->name << ", query " << problem.queryName << ", planner " << plannerName << "\n"
+            << "status              " << document["status"].get<std::string>() << "\n";
+  if (!reason.empty()) std::cout << "reason              " << reason << "\n";
+  std::cout << std::setprecision(6) << "solve time          " << document["solve_time_s"].get<double>() << " s\n";
+  if (arc) {
+    for (const planners::Detour& detour : arc->lastResult().detours) {
+      std::cout << "arc detour          O at " << detour.position << " m: h " << detour.shape.sagitta << ", r "
+                << detour.shape.halfChord << ", R2 " << detour.shape.entryRadius << ", R3 " << detour.shape.exitRadius
+                << " m, plane " << detour.planeAngle << " rad\n";
+    }
+  }
+  if (havePath) {
+    std::cout << "waypoints           " << path.size() << "\n"
+              << "tcp path length     " << document["tcp_path_length_m"].get<double>() << " m\n"
+              << "joint path length   " << document["joint_path_length_rad"].get<double>() << " rad\n";
+    if (!document["min_clearance_m"].is_null()) {
+      std::cout << "min clearance       " << document["min_clearance_m"].get<double>() << " m\n";
+    }
+    if (options.maxTcpSpeed) {
+      std::cout << "execution time      " << document["execution_time_s"].get<double>() << " s at vmax "
+                << *options.maxTcpSpeed << " m/s (peak TCP speed " << document["peak_tcp_speed_mps"].get<double>()
+                << " m/s)\n";
+    }
+  }
+  if (!options.json.empty()) writeJson(options.json, document);
+  if (!options.pathCsv.empty() && havePath) trajectory::writeJointPathCsv(options.pathCsv, path);
+  if (!haveExact) {
+    if (havePath) {
+      std::cerr << "arcplan: warning: " << plannerName << " returned an approximate path: " << reason << "\n";
+      return;
+    }
+    throw Error("planner " + plannerName + " found no path: " + reason);
+  }
+}
+
+}  // namespace
+
+void registerPlanCommand(CLI::App& app) {
+  auto options = std::make_shared<PlanOptions>();
+  CLI::App* command = app.add_subcommand(
+      "plan",
+      "Plan a scene query with the arc planner (thesis ch. 3) or an OMPL planner; report status, reason, "
+      "solve time, TCP/joint path length and clearance; write the joint path");
+  command->add_option("--scene", options->scene, "scene YAML (a path, or a name under data/, e.g. scenes/thesis_obstacle.yaml)")
+      ->required();
+  command->add_option("--query", options->query, "query name in the scene (default: the first)");
+  command->add_option("--planner", options->planner,
+                      "planner: arc, RRTConnect, RRT, RRTstar, PRM, PRMstar, LazyPRM, BKPIECE1, KPIECE1, EST, SBL, "
+                      "BiTRRT, InformedRRTstar, BITstar, ... (case-insensitive)")
+      ->capture_default_str();
+  command->add_option("--param", options->parameters,
+                      "planner parameter NAME=VALUE, repeatable (arc: sagitta, half_chord, entry_radius, exit_radius, "
+                      "plane_angle, resolution, max_joint_step, auto; OMPL planners: e.g. range)");
+  command->add_option("--time", options->time, "time limit for solving [s]")->capture_default_str();
+  command->add_option("--seed", options->seed,
+                      "seed of OMPL's random numbers, for reproducible sampling planners (set once per process)");
+  command->add_option("--vmax", options->maxTcpSpeed,
+                      "also time-scale the path (PCHIP) under this TCP speed limit [m/s] and report the scaled metrics");
+  command->add_option("--json", options->json, "write the result as JSON to this file ('-' for stdout)");
+  command->add_option("--path-csv", options->pathCsv, "write the joint path (q0..q5 per waypoint) as CSV");
+  command->add_flag("--verbose", options->verbose, "show OMPL's informational messages");
+  command->callback([options] { runPlan(*options); });
+}
+
+}  // namespace arcplan::apps

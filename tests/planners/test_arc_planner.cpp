@@ -1,0 +1,291 @@
+// ArcPlanner as an OMPL planner: straight line when free, the thesis detour around the particle,
+// chained detours, solid obstacles, the auto search, reasons for failure, the termination
+// condition, planner data and ompl::tools::Benchmark.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/common/error.h"
+#include "arcplan/planners/arc_planner.h"
+#include "arcplan/planners/cartesian_to_joint.h"
+#include "planners/planner_test_support.h"
+
+namespace {
+
+using arcplan::planners::ArcPlanner;
+using arcplan::planners::ArcPlannerResult;
+using namespace arcplan::testing;
+namespace ob = ompl::base;
+
+const ArcPlanner& arcOf(const ob::PlannerPtr& planner) { return dynamic_cast<const ArcPlanner&>(*planner); }
+
+double distanceToLine(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = (b - a).normalized();
+  return (p - a - (p - a).dot(d) * d).norm();
+}
+
+arcplan::collision::Obstacle sphere(const std::string& name, const Eigen::Vector3d& center, double radius) {
+  arcplan::collision::Obstacle obstacle;
+  obstacle.name = name;
+  obstacle.shape = arcplan::collision::Obstacle::Shape::Sphere;
+  obstacle.radius = radius;
+  obstacle.pose.translation() = center;
+  return obstacle;
+}
+
+arcplan::collision::Obstacle box(const std::string& name, const Eigen::Vector3d& center, const Eigen::Vector3d& size) {
+  arcplan::collision::Obstacle obstacle;
+  obstacle.name = name;
+  obstacle.shape = arcplan::collision::Obstacle::Shape::Box;
+  obstacle.size = size;
+  obstacle.pose.translation() = center;
+  return obstacle;
+}
+
+// thesis_free with extra obstacles.
+arcplan::planners::PlanningProblem freeSceneWith(const std::vector<arcplan::collision::Obstacle>& obstacles) {
+  auto scene = std::make_shared<arcplan::collision::Scene>(*loadTestScene("thesis_free"));
+  for (const auto& obstacle : obstacles) scene->obstacles.push_back(obstacle);
+  return arcplan::planners::makePlanningProblem(scene);
+}
+
+// Point of the thesis line A->B at y (the line is parametrised by y from -0.4 to 0.4).
+Eigen::Vector3d thesisLinePoint(double y) { return thesisA() + (thesisB() - thesisA()) * ((y - thesisA().y()) / 0.8); }
+
+TEST(ArcPlanner, FreeLineIsTheStraightTcpLine) {
+  auto problem = thesisProblem("thesis_free");
+  const auto [planner, status] = solve(problem, "arc");
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+  EXPECT_EQ(arcOf(planner).lastResult().kind, ArcPlannerResult::Kind::StraightLine);
+  const auto joints = jointsOf(problem.setup->getSolutionPath());
+  EXPECT_EQ(joints.front(), problem.start);
+  EXPECT_EQ(joints.back(), problem.goal);
+  const auto poses = tcpPoses(joints);
+  double length = 0.0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_LT(distanceToLine(poses[i].translation(), thesisA(), thesisB()), 1e-9) << "waypoint " << i;
+    EXPECT_LE(arcplan::robot::rotationDistance(poses[i].linear(), thesisToolDown()), 1e-6) << "waypoint " << i;
+    if (i > 0) length += (poses[i].translation() - poses[i - 1].translation()).norm();
+  }
+  EXPECT_NEAR(length, 0.8331, 5e-5);  // thesis Table 3.3, case (a)
+  EXPECT_TRUE(problem.setup->getSolutionPath().check());
+}
+
+TEST(ArcPlanner, ThesisParticleGetsTheGivenDetourAtO) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const auto [planner, status] =
+      solve(problem, "arc", {{"sagitta", "0.1"}, {"half_chord", "0.2"}, {"entry_radius", "0.1"}, {"exit_radius", "0.2"}});
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+  const auto& result = arcOf(planner).lastResult();
+  EXPECT_EQ(result.kind, ArcPlannerResult::Kind::Detour);
+  ASSERT_EQ(result.detours.size(), 1u);
+  EXPECT_EQ(result.obstacles, std::vector<std::string>{"particle"});
+  // O is the particle itself: on the line at y = -0.1, 0.375 of the way from A.
+  EXPECT_NEAR(result.detours[0].position, 0.375 * (thesisB() - thesisA()).norm(), 1e-12);
+  EXPECT_DOUBLE_EQ(result.detours[0].shape.sagitta, 0.1);
+  EXPECT_DOUBLE_EQ(result.detours[0].planeAngle, 0.0);
+  // The straight line really is blocked for the whole robot (independently of the planner).
+  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
+  const arcplan::planners::ArcPath line(tcpPoses({problem.start})[0], tcpPoses({problem.goal})[0]);
+  const auto lineJoints = arcplan::planners::convertToJoints(ik, line, problem.start, problem.goal, {});
+  ASSERT_TRUE(lineJoints.ok());
+  arcplan::collision::CollisionData data(*problem.collisionModel);
+  bool hitsParticle = false;
+  for (const auto& q : lineJoints.joints) {
+    for (const auto& pair : arcplan::collision::collide(*problem.collisionModel, data, q).collisions) {
+      hitsParticle = hitsParticle || pair.second == "particle" || pair.first == "particle";
+    }
+  }
+  EXPECT_TRUE(hitsParticle);
+  // The detour: TCP at least h above... every waypoint at distance >= h from O, and motions valid
+  // at the motion validator's resolution too.
+  const Eigen::Vector3d o = thesisLinePoint(-0.1);
+  for (const auto& pose : tcpPoses(jointsOf(problem.setup->getSolutionPath()))) {
+    EXPECT_GE((pose.translation() - o).norm(), 0.1 - 1e-9);
+    EXPECT_LE(arcplan::robot::rotationDistance(pose.linear(), thesisToolDown()), 1e-6);
+  }
+  EXPECT_TRUE(problem.setup->getSolutionPath().check());
+}
+
+TEST(ArcPlanner, CheckMotionsValidatesEveryMotion) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const auto [planner, status] = solve(problem, "arc", {{"sagitta", "0.1"}, {"check_motions", "1"}});
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+  EXPECT_TRUE(arcOf(planner).getCheckMotions());
+  const auto counterBefore = problem.setup->getSpaceInformation()->getMotionValidator()->getValidMotionCount();
+  EXPECT_GE(counterBefore, problem.setup->getSolutionPath().getStateCount() - 1);
+}
+
+TEST(ArcPlanner, HonoursTheTerminationCondition) {
+  auto problem = thesisProblem("thesis_obstacle");
+  auto planner = arcplan::planners::makePlanner("arc", problem.setup->getSpaceInformation(), problem.plannerContext());
+  problem.setup->setPlanner(planner);
+  problem.setup->setup();
+  const auto status = planner->solve(ob::plannerAlwaysTerminatingCondition());
+  EXPECT_EQ(status, ob::PlannerStatus::TIMEOUT);
+  EXPECT_FALSE(problem.setup->getProblemDefinition()->hasSolution());
+  EXPECT_NE(arcOf(planner).lastResult().reason.find("time limit"), std::string::npos);
+}
+
+TEST(ArcPlanner, PlannerDataReportsItsSolveTimeAndArcParameters) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const auto [planner, status] = solve(problem, "arc", {{"sagitta", "0.15"}});
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION);
+  ob::PlannerData data(problem.setup->getSpaceInformation());
+  planner->getPlannerData(data);
+  EXPECT_EQ(data.numVertices(), problem.setup->getSolutionPath().getStateCount());
+  EXPECT_EQ(data.numEdges(), data.numVertices() - 1);
+  EXPECT_EQ(data.numStartVertices(), 1u);
+  EXPECT_EQ(data.numGoalVertices(), 1u);
+  EXPECT_DOUBLE_EQ(std::stod(data.properties.at("arc sagitta REAL")), 0.15);
+  EXPECT_DOUBLE_EQ(std::stod(data.properties.at("arc half chord REAL")), 0.2);
+  EXPECT_EQ(data.properties.at("arc detours INTEGER"), "1");
+  const double solveTime = std::stod(data.properties.at("solve time REAL"));
+  EXPECT_GT(solveTime, 0.0);
+  EXPECT_LE(solveTime, problem.setup->getLastPlanComputationTime());
+  for (const auto& [name, value] : data.properties) {
+    for (const char c : name) EXPECT_TRUE(std::isalnum(static_cast<unsigned char>(c)) || c == ' ') << name;
+  }
+}
+
+TEST(ArcPlanner, RunsInOmplBenchmarkNextToRRTConnect) {
+  auto problem = thesisProblem("thesis_obstacle");
+  ompl::tools::Benchmark benchmark(*problem.setup, "arc_vs_rrtconnect");
+  benchmark.addPlanner(arcplan::planners::makePlanner("arc", problem.setup->getSpaceInformation(),
+                                                      problem.plannerContext(), {{"sagitta", "0.1"}}));
+  benchmark.addPlanner(arcplan::planners::makePlanner("RRTConnect", problem.setup->getSpaceInformation(),
+                                                      problem.plannerContext()));
+  ompl::tools::Benchmark::Request request(2.0, 1024.0, 2, 0.05, false, false, false);
+  benchmark.benchmark(request);
+  const auto& experiment = benchmark.getRecordedExperimentData();
+  ASSERT_EQ(experiment.planners.size(), 2u);
+  EXPECT_EQ(experiment.planners[0].name, "geometric_arc");
+  EXPECT_EQ(experiment.planners[0].common.at("sagitta"), "0.1");
+  EXPECT_EQ(experiment.planners[0].common.at("auto"), "0");
+  for (const auto& planner : experiment.planners) {
+    ASSERT_EQ(planner.runs.size(), 2u) << planner.name;
+    for (const auto& run : planner.runs) EXPECT_EQ(run.at("solved BOOLEAN"), "1") << planner.name;
+  }
+  const auto& arcRun = experiment.planners[0].runs[0];
+  EXPECT_DOUBLE_EQ(std::stod(arcRun.at("arc sagitta REAL")), 0.1);
+  EXPECT_EQ(arcRun.at("correct solution BOOLEAN"), "1");
+  EXPECT_GT(std::stod(arcRun.at("solve time REAL")), 0.0);
+}
+
+TEST(ArcPlanner, DetourThatDoesNotFitIsReported) {
+  auto problem = thesisProblem("thesis_obstacle");
+  // bx2 = r = 0.35 m for h = r with small side arcs > |AO| = 0.312 m.
+  const auto [planner, status] =
+      solve(problem, "arc", {{"sagitta", "0.35"}, {"half_chord", "0.35"}, {"entry_radius", "0.01"}});
+  EXPECT_EQ(status, ob::PlannerStatus::ABORT);
+  const std::string& reason = arcOf(planner).lastResult().reason;
+  EXPECT_NE(reason.find("particle"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("|AO|"), std::string::npos) << reason;
+  EXPECT_FALSE(problem.setup->haveSolutionPath());
+}
+
+TEST(ArcPlanner, GoalOnAnotherIkBranchIsABranchChange) {
+  auto scene = std::make_shared<arcplan::collision::Scene>(*loadTestScene("thesis_free"));
+  auto problem = arcplan::planners::makePlanningProblem(scene);
+  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
+  // The goal pose with the wrist flipped (q5 > 0): same TCP pose, another branch.
+  arcplan::robot::Vector6 flipped = problem.goal;
+  for (const auto& candidate : ik.solveAll(tcpPoses({problem.goal})[0])) {
+    if (ik.branchOf(candidate) == (ik.branchOf(problem.goal) ^ 2)) flipped = candidate;
+  }
+  ASSERT_NE(ik.branchOf(flipped), ik.branchOf(problem.goal));
+  scene->queries[0].goal = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, flipped};
+  auto flippedProblem = arcplan::planners::makePlanningProblem(scene);
+  const auto [planner, status] = solve(flippedProblem, "arc");
+  EXPECT_EQ(status, ob::PlannerStatus::ABORT);
+  EXPECT_NE(arcOf(planner).lastResult().reason.find("branch"), std::string::npos) << arcOf(planner).lastResult().reason;
+}
+
+TEST(ArcPlanner, CollisionOnTheDetourNamesThePair) {
+  // A block beside O, where a detour in the plane turned by +90 degrees passes.
+  const Eigen::Vector3d direction = (thesisB() - thesisA()).normalized();
+  const Eigen::Vector3d side = arcplan::planners::avoidanceDirection(direction, M_PI_2);
+  auto problem = freeSceneWith({sphere("particle", thesisLinePoint(-0.1), 0.01),
+                                box("side_block", thesisLinePoint(-0.1) + 0.15 * side, {0.04, 0.04, 0.04})});
+  const auto [planner, status] = solve(problem, "arc", {{"sagitta", "0.15"}, {"plane_angle", std::to_string(M_PI_2)}});
+  EXPECT_EQ(status, ob::PlannerStatus::ABORT);
+  const std::string& reason = arcOf(planner).lastResult().reason;
+  EXPECT_NE(reason.find("collision on arc detour 1"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("side_block"), std::string::npos) << reason;
+}
+
+TEST(ArcPlanner, ChainsDetoursAroundSeveralObstacles) {
+  auto problem = freeSceneWith({sphere("first", thesisLinePoint(-0.2), 0.01), sphere("second", thesisLinePoint(0.2), 0.01)});
+  const auto [planner, status] =
+      solve(problem, "arc", {{"sagitta", "0.08"}, {"half_chord", "0.1"}, {"entry_radius", "0.05"}, {"exit_radius", "0.05"}});
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+  const auto& result = arcOf(planner).lastResult();
+  EXPECT_EQ(result.obstacles, (std::vector<std::string>{"first", "second"}));
+  ASSERT_EQ(result.detours.size(), 2u);
+  const double length = (thesisB() - thesisA()).norm();
+  EXPECT_NEAR(result.detours[0].position, 0.25 * length, 1e-12);
+  EXPECT_NEAR(result.detours[1].position, 0.75 * length, 1e-12);
+  EXPECT_TRUE(problem.setup->getSolutionPath().check());
+}
+
+TEST(ArcPlanner, SolidObstacleIsAvoidedAroundItsBoundingBall) {
+  // A 4 cm cube 1 cm beside the line: O is the line point nearest its centre.
+  const Eigen::Vector3d center = thesisLinePoint(0.0) + Eigen::Vector3d(0.01, 0.0, 0.0);
+  auto problem = freeSceneWith({box("cube", center, {0.04, 0.04, 0.04})});
+  const auto [planner, status] = solve(problem, "arc", {{"sagitta", "0.15"}});
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+  const auto& result = arcOf(planner).lastResult();
+  ASSERT_EQ(result.detours.size(), 1u);
+  const Eigen::Vector3d direction = (thesisB() - thesisA()).normalized();
+  EXPECT_NEAR(result.detours[0].position, (center - thesisA()).dot(direction), 1e-12);
+  EXPECT_TRUE(problem.setup->getSolutionPath().check());
+}
+
+TEST(ArcPlanner, AutoFindsAShorterValidDetourThanTheThesisShapes) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const auto [planner, status] = solve(problem, "arc");
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+  EXPECT_TRUE(arcOf(planner).getAuto());
+  const auto& result = arcOf(planner).lastResult();
+  ASSERT_EQ(result.detours.size(), 1u);
+  EXPECT_GT(result.candidatesTried, 0);
+  // Shorter than the shortest thesis case (h = 0.5 r: 0.8825 m) and longer than the straight line.
+  EXPECT_LT(result.tcpPathLength, 0.8825);
+  EXPECT_GT(result.tcpPathLength, (thesisB() - thesisA()).norm());
+  EXPECT_TRUE(problem.setup->getSolutionPath().check());
+  // With a sagitta given, auto searches from there up.
+  const auto [bounded, boundedStatus] = solve(problem, "arc", {{"auto", "1"}, {"sagitta", "0.1"}});
+  ASSERT_EQ(boundedStatus, ob::PlannerStatus::EXACT_SOLUTION);
+  EXPECT_GE(arcOf(bounded).lastResult().detours[0].shape.sagitta, 0.1);
+}
+
+TEST(ArcPlanner, AutoSaysWhyWhenNoDetourWorks) {
+  // A particle 8 cm after A: every detour short enough to leave the line before it is too flat.
+  auto problem = freeSceneWith({sphere("close", thesisA() + 0.08 * (thesisB() - thesisA()).normalized(), 0.01)});
+  const auto [planner, status] = solve(problem, "arc");
+  EXPECT_EQ(status, ob::PlannerStatus::ABORT);
+  const std::string& reason = arcOf(planner).lastResult().reason;
+  EXPECT_NE(reason.find("no arc detour"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("close"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("checked"), std::string::npos) << reason;
+}
+
+TEST(ArcPlanner, ParameterSettersRejectOutOfRangeValues) {
+  auto problem = thesisProblem("thesis_free");
+  auto planner = arcplan::planners::makePlanner("arc", problem.setup->getSpaceInformation(), problem.plannerContext());
+  EXPECT_THROW(arcplan::planners::setPlannerParameters(*planner, {{"resolution", "0"}}), arcplan::Error);
+  EXPECT_THROW(arcplan::planners::setPlannerParameters(*planner, {{"half_chord", "-0.1"}}), arcplan::Error);
+  EXPECT_THROW(arcplan::planners::setPlannerParameters(*planner, {{"plane_angle", "nan"}}), arcplan::Error);
+  auto& arc = dynamic_cast<ArcPlanner&>(*planner);
+  EXPECT_TRUE(arc.getAuto());  // no sagitta yet
+  arc.setSagitta(0.1);
+  EXPECT_FALSE(arc.getAuto());
+  arc.setAuto(true);
+  EXPECT_TRUE(arc.getAuto());
+}
+
+}  // namespace
