@@ -28,12 +28,12 @@ namespace arcplan::collision {
 enum class BoundingVolume { AABB, OBB, RSS, kIOS, OBBRSS };
 const char* toString(BoundingVolume boundingVolume);
 
-// Narrow-phase choices. Measured per state in the thesis scene (perf/perf_collision.cpp; table in
-// docs/collision.md): among FCL's BVH types OBB is the fastest for boolean queries (AABB and RSS are
-// 5x-15,000x slower: AABB copies and transforms the mesh on every call, RSS traverses badly against
-// the large table box) and OBBRSS for distances (FCL has mesh distances only for RSS, kIOS, OBBRSS).
-// FCL's GJK on the convex parts matches OBB on collision-free states, beats it near contact
-// (2.0 vs 3.2 µs) and beats OBBRSS distances 16x (12 vs 190 µs), so it is the default for both.
+// Narrow-phase choices, measured per state in the thesis scene (perf/perf_collision.cpp, CPU time;
+// table in docs/collision.md). Among FCL's BVH types OBB is the fastest for boolean queries (1.23 µs
+// on valid states; AABB 5.9 µs because FCL copies and transforms the mesh on every call, RSS 14 µs)
+// and OBBRSS/RSS for distances (FCL has mesh distances only for RSS, kIOS and OBBRSS). FCL's GJK on
+// the convex parts ties with OBB on valid states (1.16 µs), beats it near contact (1.8 vs 2.9 µs)
+// and beats OBBRSS distances 14x (13 vs 183 µs), so it is the default for both queries.
 struct CollisionModelOptions {
   // BVH types for parts that are not convex (open or concave meshes, e.g. a scanned obstacle).
   BoundingVolume collisionBoundingVolume = BoundingVolume::OBB;
