@@ -92,6 +92,35 @@ nlohmann::json arcDetails(const planners::ArcPlannerResult& result) {
           {"candidates_checked", result.candidatesTried}};
 }
 
+void printSummary(const nlohmann::json& document, const std::string& reason, const planners::ArcPlanner* arc,
+                  const PlanOptions& options, std::size_t waypoints) {
+  std::cout << "plan: scene " << document["scene"].get<std::string>() << ", query " << document["query"].get<std::string>()
+            << ", planner " << document["planner"].get<std::string>() << "\n"
+            << "status              " << document["status"].get<std::string>() << "\n";
+  if (!reason.empty()) std::cout << "reason              " << reason << "\n";
+  std::cout << std::setprecision(6) << "solve time          " << document["solve_time_s"].get<double>() << " s\n";
+  if (arc) {
+    for (const planners::Detour& detour : arc->lastResult().detours) {
+      std::cout << "arc detour          O at " << detour.position << " m: h " << detour.shape.sagitta << ", r "
+                << detour.shape.halfChord << ", R2 " << detour.shape.entryRadius << ", R3 " << detour.shape.exitRadius
+                << " m, plane " << detour.planeAngle << " rad\n";
+    }
+  }
+  if (waypoints > 0) {
+    std::cout << "waypoints           " << waypoints << "\n"
+              << "tcp path length     " << document["tcp_path_length_m"].get<double>() << " m\n"
+              << "joint path length   " << document["joint_path_length_rad"].get<double>() << " rad\n";
+    if (!document["min_clearance_m"].is_null()) {
+      std::cout << "min clearance       " << document["min_clearance_m"].get<double>() << " m\n";
+    }
+    if (options.maxTcpSpeed) {
+      std::cout << "execution time      " << document["execution_time_s"].get<double>() << " s at vmax "
+                << *options.maxTcpSpeed << " m/s (peak TCP speed " << document["peak_tcp_speed_mps"].get<double>()
+                << " m/s)\n";
+    }
+  }
+}
+
 void runPlan(const PlanOptions& options) {
   // OMPL's seed is process-global and must be set before anything random exists.
   if (options.seed) ompl::RNG::setSeed(*options.seed);
@@ -160,30 +189,8 @@ void runPlan(const PlanOptions& options) {
     }
   }
 
-  std::cout << "plan: scene " << scene->name << ", query " << problem.queryName << ", planner " << plannerName << "\n"
-            << "status              " << document["status"].get<std::string>() << "\n";
-  if (!reason.empty()) std::cout << "reason              " << reason << "\n";
-  std::cout << std::setprecision(6) << "solve time          " << document["solve_time_s"].get<double>() << " s\n";
-  if (arc) {
-    for (const planners::Detour& detour : arc->lastResult().detours) {
-      std::cout << "arc detour          O at " << detour.position << " m: h " << detour.shape.sagitta << ", r "
-                << detour.shape.halfChord << ", R2 " << detour.shape.entryRadius << ", R3 " << detour.shape.exitRadius
-                << " m, plane " << detour.planeAngle << " rad\n";
-    }
-  }
-  if (havePath) {
-    std::cout << "waypoints           " << path.size() << "\n"
-              << "tcp path length     " << document["tcp_path_length_m"].get<double>() << " m\n"
-              << "joint path length   " << document["joint_path_length_rad"].get<double>() << " rad\n";
-    if (!document["min_clearance_m"].is_null()) {
-      std::cout << "min clearance       " << document["min_clearance_m"].get<double>() << " m\n";
-    }
-    if (options.maxTcpSpeed) {
-      std::cout << "execution time      " << document["execution_time_s"].get<double>() << " s at vmax "
-                << *options.maxTcpSpeed << " m/s (peak TCP speed " << document["peak_tcp_speed_mps"].get<double>()
-                << " m/s)\n";
-    }
-  }
+  // With the JSON on stdout, the summary would corrupt it.
+  if (options.json != "-") printSummary(document, reason, arc, options, path.size());
   if (!options.json.empty()) writeJson(options.json, document);
   if (!options.pathCsv.empty() && havePath) trajectory::writeJointPathCsv(options.pathCsv, path);
   if (!haveExact) {

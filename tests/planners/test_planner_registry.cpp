@@ -1,0 +1,113 @@
+// The planner registry: names, allocation, parameters by name and their errors.
+#include <string>
+
+#include <gtest/gtest.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+
+#include "arcplan/common/error.h"
+#include "arcplan/planners/planner_registry.h"
+#include "planners/planner_test_support.h"
+
+namespace {
+
+using namespace arcplan::planners;
+using arcplan::testing::thesisProblem;
+
+std::string errorMessage(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const arcplan::Error& error) {
+    return error.what();
+  }
+  return "(no error)";
+}
+
+TEST(PlannerRegistry, HasTheArcPlannerFirstAndTheRequiredOmplPlanners) {
+  const auto& names = plannerNames();
+  ASSERT_FALSE(names.empty());
+  EXPECT_EQ(names.front(), "arc");
+  for (const char* required : {"RRT", "RRTConnect", "RRTstar", "PRM", "PRMstar", "LazyPRM", "BKPIECE1", "KPIECE1", "EST",
+                               "SBL", "BiTRRT", "InformedRRTstar", "BITstar"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
+  }
+}
+
+TEST(PlannerRegistry, EveryNameAllocatesThePlannerOfThatName) {
+  auto problem = thesisProblem("thesis_free");
+  for (const std::string& name : plannerNames()) {
+    const auto planner = makePlanner(name, problem.setup->getSpaceInformation(), problem.plannerContext());
+    ASSERT_NE(planner, nullptr) << name;
+    // OMPL names RRTsharp "RRT#"; the registry keeps a name that is easy to type.
+    EXPECT_EQ(planner->getName(), name == "RRTsharp" ? "RRT#" : name);
+    EXPECT_EQ(planner->getSpaceInformation(), problem.setup->getSpaceInformation());
+  }
+}
+
+TEST(PlannerRegistry, NamesMatchIgnoringCaseAndUnknownNamesListTheKnownOnes) {
+  EXPECT_EQ(canonicalPlannerName("rrtconnect"), "RRTConnect");
+  EXPECT_EQ(canonicalPlannerName("ARC"), "arc");
+  EXPECT_TRUE(isArcPlanner("Arc"));
+  EXPECT_FALSE(isArcPlanner("PRM"));
+  const std::string message = errorMessage([] { canonicalPlannerName("RRTConect"); });
+  EXPECT_NE(message.find("unknown planner 'RRTConect'"), std::string::npos) << message;
+  EXPECT_NE(message.find("RRTConnect"), std::string::npos) << message;
+  EXPECT_NE(message.find("BITstar"), std::string::npos) << message;
+}
+
+TEST(PlannerRegistry, ParametersAreSetByName) {
+  auto problem = thesisProblem("thesis_free");
+  const auto rrt = makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"range", "0.2"}});
+  EXPECT_DOUBLE_EQ(dynamic_cast<ompl::geometric::RRTConnect&>(*rrt).getRange(), 0.2);
+  const auto prm = makePlanner("PRM", problem.setup->getSpaceInformation(), problem.plannerContext(),
+                               {{"max_nearest_neighbors", "7"}});
+  EXPECT_EQ(dynamic_cast<ompl::geometric::PRM&>(*prm).getMaxNearestNeighbors(), 7u);
+}
+
+TEST(PlannerRegistry, UnknownParameterListsTheValidOnes) {
+  auto problem = thesisProblem("thesis_free");
+  const std::string message = errorMessage([&] {
+    makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"rang", "0.2"}});
+  });
+  EXPECT_NE(message.find("RRTConnect has no parameter 'rang'"), std::string::npos) << message;
+  EXPECT_NE(message.find("range="), std::string::npos) << message;
+  const std::string arc = errorMessage([&] {
+    makePlanner("arc", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"height", "0.1"}});
+  });
+  EXPECT_NE(arc.find("sagitta="), std::string::npos) << arc;
+  EXPECT_NE(arc.find("plane_angle="), std::string::npos) << arc;
+}
+
+TEST(PlannerRegistry, ValueThePlannerCannotTakeIsRejected) {
+  auto problem = thesisProblem("thesis_free");
+  const std::string message = errorMessage([&] {
+    makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"range", "far"}});
+  });
+  EXPECT_NE(message.find("parameter 'range' does not accept 'far'"), std::string::npos) << message;
+  const std::string arc = errorMessage([&] {
+    makePlanner("arc", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"resolution", "-0.01"}});
+  });
+  EXPECT_NE(arc.find("resolution must be a finite number > 0"), std::string::npos) << arc;
+}
+
+TEST(PlannerRegistry, ParameterAssignmentsNeedNameAndValue) {
+  EXPECT_EQ(parseParameterAssignment("range=0.2"), (std::pair<std::string, std::string>{"range", "0.2"}));
+  EXPECT_EQ(parseParameterAssignment("goal_bias=0.05=x").second, "0.05=x");
+  for (const char* bad : {"range", "=0.2", "range=", ""}) {
+    EXPECT_NE(errorMessage([&] { parseParameterAssignment(bad); }).find("NAME=VALUE"), std::string::npos) << bad;
+  }
+}
+
+TEST(PlannerRegistry, ArcPlannerNeedsTheCollisionModel) {
+  auto problem = thesisProblem("thesis_free");
+  EXPECT_NE(errorMessage([&] { plannerAllocator("arc", PlannerContext{}); }).find("collision model"), std::string::npos);
+}
+
+TEST(PlannerRegistry, RRTConnectSolvesTheThesisProblemWithAValidPath) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const auto [planner, status] = arcplan::testing::solve(problem, "RRTConnect", {}, 10.0);
+  ASSERT_EQ(status, ompl::base::PlannerStatus::EXACT_SOLUTION);
+  EXPECT_TRUE(problem.setup->getSolutionPath().check());
+}
+
+}  // namespace
