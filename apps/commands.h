@@ -8,5 +8,6 @@ namespace arcplan::apps {
 void registerRobotCommand(CLI::App& app);
 void registerPlanCommand(CLI::App& app);
 void registerScaleCommand(CLI::App& app);
+void registerModelCommand(CLI::App& app);
 
 }  // namespace arcplan::apps

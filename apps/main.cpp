@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   arcplan::apps::registerRobotCommand(app);
   arcplan::apps::registerPlanCommand(app);
   arcplan::apps::registerScaleCommand(app);
+  arcplan::apps::registerModelCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

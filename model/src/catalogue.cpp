@@ -178,7 +178,7 @@ public:
     return "friction differs between DIRECT (motoring, load and motion in the same sense) and INDIRECT "
            "(regenerating) power flow";
   }
-  std::string term() const override { return "dFc·sgn(qd)·[tau·qd > 0]"; }
+  std::string term() const override { return "dFc·sgn(qd)·[tau·qd >= 0]"; }
   std::string residualPattern() const override {
     return "differs between motoring (load torque and motion in the same sense) and regenerating phases";
   }
@@ -188,7 +188,7 @@ public:
   void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
     const auto& tau = data.signal("tau", c);
     const auto& qd = data.signal("qd", c);
-    for (Eigen::Index k = 0; k < tau.size(); ++k) columns(k, 0) = tau[k] * qd[k] > 0.0 ? sgn(data, qd[k]) : 0.0;
+    for (Eigen::Index k = 0; k < tau.size(); ++k) columns(k, 0) = tau[k] * qd[k] >= 0.0 ? sgn(data, qd[k]) : 0.0;
   }
   std::vector<double> typicalParameters(ModelKind, int c) const override { return {0.3 * typical(kCoulomb, c)}; }
 };

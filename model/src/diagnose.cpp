@@ -268,9 +268,13 @@ Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* va
     if (candidate.suggested) candidate.explanation = explain(*effect, candidate, data);
     diagnosis.ranking.push_back(std::move(candidate));
   }
+  // Reductions equal to 0.1 percentage point are a tie; the information criterion (fewer
+  // parameters for the same gain) decides it.
   std::stable_sort(diagnosis.ranking.begin(), diagnosis.ranking.end(), [](const auto& a, const auto& b) {
     if (a.suggested != b.suggested) return a.suggested;
-    return a.heldoutReduction > b.heldoutReduction;
+    const double reductionA = std::floor(1000.0 * a.heldoutReduction), reductionB = std::floor(1000.0 * b.heldoutReduction);
+    if (reductionA != reductionB) return reductionA > reductionB;
+    return a.score < b.score;
   });
 
   diagnosis.residualFollows = residualCorrelations(heldData, heldResidual);

@@ -65,7 +65,9 @@ public:
       };
       try {
         parser.SetExpr(spec().expressions[i]);
-        for (const auto& [name, unused] : parser.GetUsedVar()) {
+        std::vector<std::string> used;  // copied: defining variables changes the parser's map
+        for (const auto& entry : parser.GetUsedVar()) used.push_back(entry.first);
+        for (const auto& name : used) {
           if (data.hasSignal(name)) {
             bind(name, data.signal(name, channel));
             continue;

@@ -1,0 +1,251 @@
+// arcplan model compare|diagnose|fit|simulate|history — the model-vs-measurement loop (DESIGN.md §8–9).
+#include <iostream>
+#include <memory>
+
+#include "arcplan/common/error.h"
+#include "arcplan/model/compare.h"
+#include "arcplan/model/diagnose.h"
+#include "arcplan/model/plots.h"
+#include "arcplan/model/report.h"
+#include "arcplan/model/simulate.h"
+#include "arcplan/model/workflow.h"
+#include "cli_support.h"
+#include "commands.h"
+
+namespace arcplan::apps {
+namespace {
+
+struct ModelOptions {
+  std::string model, data, validate, columns, rows, validateRows, out, json;
+  bool keepParameters = false;
+  std::vector<std::string> add;
+  std::string save;
+  int folds = 5;
+  double minimumReduction = 0.01;
+  // simulate
+  std::string trajectory = "excitation", format = "rtde";
+  double duration = 60.0, rate = 500.0, noise = -1.0;
+  unsigned seed = 1;
+  int harmonics = 5;
+};
+
+void addDataOptions(CLI::App& command, ModelOptions& o) {
+  command.add_option("--model", o.model, "model file (YAML: kind, load_torque, effects)")->required();
+  command.add_option("--data", o.data, "measured log (RTDE CSV, headerless log with --columns, or force-transfer CSV)")
+      ->required();
+  command.add_option("--validate", o.validate, "second log, held out: validation errors and the diagnosis score on it");
+  command.add_option("--columns", o.columns,
+                     "column map for headerless logs: a preset (ur10e_real) or 'timestamp=1, actual_q=2-7, ...' "
+                     "(1-based columns)");
+  command.add_option("--rows", o.rows, "use only these 1-based file lines of --data, e.g. 355-5090");
+  command.add_option("--validate-rows", o.validateRows, "use only these 1-based file lines of --validate");
+  command.add_option("--out", o.out, "directory for PNG plots, their data, and the session history (session.json)");
+  command.add_option("--json", o.json, "write the result as JSON to this file ('-' for stdout)");
+}
+
+model::DataFiles dataFiles(const ModelOptions& o) {
+  model::DataFiles files;
+  files.data = o.data;
+  files.validation = o.validate;
+  if (!o.columns.empty()) files.dataOptions.columns = files.validationOptions.columns = model::parseColumnMap(o.columns);
+  if (!o.rows.empty()) std::tie(files.dataOptions.firstLine, files.dataOptions.lastLine) = model::parseLineRange(o.rows, "--rows");
+  if (!o.validateRows.empty()) {
+    std::tie(files.validationOptions.firstLine, files.validationOptions.lastLine) =
+        model::parseLineRange(o.validateRows, "--validate-rows");
+  }
+  return files;
+}
+
+void printQuality(const model::LoadedData& loaded) {
+  std::cout << model::formatDataQuality(loaded.data);
+  if (loaded.validation) std::cout << model::formatDataQuality(*loaded.validation);
+  std::cout << "\n";
+}
+
+std::vector<std::string> effectNames(const model::ModelSpec& spec) {
+  std::vector<std::string> names;
+  for (const auto& e : spec.effects) names.push_back(model::describeEffect(e));
+  return names;
+}
+
+void reportPlot(const PlotOutcome& outcome, const std::filesystem::path& directory) {
+  if (outcome.ok) {
+    std::cout << "plots written to " << directory.string() << "\n";
+  } else {
+    std::cout << "plots skipped: " << outcome.message << "\n";
+  }
+}
+
+void runCompare(const ModelOptions& o) {
+  const auto spec = model::loadModelFile(o.model);
+  const auto loaded = model::loadData(spec, dataFiles(o));
+  printQuality(loaded);
+  const auto fitted = o.keepParameters ? model::modelFromParameters(spec, loaded.data, false)
+                                       : model::fitModel(spec, loaded.data);
+  const auto comparison = model::compareModel(fitted, loaded.data, loaded.validationOrNull());
+  std::cout << model::formatComparison(comparison) << "\n" << model::formatParameters(fitted);
+  if (!o.json.empty()) writeJson(o.json, model::toJson(comparison, fitted, loaded.data));
+  if (!o.out.empty()) {
+    const std::filesystem::path directory = o.out;
+    auto outcome = model::plotComparison(fitted, loaded.data, directory, "compare_data");
+    if (outcome.ok && loaded.validation) {
+      outcome = model::plotComparison(fitted, *loaded.validation, directory, "compare_validation");
+    }
+    reportPlot(outcome, directory);
+    model::appendSessionStep(directory / "session.json",
+                             {"compare", effectNames(spec), comparison.data, comparison.validation});
+  }
+}
+
+void runDiagnose(const ModelOptions& o) {
+  const auto spec = model::loadModelFile(o.model);
+  const auto loaded = model::loadData(spec, dataFiles(o));
+  printQuality(loaded);
+  model::DiagnoseOptions options;
+  options.folds = o.folds;
+  options.minimumReduction = o.minimumReduction;
+  const auto diagnosis = model::diagnose(spec, loaded.data, loaded.validationOrNull(), options);
+  std::cout << model::formatDiagnosis(diagnosis);
+  if (!o.json.empty()) writeJson(o.json, model::toJson(diagnosis));
+  if (!o.out.empty()) reportPlot(model::plotDiagnosis(diagnosis, o.out), o.out);
+}
+
+void runFit(const ModelOptions& o) {
+  const auto spec = model::loadModelFile(o.model);
+  std::vector<model::EffectSpec> additions;
+  for (const auto& text : o.add) additions.push_back(model::parseEffectArgument(text));
+  const auto loaded = model::loadData(spec, dataFiles(o));
+  printQuality(loaded);
+  const auto step = model::addEffectsAndFit(spec, additions, loaded.data, loaded.validationOrNull());
+  std::cout << model::formatFitStep(step);
+  if (!o.save.empty()) {
+    model::saveModelFile(model::specWithParameters(step.after), o.save);
+    std::cout << "saved the refitted model to " << o.save << "\n";
+  }
+  if (!o.json.empty()) writeJson(o.json, model::toJson(step));
+  if (!o.out.empty()) {
+    const std::filesystem::path directory = o.out;
+    auto outcome = model::plotFitStep(step, directory);
+    if (outcome.ok) outcome = model::plotComparison(step.after, loaded.data, directory, "fit_data");
+    if (outcome.ok && loaded.validation) outcome = model::plotComparison(step.after, *loaded.validation, directory, "fit_validation");
+    reportPlot(outcome, directory);
+    std::string command = "fit";
+    for (const auto& a : step.added) command += " +" + a;
+    model::appendSessionStep(directory / "session.json",
+                             {command, effectNames(step.after.spec), step.afterData, step.afterValidation});
+  }
+}
+
+void runHistory(const ModelOptions& o) {
+  if (o.out.empty()) throw Error("history: give the session directory with --out DIR");
+  const std::filesystem::path directory = o.out;
+  const auto session = directory / "session.json";
+  if (!std::filesystem::exists(session)) {
+    throw Error("history: " + session.string() + " does not exist (run compare or fit with --out " + o.out + " first)");
+  }
+  const auto history = model::readSession(session);
+  std::cout << model::formatHistory(history);
+  if (!o.json.empty()) writeJson(o.json, model::toJson(history));
+  if (!history.empty()) reportPlot(model::plotHistory(session, directory), directory);
+}
+
+void runSimulate(const ModelOptions& o) {
+  const auto truth = model::loadModelFile(o.model);
+  if (o.format != "rtde" && o.format != "record") throw Error("--format: expected rtde or record, got '" + o.format + "'");
+  if (o.rate <= 0.0 || o.duration <= 0.0) throw Error("--rate and --duration must be positive");
+  const auto robot = model::modelRobot(truth);
+  auto trajectoryFor = [&](unsigned seed) {
+    if (o.trajectory == "excitation") {
+      model::ExcitationOptions excitation;
+      excitation.duration = o.duration;
+      excitation.rate = o.rate;
+      excitation.harmonics = o.harmonics;
+      excitation.seed = seed;
+      Eigen::VectorXd center = Eigen::VectorXd::Zero(robot->dof());
+      if (robot->dof() == 6) center << 0.0, -M_PI / 2, M_PI / 4, -M_PI / 2, -M_PI / 2, 0.0;
+      return model::excitationTrajectory(center, excitation);
+    }
+    return model::readTrajectory(o.trajectory, o.rate, truth.derivativeCutoffHz);
+  };
+  const auto style = o.format == "rtde" ? model::CsvStyle::UrRtde : model::CsvStyle::RecordPy;
+  nlohmann::json result{{"model", o.model}, {"kind", model::toString(truth.kind)}, {"logs", nlohmann::json::array()}};
+  std::vector<std::pair<std::string, unsigned>> outputs{{o.data, o.seed}};
+  if (!o.validate.empty()) outputs.push_back({o.validate, o.seed + 1000});
+  // Both logs are simulated before either is written, so a failure leaves no file behind.
+  std::vector<model::Log> logs;
+  for (const auto& [file, seed] : outputs) {
+    model::SimulationOptions simulation;
+    simulation.noise = o.noise;
+    simulation.seed = seed;
+    logs.push_back(model::simulateLog(truth, trajectoryFor(seed), simulation));
+  }
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    model::writeLog(logs[i], outputs[i].first, style);
+    std::cout << "wrote " << outputs[i].first << ": " << logs[i].rows() << " samples x " << logs[i].jointCount()
+              << " joints, seed " << outputs[i].second << "\n";
+    result["logs"].push_back({{"file", outputs[i].first}, {"samples", logs[i].rows()}, {"seed", outputs[i].second}});
+  }
+  if (!o.json.empty()) writeJson(o.json, result);
+}
+
+}  // namespace
+
+void registerModelCommand(CLI::App& app) {
+  auto* modelCommand = app.add_subcommand(
+      "model", "compare a robot model with measured logs, diagnose the missing physical effect, add it, refit");
+  modelCommand->require_subcommand(1);
+  auto o = std::make_shared<ModelOptions>();
+
+  auto* compare = modelCommand->add_subcommand(
+      "compare", "fit the model to --data and report RMSE, NRMSE, R² per channel (and on --validate), the worst time "
+                 "windows and the residual by regime");
+  addDataOptions(*compare, *o);
+  compare->add_flag("--keep-parameters", o->keepParameters,
+                    "use the parameters stored in the model file (a saved fit) instead of refitting");
+  compare->callback([o] { runCompare(*o); });
+
+  auto* diagnose = modelCommand->add_subcommand(
+      "diagnose", "fit every catalogue effect missing from the model to the residual, score it on held-out data "
+                  "(--validate, else time-blocked cross-validation) and rank the physical explanations");
+  addDataOptions(*diagnose, *o);
+  diagnose->add_option("--folds", o->folds, "cross-validation folds without --validate")->capture_default_str();
+  diagnose->add_option("--min-reduction", o->minimumReduction,
+                       "smallest fraction of a channel's held-out residual RMS an effect must remove")
+      ->capture_default_str();
+  diagnose->callback([o] { runDiagnose(*o); });
+
+  auto* fit = modelCommand->add_subcommand(
+      "fit", "add effects to the model, refit, and report the errors before and after on --data and --validate");
+  addDataOptions(*fit, *o);
+  fit->add_option("--add", o->add, "effect to add, optionally on some joints: load_friction:1,2 (repeatable)")->required();
+  fit->add_option("--save", o->save, "write the refitted model (with parameters and standard errors) to this file");
+  fit->callback([o] { runFit(*o); });
+
+  auto* history = modelCommand->add_subcommand(
+      "history", "the error after every compare/fit step of a session (--out DIR) as a table and a falling-error plot");
+  history->add_option("--out", o->out, "session directory used with compare/fit --out")->required();
+  history->add_option("--json", o->json, "write the history as JSON to this file ('-' for stdout)");
+  history->callback([o] { runHistory(*o); });
+
+  auto* simulate = modelCommand->add_subcommand(
+      "simulate", "write synthetic UR10e logs: an excitation (or given) trajectory, the controller's target_moment, and "
+                  "currents or positions from the model file's effects (its parameters, else typical UR10e values) "
+                  "plus noise");
+  simulate->add_option("--model", o->model, "the true model: kind, effects and optional parameters")->required();
+  simulate->add_option("--data", o->data, "log file to write")->required();
+  simulate->add_option("--validate", o->validate, "also write a second log (another trajectory and noise seed)");
+  simulate->add_option("--trajectory", o->trajectory,
+                       "'excitation' (Fourier series) or a CSV with t and q0..q5 (e.g. a planned and scaled path)")
+      ->capture_default_str();
+  simulate->add_option("--duration", o->duration, "excitation length [s]")->capture_default_str();
+  simulate->add_option("--rate", o->rate, "sampling rate [Hz]")->capture_default_str();
+  simulate->add_option("--harmonics", o->harmonics, "harmonics of the excitation")->capture_default_str();
+  simulate->add_option("--seed", o->seed, "random seed of the trajectory and the noise")->capture_default_str();
+  simulate->add_option("--noise", o->noise, "noise standard deviation (default 0.05 A for currents, 2e-5 rad for positions)");
+  simulate->add_option("--format", o->format, "rtde (ur_rtde, comma-separated) or record (record.py, space-separated)")
+      ->capture_default_str();
+  simulate->add_option("--json", o->json, "write a summary as JSON to this file ('-' for stdout)");
+  simulate->callback([o] { runSimulate(*o); });
+}
+
+}  // namespace arcplan::apps

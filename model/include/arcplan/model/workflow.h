@@ -1,0 +1,60 @@
+#pragma once
+// The steps of the model loop as the command line runs them (DESIGN.md §9), reusable from C++:
+// load the data a model needs, add effects and refit with before/after errors, and keep a session
+// history of the error after every step.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "arcplan/model/compare.h"
+#include "arcplan/model/dataset.h"
+#include "arcplan/model/fitting.h"
+#include "arcplan/model/measurements.h"
+#include "arcplan/model/model_spec.h"
+
+namespace arcplan::model {
+
+struct DataFiles {
+  std::filesystem::path data;
+  std::filesystem::path validation;  // empty: none
+  LogReadOptions dataOptions, validationOptions;
+};
+
+struct LoadedData {
+  Dataset data;
+  std::optional<Dataset> validation;
+  const Dataset* validationOrNull() const { return validation ? &*validation : nullptr; }
+};
+
+// Reads both files for the model's kind; the validation data must have the data's channel count.
+LoadedData loadData(const ModelSpec& spec, const DataFiles& files);
+
+struct FitStep {
+  std::vector<std::string> added;  // "load_friction:1,2"
+  FittedModel before, after;
+  ErrorSummary beforeData, afterData;
+  std::optional<ErrorSummary> beforeValidation, afterValidation;
+};
+
+// Adds the effects to the model (each must be new and apply to its kind), refits on `data`, and
+// reports the errors before and after on both datasets.
+FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& additions, const Dataset& data,
+                         const Dataset* validation);
+
+std::string describeEffect(const EffectSpec& effect);  // "coulomb", "load_friction:1,2"
+
+// One row of the session history (`arcplan model history`).
+struct SessionStep {
+  std::string command;               // "compare", "fit +load_friction:1,2"
+  std::vector<std::string> effects;  // the model's effects after the step
+  ErrorSummary data;
+  std::optional<ErrorSummary> validation;
+};
+
+// The history kept in a session file (JSON); a missing file is an empty history. Appending
+// rewrites the file atomically.
+std::vector<SessionStep> readSession(const std::filesystem::path& file);
+void appendSessionStep(const std::filesystem::path& file, const SessionStep& step);
+
+}  // namespace arcplan::model

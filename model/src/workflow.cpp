@@ -1,0 +1,80 @@
+#include "arcplan/model/workflow.h"
+
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "arcplan/common/atomic_file.h"
+#include "arcplan/common/error.h"
+#include "arcplan/model/report.h"
+
+namespace arcplan::model {
+
+LoadedData loadData(const ModelSpec& spec, const DataFiles& files) {
+  LoadedData loaded{loadDataset(files.data, spec, files.dataOptions), std::nullopt};
+  if (!files.validation.empty()) {
+    loaded.validation = loadDataset(files.validation, spec, files.validationOptions);
+    if (loaded.validation->channelCount() != loaded.data.channelCount()) {
+      throw Error(files.validation.string() + ": mismatched joint count: " +
+                  std::to_string(loaded.validation->channelCount()) + " channels, but " + files.data.string() + " has " +
+                  std::to_string(loaded.data.channelCount()));
+    }
+  }
+  return loaded;
+}
+
+std::string describeEffect(const EffectSpec& effect) {
+  std::string text = effect.id;
+  for (std::size_t k = 0; k < effect.joints.size(); ++k) text += (k ? "," : ":") + std::to_string(effect.joints[k]);
+  return text;
+}
+
+FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& additions, const Dataset& data,
+                         const Dataset* validation) {
+  if (additions.empty()) throw Error("fit: nothing to add (use --add EFFECT[:j0,j1..])");
+  ModelSpec extended = spec;
+  FitStep step;
+  for (const auto& addition : additions) {
+    if (extended.hasEffect(addition.id)) {
+      throw Error("--add " + describeEffect(addition) + ": effect '" + addition.id + "' is already in the model");
+    }
+    if (!createEffect(addition)->appliesTo(spec.kind)) {
+      throw Error("--add " + describeEffect(addition) + ": effect '" + addition.id + "' does not apply to kind " +
+                  toString(spec.kind));
+    }
+    extended.effects.push_back(addition);
+    step.added.push_back(describeEffect(addition));
+  }
+  step.before = fitModel(spec, data);
+  step.after = fitModel(extended, data);
+  step.beforeData = errorSummary(data, predictAll(step.before, data));
+  step.afterData = errorSummary(data, predictAll(step.after, data));
+  if (validation) {
+    step.beforeValidation = errorSummary(*validation, predictAll(step.before, *validation));
+    step.afterValidation = errorSummary(*validation, predictAll(step.after, *validation));
+  }
+  return step;
+}
+
+std::vector<SessionStep> readSession(const std::filesystem::path& file) {
+  std::vector<SessionStep> steps;
+  if (!std::filesystem::exists(file)) return steps;
+  std::ifstream in(file);
+  nlohmann::json document;
+  try {
+    in >> document;
+    for (const auto& step : document.at("steps")) steps.push_back(sessionStepFromJson(step));
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(file.string() + ": not an arcplan session history: " + e.what());
+  }
+  return steps;
+}
+
+void appendSessionStep(const std::filesystem::path& file, const SessionStep& step) {
+  auto steps = readSession(file);
+  steps.push_back(step);
+  writeFileAtomically(file, toJson(steps).dump(2) + "\n");
+}
+
+}  // namespace arcplan::model
