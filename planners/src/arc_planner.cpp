@@ -96,6 +96,9 @@ struct ArcPlanner::Search {
   robot::Vector6 start, goal;
   // The last motion the walk rejected.
   robot::Vector6 rejectedPrevious, rejectedJoints;
+  // Validate motions, not only waypoints: check_motions, or a detour from the auto search (the
+  // shortest detours pass close to the obstacle).
+  bool strict = false;
 
   void toState(const robot::Vector6& q, ob::State* target) const {
     for (int j = 0; j < 6; ++j) *si.getStateSpace()->getValueAddressAtIndex(target, j) = q[j];
@@ -107,12 +110,11 @@ struct ArcPlanner::Search {
     return q;
   }
 
-  // The SpaceInformation's verdict on the motion previous -> q: the motion validator's (check_motions,
-  // and always in auto mode, whose shortest detours pass close to the obstacle), or the validity of q
-  // alone (waypoints a bounded joint step apart).
-  bool validMotion(const robot::Vector6& previous, const robot::Vector6& q) {
+  // The SpaceInformation's verdict on the motion previous -> q: the motion validator's (`strict`), or
+  // the validity of q alone (waypoints a bounded joint step apart).
+  bool validMotion(const robot::Vector6& previous, const robot::Vector6& q, bool strict) {
     toState(q, state);
-    if (!planner.checkMotions_ && !planner.getAuto()) return si.isValid(state);
+    if (!strict) return si.isValid(state);
     toState(previous, previousState);
     return si.checkMotion(previousState, state);
   }
@@ -122,7 +124,7 @@ struct ArcPlanner::Search {
   JointWaypoints walk(const ArcPath& path, const JointWaypoints& prefix) {
     const WaypointCheck check = [this](const robot::Vector6& previous, const robot::Vector6& q, double) {
       if (ptc()) return false;
-      if (validMotion(previous, q)) return true;
+      if (validMotion(previous, q, strict)) return true;
       rejectedPrevious = previous;
       rejectedJoints = q;
       return false;
@@ -221,6 +223,7 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
   } timer{result_, clockStart};
 
   Search search(*this, ptc);
+  search.strict = checkMotions_;
   const ob::State* startState = pis_.nextStart();
   if (startState == nullptr) {
     return fail(ob::PlannerStatus::INVALID_START,
@@ -502,13 +505,14 @@ std::optional<Detour> ArcPlanner::chooseDetour(Search& search, const std::vector
       }
     }
     for (std::size_t i = 1; valid && i < span.joints.size(); ++i) {
-      if (!search.validMotion(span.joints[i - 1], span.joints[i])) {
+      if (!search.validMotion(span.joints[i - 1], span.joints[i], true)) {
         failures["collision between waypoints"]++;
         valid = false;
       }
     }
     if (valid) {
       result_.candidatesTried += checked;
+      search.strict = true;
       return candidate.detour;
     }
   }

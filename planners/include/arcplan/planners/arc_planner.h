@@ -23,8 +23,9 @@
 //   max_joint_step  largest joint change between waypoints (rad), default 0.1
 //   check_motions   validate motions (1) instead of waypoints (0, default)
 //   auto            search h, r, R2, R3 and the plane angle for the shortest detour valid for the
-//                   whole robot (default: on while no sagitta is given, off once one is); auto
-//                   always validates motions, since the shortest detours pass close to the obstacle
+//                   whole robot (default: on while no sagitta is given, off once one is); a path
+//                   with a searched detour has every motion validated, since the shortest detours
+//                   pass close to the obstacle
 // Without auto, exactly (h, r, R2, R3, plane_angle) is used for every blocking obstacle.
 // Failures say why (lastResult().reason; also OMPL_INFORM): unreachable pose, joint limits, branch
 // change, collision (with the colliding pairs), no detour fits between A and B, time limit. The

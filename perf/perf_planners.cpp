@@ -1,0 +1,111 @@
+// Planner solve times on the thesis query (thesis_obstacle.yaml, A_to_B; motion validator at
+// 0.01 rad): the arc planner with the thesis shape h = 0.5 r (waypoint validation, and every motion
+// validated), its auto search, the straight line of thesis_free, and RRTConnect on the same problem.
+// Each benchmark times every solve itself and reports the median (counter `median_us`), because a
+// sampling planner's mean is dominated by its rare long runs. ArcVsRRTConnect alternates the two
+// planners in one loop and reports the ratio of their medians (`speedup`).
+// Run: build/perf/arcplan_perf --benchmark_filter=Planner
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/util/Console.h>
+
+#include "arcplan/common/resources.h"
+#include "arcplan/planners/planner_registry.h"
+#include "arcplan/planners/planning_problem.h"
+
+namespace {
+
+using arcplan::planners::PlanningProblem;
+using Parameters = std::vector<std::pair<std::string, std::string>>;
+
+PlanningProblem& problem(const std::string& sceneName) {
+  static std::map<std::string, PlanningProblem> problems;
+  auto found = problems.find(sceneName);
+  if (found == problems.end()) {
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+    const auto scene = std::make_shared<const arcplan::collision::Scene>(
+        arcplan::collision::loadScene(arcplan::dataDirectory() / "scenes" / (sceneName + ".yaml")));
+    found = problems.emplace(sceneName, arcplan::planners::makePlanningProblem(scene)).first;
+  }
+  return found->second;
+}
+
+// One timed solve from scratch (clear, solve); returns microseconds, aborts the benchmark on failure.
+double timedSolve(benchmark::State& state, PlanningProblem& planning, const ompl::base::PlannerPtr& planner) {
+  planner->clear();
+  planning.setup->getProblemDefinition()->clearSolutionPaths();
+  const auto start = std::chrono::steady_clock::now();
+  const auto status = planner->solve(ompl::base::timedPlannerTerminationCondition(10.0));
+  const double micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  if (status != ompl::base::PlannerStatus::EXACT_SOLUTION) state.SkipWithError("planner found no exact solution");
+  return micros;
+}
+
+double median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
+ompl::base::PlannerPtr planner(PlanningProblem& planning, const std::string& name, const Parameters& parameters) {
+  auto instance = arcplan::planners::makePlanner(name, planning.setup->getSpaceInformation(), planning.plannerContext(),
+                                                  parameters);
+  instance->setProblemDefinition(planning.setup->getProblemDefinition());
+  instance->setup();
+  return instance;
+}
+
+void solveRepeatedly(benchmark::State& state, const std::string& sceneName, const std::string& name,
+                     const Parameters& parameters) {
+  PlanningProblem& planning = problem(sceneName);
+  const auto instance = planner(planning, name, parameters);
+  std::vector<double> times;
+  for (auto _ : state) times.push_back(timedSolve(state, planning, instance));
+  state.counters["median_us"] = median(times);
+}
+
+const Parameters kThesisShape{{"sagitta", "0.1"}, {"half_chord", "0.2"}, {"entry_radius", "0.1"}, {"exit_radius", "0.2"}};
+
+void PlannerArcThesisShape(benchmark::State& state) { solveRepeatedly(state, "thesis_obstacle", "arc", kThesisShape); }
+BENCHMARK(PlannerArcThesisShape)->Unit(benchmark::kMicrosecond);
+
+void PlannerArcThesisShapeCheckMotions(benchmark::State& state) {
+  Parameters parameters = kThesisShape;
+  parameters.emplace_back("check_motions", "1");
+  solveRepeatedly(state, "thesis_obstacle", "arc", parameters);
+}
+BENCHMARK(PlannerArcThesisShapeCheckMotions)->Unit(benchmark::kMicrosecond);
+
+void PlannerArcAuto(benchmark::State& state) { solveRepeatedly(state, "thesis_obstacle", "arc", {}); }
+BENCHMARK(PlannerArcAuto)->Unit(benchmark::kMicrosecond);
+
+void PlannerArcStraightLine(benchmark::State& state) { solveRepeatedly(state, "thesis_free", "arc", {}); }
+BENCHMARK(PlannerArcStraightLine)->Unit(benchmark::kMicrosecond);
+
+void PlannerRRTConnect(benchmark::State& state) { solveRepeatedly(state, "thesis_obstacle", "RRTConnect", {}); }
+BENCHMARK(PlannerRRTConnect)->Unit(benchmark::kMicrosecond);
+
+// Both planners on the same problem, alternating, so that machine load affects them alike.
+void PlannerArcVsRRTConnect(benchmark::State& state) {
+  PlanningProblem& planning = problem("thesis_obstacle");
+  Parameters arcParameters = kThesisShape;
+  if (state.range(0) == 1) arcParameters.emplace_back("check_motions", "1");
+  const auto arc = planner(planning, "arc", arcParameters);
+  const auto rrtConnect = planner(planning, "RRTConnect", {});
+  std::vector<double> arcTimes, rrtConnectTimes;
+  for (auto _ : state) {
+    arcTimes.push_back(timedSolve(state, planning, arc));
+    rrtConnectTimes.push_back(timedSolve(state, planning, rrtConnect));
+  }
+  state.counters["arc_median_us"] = median(arcTimes);
+  state.counters["rrtconnect_median_us"] = median(rrtConnectTimes);
+  state.counters["speedup"] = median(rrtConnectTimes) / median(arcTimes);
+}
+BENCHMARK(PlannerArcVsRRTConnect)->Arg(0)->Arg(1)->ArgName("check_motions")->Unit(benchmark::kMicrosecond)->Iterations(400);
+
+}  // namespace
