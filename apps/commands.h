@@ -9,5 +9,6 @@ void registerRobotCommand(CLI::App& app);
 void registerPlanCommand(CLI::App& app);
 void registerScaleCommand(CLI::App& app);
 void registerModelCommand(CLI::App& app);
+void registerBenchCommand(CLI::App& app);
 
 }  // namespace arcplan::apps

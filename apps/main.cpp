@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   arcplan::apps::registerPlanCommand(app);
   arcplan::apps::registerScaleCommand(app);
   arcplan::apps::registerModelCommand(app);
+  arcplan::apps::registerBenchCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -9,6 +9,7 @@ namespace arcplan::benchmarks {
 namespace {
 
 std::atomic<int> signalCount{0};
+std::atomic<const std::atomic<bool>*> watchedStopFlag{nullptr};
 struct sigaction previousInterrupt {};
 struct sigaction previousTerminate {};
 
@@ -32,7 +33,12 @@ InterruptHandlers::~InterruptHandlers() {
   sigaction(SIGTERM, &previousTerminate, nullptr);
 }
 
-bool interruptRequested() { return signalCount.load() > 0; }
+bool interruptRequested() {
+  const auto* stop = watchedStopFlag.load();
+  return signalCount.load() > 0 || (stop != nullptr && stop->load());
+}
+
+void watchStopFlag(const std::atomic<bool>* stopFlag) { watchedStopFlag.store(stopFlag); }
 void requestInterrupt() { signalCount.fetch_add(1); }
 void clearInterruptRequest() { signalCount.store(0); }
 

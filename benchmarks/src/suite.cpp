@@ -232,11 +232,14 @@ std::filesystem::path findSuite(const std::string& nameOrFile) {
     const auto builtIn = suiteDirectory() / (nameOrFile + ".yaml");
     if (std::filesystem::exists(builtIn)) return builtIn;
   }
-  std::string list;
+  std::vector<std::string> names;
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(suiteDirectory(), ec)) {
-    if (entry.path().extension() == ".yaml") list += (list.empty() ? "" : ", ") + entry.path().stem().string();
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
   }
+  std::sort(names.begin(), names.end());
+  std::string list;
+  for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
   throw Error("--suite: '" + nameOrFile + "' is neither a suite file nor a built-in suite (built-in: " +
               (list.empty() ? std::string("none found in " + suiteDirectory().string()) : list) + ")");
 }

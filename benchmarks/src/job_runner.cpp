@@ -1,0 +1,305 @@
+#include "job_runner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include <Eigen/Core>
+#include <fcl/config.h>
+#include <ompl/config.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "arcplan/benchmarks/campaign.h"
+#include "arcplan/benchmarks/interrupt.h"
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/common/atomic_file.h"
+#include "arcplan/common/error.h"
+#include "arcplan/planners/planner_registry.h"
+#include "arcplan/planners/planning_problem.h"
+#include "arcplan/trajectory/metrics.h"
+#include "arcplan/trajectory/time_scaling.h"
+
+namespace arcplan::benchmarks::detail {
+namespace {
+
+namespace ob = ompl::base;
+
+// Clearance is a distance query per sample; every 5 mm of TCP path resolves the closest approach of
+// these obstacles (>= 1 cm) well at a fraction of the cost of querying every 2 mm knot.
+constexpr double kClearanceSpacing = 0.005;
+// Samples kept of the median run for the speed-profile and 3D plots.
+constexpr std::size_t kProfileSamples = 600;
+
+std::string number(double value) {
+  std::ostringstream text;
+  text << std::setprecision(10) << value;
+  return text.str();
+}
+
+std::string versionText(int major, int minor, int patch) {
+  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(patch);
+}
+
+// ompl::tools::Benchmark writing what OMPL 1.5.2 leaves out: its config.h defines OMPL_VERSION as "",
+// so the first log line reads "OMPL version " (ompl_benchmark_statistics then stores the version as
+// "OMPL version"); and the "random seed" line, which OMPL fills with the process's first seed, gets
+// the seed this job actually reseeded with.
+class CampaignBenchmark : public ompl::tools::Benchmark {
+public:
+  using Benchmark::Benchmark;
+
+  void setRecordedSeed(std::uint32_t seed) { exp_.seed = seed; }
+
+  bool saveResultsToStream(std::ostream& out) const override {
+    std::ostringstream log;
+    if (!Benchmark::saveResultsToStream(log)) return false;
+    std::string text = log.str();
+    const std::string emptyVersion = "OMPL version \n";
+    if (text.rfind(emptyVersion, 0) == 0) {
+      text.replace(0, emptyVersion.size(),
+                   "OMPL version " + versionText(OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION) + "\n");
+    }
+    out << text;
+    return static_cast<bool>(out);
+  }
+};
+
+// FNV-1a: a stable hash of the job's names (std::hash may differ between standard libraries).
+std::uint64_t stableHash(const std::string& text) {
+  std::uint64_t hash = 14695981039346656037ULL;
+  for (unsigned char c : text) {
+    hash ^= c;
+    hash *= 1099511628211ULL;
+  }
+  return hash;
+}
+
+// OMPL seeds must be > 0; keep them in 31 bits so every SQL and log reader treats them as plain integers.
+std::uint32_t toSeed(std::uint64_t value) { return static_cast<std::uint32_t>(value % 2147483646ULL) + 1U; }
+
+// OMPL prints an error when the seed generator is reseeded after its first use; here that is the point.
+void reseedQuietly(std::uint32_t seed) {
+  const auto level = ompl::msg::getLogLevel();
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  ompl::RNG::setSeed(seed);
+  ompl::msg::setLogLevel(level);
+}
+
+trajectory::JointPath jointPathOf(const ompl::geometric::PathGeometric& path) {
+  trajectory::JointPath joints;
+  const auto& space = *path.getSpaceInformation()->getStateSpace();
+  for (std::size_t i = 0; i < path.getStateCount(); ++i) {
+    robot::Vector6 q;
+    for (unsigned j = 0; j < 6; ++j) q[j] = *space.getValueAddressAtIndex(path.getState(i), j);
+    joints.push_back(q);
+  }
+  return joints;
+}
+
+// Smallest robot–obstacle distance over the executed motion, sampled every kClearanceSpacing of TCP travel.
+double minClearanceAlong(const trajectory::TimedTrajectory& trajectory, const collision::CollisionModel& model,
+                         collision::CollisionData& data) {
+  double minimum = std::numeric_limits<double>::infinity();
+  const std::size_t last = trajectory.time.size() - 1;
+  Eigen::Vector3d checkedAt = trajectory.tcpPosition.front();
+  for (std::size_t i = 0; i <= last; ++i) {
+    if (i != 0 && i != last && (trajectory.tcpPosition[i] - checkedAt).norm() < kClearanceSpacing) continue;
+    minimum = std::min(minimum, collision::distance(model, data, trajectory.position[i]).obstacleDistance);
+    checkedAt = trajectory.tcpPosition[i];
+  }
+  return minimum;
+}
+
+struct RecordedRun {
+  unsigned run = 0;
+  double executionTime = 0.0;
+  double tcpPathLength = 0.0;
+  std::vector<double> time, speed;
+  std::vector<Eigen::Vector3d> tcp;
+};
+
+RecordedRun recordProfile(unsigned run, const trajectory::TimedTrajectory& trajectory) {
+  RecordedRun recorded;
+  recorded.run = run;
+  recorded.executionTime = trajectory.duration();
+  recorded.tcpPathLength = trajectory.tcpPathLength;
+  const std::size_t n = trajectory.time.size();
+  const std::size_t stride = std::max<std::size_t>(1, n / kProfileSamples);
+  for (std::size_t i = 0; i < n; i += stride) {
+    recorded.time.push_back(trajectory.time[i]);
+    recorded.speed.push_back(trajectory.tcpSpeed[i]);
+    recorded.tcp.push_back(trajectory.tcpPosition[i]);
+  }
+  if (n > 0 && (n - 1) % stride != 0) {
+    recorded.time.push_back(trajectory.time.back());
+    recorded.speed.push_back(trajectory.tcpSpeed.back());
+    recorded.tcp.push_back(trajectory.tcpPosition.back());
+  }
+  return recorded;
+}
+
+// The run with the median execution time among the successful ones (the lower one of an even count).
+void writeMedianRun(const std::filesystem::path& file, const std::string& planner, std::vector<RecordedRun> runs) {
+  if (runs.empty()) return;
+  std::sort(runs.begin(), runs.end(), [](const RecordedRun& a, const RecordedRun& b) {
+    return a.executionTime < b.executionTime || (a.executionTime == b.executionTime && a.run < b.run);
+  });
+  const RecordedRun& median = runs[(runs.size() - 1) / 2];
+  AtomicOutputFile out(file);
+  out.stream() << std::setprecision(9) << "# planner: " << planner << "\n# run: " << median.run
+               << "\n# execution time (s): " << median.executionTime << "\n# tcp path length (m): " << median.tcpPathLength
+               << "\n# successful runs: " << runs.size() << "\nt,tcp_speed,x,y,z\n";
+  for (std::size_t i = 0; i < median.time.size(); ++i) {
+    out.stream() << median.time[i] << "," << median.speed[i] << "," << median.tcp[i].x() << "," << median.tcp[i].y()
+                 << "," << median.tcp[i].z() << "\n";
+  }
+  out.commit();
+}
+
+planners::PlanningProblem setUpProblem(const Problem& problem) {
+  return planners::makePlanningProblem(std::make_shared<const collision::Scene>(problem.scene), problem.query);
+}
+
+std::vector<std::pair<std::string, std::string>> parameterList(const PlannerConfiguration& planner) {
+  return {planner.parameters.begin(), planner.parameters.end()};
+}
+
+// Restores OMPL's output handler and log level however the job ends (Benchmark switches the handler
+// off while it runs and does not switch it back when an event throws).
+class OmplOutputScope {
+public:
+  OmplOutputScope() : handler_(ompl::msg::getOutputHandler()), level_(ompl::msg::getLogLevel()) {
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  }
+  ~OmplOutputScope() {
+    ompl::msg::useOutputHandler(handler_);
+    ompl::msg::setLogLevel(level_);
+  }
+
+private:
+  ompl::msg::OutputHandler* handler_;
+  ompl::msg::LogLevel level_;
+};
+
+}  // namespace
+
+std::uint32_t jobSeed(const Suite& suite, const Problem& problem, const PlannerConfiguration& planner) {
+  return toSeed(stableHash(suite.name + "/" + problem.name + "/" + planner.label));
+}
+
+std::uint32_t runSeed(std::uint32_t job, unsigned run) {
+  return toSeed(stableHash(std::to_string(job) + "#" + std::to_string(run)));
+}
+
+void checkPlannerConfigurations(const Suite& suite) {
+  const OmplOutputScope output;
+  const auto problem = setUpProblem(suite.problems.front());
+  for (const auto& configuration : suite.planners) {
+    try {
+      const auto name = planners::canonicalPlannerName(configuration.planner);
+      planners::makePlanner(name, problem.setup->getSpaceInformation(), problem.plannerContext(),
+                            parameterList(configuration));
+    } catch (const Error& e) {
+      throw Error(suite.sourceFile.string() + ": planner '" + configuration.label + "': " + e.what());
+    }
+  }
+}
+
+JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfiguration& configuration,
+                  const JobFiles& files, const std::function<void(unsigned run, bool solved)>& onRunFinished) {
+  const OmplOutputScope output;
+  const std::uint32_t seed = jobSeed(suite, problem, configuration);
+  reseedQuietly(seed);  // before the SimpleSetup and the planner create their random generators
+
+  const auto planning = setUpProblem(problem);
+  ompl::geometric::SimpleSetup& setup = *planning.setup;
+  const std::string plannerName = planners::canonicalPlannerName(configuration.planner);
+  const ob::PlannerPtr planner = planners::makePlanner(plannerName, setup.getSpaceInformation(),
+                                                       planning.plannerContext(), parameterList(configuration));
+  planner->setName(configuration.label);
+  const bool arcPlanner = planners::isArcPlanner(plannerName);
+
+  CampaignBenchmark benchmark(setup, experimentName(suite, problem));
+  benchmark.addExperimentParameter("suite", "TEXT", suite.name);
+  benchmark.addExperimentParameter("problem", "TEXT", problem.name);
+  benchmark.addExperimentParameter("problem kind", "TEXT", problem.kind);
+  benchmark.addExperimentParameter("problem origin", "TEXT", problem.origin);
+  benchmark.addExperimentParameter("query name", "TEXT", problem.query);
+  benchmark.addExperimentParameter("vmax", "REAL", number(suite.vMax));
+  benchmark.addExperimentParameter("job seed", "INTEGER", std::to_string(seed));
+  if (suite.generator) benchmark.addExperimentParameter("generator seed", "INTEGER", std::to_string(suite.generator->seed));
+  benchmark.addExperimentParameter("ompl version", "TEXT",
+                                   versionText(OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION));
+  benchmark.addExperimentParameter("fcl version", "TEXT", FCL_VERSION);
+  benchmark.addExperimentParameter("eigen version", "TEXT",
+                                   versionText(EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION));
+  benchmark.addExperimentParameter("arcplan version", "TEXT", ARCPLAN_VERSION);
+  benchmark.addPlanner(planner);
+
+  const auto& collisionModel = *planning.collisionModel;
+  collision::CollisionData collisionData(collisionModel);
+  trajectory::TimeScalingOptions scaling;
+  scaling.maxTcpSpeed = suite.vMax;
+
+  JobOutcome outcome;
+  unsigned currentRun = 0;
+  std::uint32_t currentSeed = 0;
+  std::vector<RecordedRun> recorded;
+
+  benchmark.setPreRunEvent([&](const ob::PlannerPtr&) {
+    if (interruptRequested()) throw JobInterrupted();
+    ++currentRun;
+    currentSeed = runSeed(seed, currentRun);
+    ompl::RNG::setSeed(currentSeed);  // OMPL's output is off inside benchmark()
+  });
+  benchmark.setPostRunEvent([&](const ob::PlannerPtr&, ompl::tools::Benchmark::RunProperties& run) {
+    run["run seed INTEGER"] = std::to_string(currentSeed);
+    if (run.count("solve time REAL") == 0) run["solve time REAL"] = run["time REAL"];  // OMPL planners
+    bool success = false;
+    if (setup.haveExactSolutionPath()) {
+      try {
+        const auto path = jointPathOf(setup.getSolutionPath());
+        const auto timed = trajectory::scaleToTcpSpeed(collisionModel.robot(), path, scaling);
+        const auto metrics = trajectory::computeMetrics(path, timed);
+        run["tcp path length REAL"] = number(metrics.tcpPathLength);
+        run["execution time REAL"] = number(metrics.executionTime);
+        run["mean tcp speed REAL"] = number(metrics.meanTcpSpeed);
+        run["peak tcp speed REAL"] = number(metrics.peakTcpSpeed);
+        run["time above limit REAL"] = number(metrics.timeAboveLimit);
+        run["max joint speed ratio REAL"] = number(metrics.maxJointSpeedRatio);
+        const double clearance = minClearanceAlong(timed, collisionModel, collisionData);
+        if (std::isfinite(clearance)) run["min clearance REAL"] = number(clearance);
+        if (!files.medianRun.empty()) recorded.push_back(recordProfile(currentRun, timed));
+        success = true;
+      } catch (const Error&) {
+        // A path that cannot be time-scaled is a failed run: it has no execution time.
+      }
+    }
+    run["time scaled BOOLEAN"] = success ? "1" : "0";
+    outcome.runs += 1;
+    outcome.solved += success ? 1 : 0;
+    if (onRunFinished) onRunFinished(currentRun, success);
+  });
+
+  ompl::tools::Benchmark::Request request(suite.timeLimit, 4096.0, suite.runs);
+  request.displayProgress = false;
+  request.saveConsoleOutput = false;
+  request.simplify = !arcPlanner;  // as `arcplan plan` does: the arc path must not be shortcut
+  benchmark.benchmark(request);
+  benchmark.setRecordedSeed(seed);
+
+  // The plot data first: a job counts as done once its log exists.
+  if (!files.medianRun.empty()) writeMedianRun(files.medianRun, configuration.label, std::move(recorded));
+  AtomicOutputFile log(files.log);
+  if (!benchmark.saveResultsToStream(log.stream())) throw Error("cannot write benchmark log " + files.log.string());
+  log.commit();
+  return outcome;
+}
+
+}  // namespace arcplan::benchmarks::detail

@@ -1,0 +1,43 @@
+#pragma once
+// One campaign job: one planner configuration on one problem, `runs` runs through
+// ompl::tools::Benchmark, the DESIGN.md §6 metrics of every run stored as run properties, and the
+// OMPL log written atomically. Internal to arcplan::benchmarks (campaign.cpp drives it).
+#include <cstdint>
+#include <exception>
+#include <filesystem>
+#include <functional>
+
+#include "arcplan/benchmarks/suite.h"
+
+namespace arcplan::benchmarks::detail {
+
+struct JobFiles {
+  std::filesystem::path log;
+  std::filesystem::path medianRun;  // CSV of the median run's TCP speed and path; empty: not wanted
+};
+
+struct JobOutcome {
+  unsigned runs = 0;
+  unsigned solved = 0;  // runs with an exact solution whose metrics could be computed
+};
+
+// Thrown between runs when an interrupt was requested; the job has written nothing. Deliberately not
+// a std::runtime_error: OMPL's Benchmark catches those from its events and would carry on.
+struct JobInterrupted : std::exception {
+  const char* what() const noexcept override { return "benchmark job interrupted"; }
+};
+
+// OMPL's seed generator is reseeded with this before the job's planner and SimpleSetup exist, and
+// with runSeed before every run, so a job repeats exactly whatever ran before it in the process.
+std::uint32_t jobSeed(const Suite& suite, const Problem& problem, const PlannerConfiguration& planner);
+std::uint32_t runSeed(std::uint32_t jobSeed, unsigned run);
+
+// Allocates every planner configuration once on the suite's first problem so that unknown planners
+// and parameters are reported before anything runs. Throws arcplan::Error naming the suite and planner.
+void checkPlannerConfigurations(const Suite& suite);
+
+// Throws JobInterrupted (see above) or arcplan::Error (the problem cannot be set up).
+JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfiguration& planner, const JobFiles& files,
+                  const std::function<void(unsigned run, bool solved)>& onRunFinished);
+
+}  // namespace arcplan::benchmarks::detail

@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""Box plots of the DESIGN.md §6 metrics per planner from an OMPL benchmark database.
+
+Reads the SQLite file ompl_benchmark_statistics builds (runs, experiments, plannerConfigs) and draws one
+figure with a panel per metric and a box per planner, over the successful runs (exact solution with
+metrics). Tick labels show successes/runs, so a planner that rarely succeeds is visible as such.
+
+    plot_benchmark_boxplots.py --db benchmark.db --out boxplots_all.png [--problem thesis/obstacle]
+                               [--order arc-auto,RRTConnect,...] [--title TEXT]
+"""
+import argparse
+import sqlite3
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+# (label, SQL expression over the runs table; columns that may be absent are handled below)
+METRICS = [
+    ("execution time (s)", ["execution_time"]),
+    ("TCP path length (m)", ["tcp_path_length"]),
+    ("solve time (s)", ["solve_time"]),
+    ("joint path length (rad)", ["simplified_solution_length", "solution_length"]),
+    ("mean TCP speed (m/s)", ["mean_tcp_speed"]),
+    ("peak TCP speed (m/s)", ["peak_tcp_speed"]),
+    ("time above limit (s)", ["time_above_limit"]),
+    ("min clearance (m)", ["min_clearance"]),
+    ("max joint speed ratio", ["max_joint_speed_ratio"]),
+]
+
+
+def strip_prefix(name):
+    for prefix in ("geometric_", "control_"):
+        if name.startswith(prefix):
+            return name[len(prefix):]
+    return name
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--db", required=True)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--problem", help="experiment name; all problems pooled when absent")
+    parser.add_argument("--order", default="", help="comma-separated planner order (e.g. the ranking)")
+    parser.add_argument("--title", default="")
+    args = parser.parse_args()
+
+    connection = sqlite3.connect(args.db)
+    columns = {row[1] for row in connection.execute("PRAGMA table_info(runs)")}
+    if "execution_time" not in columns:
+        print("plot_benchmark_boxplots: no run in %s has metrics (nothing solved)" % args.db, file=sys.stderr)
+        return 1
+    expressions = []
+    for _, candidates in METRICS:
+        present = [c for c in candidates if c in columns]
+        expressions.append("NULL" if not present else present[0] if len(present) == 1
+                           else "COALESCE(%s)" % ", ".join(present))
+    query = ("SELECT plannerConfigs.name, runs.solved, runs.execution_time, %s FROM runs "
+             "JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id "
+             "JOIN experiments ON runs.experimentid = experiments.id" % ", ".join(expressions))
+    parameters = ()
+    if args.problem:
+        query += " WHERE experiments.name = ?"
+        parameters = (args.problem,)
+
+    runs, successes, values = {}, {}, {}
+    for row in connection.execute(query, parameters):
+        planner = strip_prefix(row[0])
+        runs[planner] = runs.get(planner, 0) + 1
+        values.setdefault(planner, [[] for _ in METRICS])
+        if row[1] == 1 and row[2] is not None:
+            successes[planner] = successes.get(planner, 0) + 1
+            for i, value in enumerate(row[3:]):
+                if value is not None:
+                    values[planner][i].append(value)
+    if not runs:
+        print("plot_benchmark_boxplots: no runs for %s" % (args.problem or "any problem"), file=sys.stderr)
+        return 1
+
+    order = [p for p in args.order.split(",") if p in runs] if args.order else []
+    order += sorted(p for p in runs if p not in order)
+    labels = ["%s\n%d/%d" % (p, successes.get(p, 0), runs[p]) for p in order]
+
+    columns_per_row = 3
+    rows = (len(METRICS) + columns_per_row - 1) // columns_per_row
+    figure, axes = plt.subplots(rows, columns_per_row, figsize=(6.0 * columns_per_row, 4.2 * rows), squeeze=False)
+    for index, (label, _) in enumerate(METRICS):
+        axis = axes[index // columns_per_row][index % columns_per_row]
+        data = [values[p][index] for p in order]
+        positions = [i + 1 for i, d in enumerate(data) if d]
+        if positions:
+            axis.boxplot([d for d in data if d], positions=positions, widths=0.6, showfliers=True)
+        axis.set_xticks(range(1, len(order) + 1))
+        axis.set_xticklabels(labels, rotation=60, ha="right", fontsize=7)
+        axis.set_xlim(0.5, len(order) + 0.5)
+        axis.set_title(label, fontsize=10)
+        axis.grid(axis="y", color="lightgrey", linewidth=0.5)
+    for index in range(len(METRICS), rows * columns_per_row):
+        axes[index // columns_per_row][index % columns_per_row].axis("off")
+    title = args.title or ("problem " + args.problem if args.problem else "all problems")
+    figure.suptitle(title + " — successful runs (labels: successes/runs)", fontsize=12)
+    figure.tight_layout(rect=(0, 0, 1, 0.97))
+    figure.savefig(args.out, dpi=110)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
