@@ -205,6 +205,19 @@ TEST(ArcPlanner, GoalOnAnotherIkBranchIsABranchChange) {
   EXPECT_NE(arcOf(planner).lastResult().reason.find("branch"), std::string::npos) << arcOf(planner).lastResult().reason;
 }
 
+TEST(ArcPlanner, LineThroughTheUnreachableCoreIsReported) {
+  // From one side of the base to the other: the line passes the shoulder axis, where no IK exists.
+  auto scene = std::make_shared<arcplan::collision::Scene>(*loadTestScene("thesis_free"));
+  scene->queries[0].start = {std::array<double, 6>{0.35, -0.35, 0.3, 0.0, -M_PI, M_PI_2}, std::nullopt, std::nullopt};
+  scene->queries[0].goal = {std::array<double, 6>{-0.35, 0.35, 0.3, 0.0, -M_PI, M_PI_2}, std::nullopt, std::nullopt};
+  auto problem = arcplan::planners::makePlanningProblem(scene);
+  const auto [planner, status] = solve(problem, "arc");
+  EXPECT_EQ(status, ob::PlannerStatus::ABORT);
+  const std::string& reason = arcOf(planner).lastResult().reason;
+  EXPECT_NE(reason.find("unreachable on the straight line"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("out of reach"), std::string::npos) << reason;
+}
+
 TEST(ArcPlanner, CollisionOnTheDetourNamesThePair) {
   // A block beside O, where a detour in the plane turned by +90 degrees passes.
   const Eigen::Vector3d direction = (thesisB() - thesisA()).normalized();
