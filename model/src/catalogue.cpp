@@ -20,7 +20,7 @@ const std::vector<double> kDriveGain{0.085, 0.085, 0.10, 0.095, 0.09, 0.08};  //
 const std::vector<double> kCoulomb{1.4, 1.3, 0.65, 0.26, 0.3, 0.24};           // A
 const std::vector<double> kViscous{1.75, 1.63, 1.09, 0.33, 0.24, 0.29};        // A·s/rad
 const std::vector<double> kTorqueScale{10.0, 70.0, 30.0, 2.5, 0.5, 0.3};       // typical |τ| in N·m
-const std::vector<double> kRotorInertia{1.5, 1.5, 0.8, 0.15, 0.15, 0.15};      // kg·m² at the joint
+const std::vector<double> kRotorInertia{6.0, 6.0, 1.9, 0.6, 0.6, 0.6};         // kg·m² at the joint
 
 double sgn(const Dataset& data, double velocity) { return smoothSign(velocity, data.settings().velocitySmoothing); }
 

@@ -26,8 +26,16 @@ def main():
     left.plot(x, [s["train"]["overall_nrmse"] for s in steps], "o-", label="train")
     if all("validation" in s for s in steps):
         left.plot(x, [s["validation"]["overall_nrmse"] for s in steps], "s-", label="validation (held out)")
-    left.set_ylabel("overall NRMSE")
-    left.legend(fontsize=8)
+    left.set_ylabel("overall NRMSE (mean over channels of RMSE / spread)")
+    # The pooled RMSE in the channels' unit (A, rad or N·m) weights the channels by their size.
+    pooled = left.twinx()
+    key_all = "validation" if all("validation" in s for s in steps) else "train"
+    pooled.plot(x, [(sum(c["rmse"] ** 2 for c in s[key_all]["channels"].values()) / len(s[key_all]["channels"])) ** 0.5
+                    for s in steps], "^--", color="tab:green", label=f"pooled RMSE ({key_all})")
+    pooled.set_ylabel("pooled RMSE [channel unit]")
+    lines = left.get_legend_handles_labels()
+    extra = pooled.get_legend_handles_labels()
+    left.legend(lines[0] + extra[0], lines[1] + extra[1], fontsize=8)
     key = "validation" if all("validation" in s for s in steps) else "train"
     for channel in steps[-1][key]["channels"]:
         right.plot(x, [s[key]["channels"][channel]["rmse"] for s in steps], "o-", ms=3, label=channel)

@@ -1,5 +1,6 @@
 // `arcplan model ...` end to end: simulate logs, compare, diagnose, fit --add --save, history,
 // the JSON contract of DESIGN.md §9, and clear errors without half-written output on bad input.
+#include <cmath>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -64,6 +65,28 @@ TEST_F(ModelCommand, SimulateWritesRtdeLogsWithTheSignalsTheLoopNeeds) {
                              "--duration", "1", "--rate", "100", "--format", "record"});
   ASSERT_EQ(record.exitCode, 0) << record.err;
   EXPECT_EQ(readFile(dir / "record.csv").substr(0, 19), "timestamp target_q_");
+}
+
+TEST_F(ModelCommand, SimulateFollowsAPlannedTrajectoryFile) {
+  // The layout `arcplan scale --traj-csv` writes: t, q0..q5, then velocities (ignored: re-derived).
+  std::string text = "t,q0,q1,q2,q3,q4,q5,qd0,qd1,qd2,qd3,qd4,qd5\n";
+  for (int k = 0; k <= 400; ++k) {
+    const double t = 0.005 * k;
+    text += std::to_string(t);
+    for (int j = 0; j < 6; ++j) text += "," + std::to_string(0.3 * std::sin(t + j) - (j == 1 || j == 3 ? 1.57 : 0.0));
+    text += ",0,0,0,0,0,0\n";
+  }
+  write(dir / "planned.csv", text);
+  const auto result = model({"simulate", "--model", (dir / "base.yaml").string(), "--data", (dir / "planned_log.csv").string(),
+                             "--trajectory", (dir / "planned.csv").string(), "--rate", "500"});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto log = arcplan::model::readLog(dir / "planned_log.csv");
+  ASSERT_EQ(log.rows(), 1001u);  // 2 s at 500 Hz
+  for (std::size_t k = 100; k < 900; k += 50) {
+    const double t = log.time[static_cast<Eigen::Index>(k)];
+    EXPECT_NEAR(log.vector("target_q")(static_cast<Eigen::Index>(k), 2), 0.3 * std::sin(t + 2), 1e-5);
+    EXPECT_NEAR(log.vector("target_qd")(static_cast<Eigen::Index>(k), 2), 0.3 * std::cos(t + 2), 1e-3);
+  }
 }
 
 TEST_F(ModelCommand, TheLoopCompareDiagnoseFitHistoryFollowsTheJsonContract) {
