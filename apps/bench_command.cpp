@@ -129,7 +129,10 @@ void runRank(const RankOptions& options) {
   // Median-run data of campaigns: next to the database and next to each merged log folder.
   report.pathDirectories.push_back(report.outDirectory / "paths");
   if (!database.parent_path().empty()) report.pathDirectories.push_back(database.parent_path() / "paths");
-  for (const auto& logs : options.logs) report.pathDirectories.push_back(std::filesystem::path(logs).parent_path() / "paths");
+  for (const auto& logs : options.logs) {  // a shard's output folder, or its logs/ folder
+    report.pathDirectories.push_back(std::filesystem::path(logs) / "paths");
+    report.pathDirectories.push_back(std::filesystem::path(logs).parent_path() / "paths");
+  }
   std::vector<std::string> notes;
   const auto ranking = benchmarks::reportFromDatabase(database, report, notes);
   printNotes(notes);

@@ -175,6 +175,8 @@ struct WorkerMessage {
 };
 static_assert(sizeof(WorkerMessage) <= PIPE_BUF, "worker messages must be written atomically");
 
+constexpr int kWorkerInterrupted = 2;  // exit code of a worker that stopped on request
+
 // Shared between the campaign process and its workers (an anonymous shared mapping).
 struct SharedCounters {
   std::atomic<std::size_t> nextJob{0};
@@ -194,7 +196,7 @@ void send(int fd, const WorkerMessage& message) {
   int exitCode = 0;
   while (true) {
     if (interruptRequested()) {
-      exitCode = 2;
+      exitCode = kWorkerInterrupted;
       break;
     }
     const std::size_t i = shared.nextJob.fetch_add(1);
@@ -215,7 +217,7 @@ void send(int fd, const WorkerMessage& message) {
       message.solved = outcome.solved;
       send(fd, message);
     } catch (const detail::JobInterrupted&) {
-      exitCode = 2;
+      exitCode = kWorkerInterrupted;
       break;
     } catch (const std::exception& e) {
       WorkerMessage message;
@@ -268,6 +270,7 @@ void runJobsInWorkers(const Suite& suite, const std::vector<Job>& jobs, const st
       break;
     }
     if (got == 0) break;  // every worker has closed its end
+    if (interruptRequested()) shared->stop = true;
     filled += static_cast<std::size_t>(got);
     if (filled < sizeof message) continue;
     filled = 0;
@@ -290,7 +293,16 @@ void runJobsInWorkers(const Suite& suite, const std::vector<Job>& jobs, const st
     int status = 0;
     while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
     }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) state.interrupted = true;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) continue;
+    if ((WIFEXITED(status) && (WEXITSTATUS(status) == kWorkerInterrupted || WEXITSTATUS(status) == 130)) ||
+        (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM))) {
+      state.interrupted = true;
+    } else {
+      state.failures.push_back("worker process " + std::to_string(child) + " ended abnormally (" +
+                               (WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
+                                                    : "exit " + std::to_string(WEXITSTATUS(status))) +
+                               "); the job it was running has no log and runs again when the campaign is resumed");
+    }
   }
   if (interruptRequested()) state.interrupted = true;
   shared->~SharedCounters();
@@ -334,23 +346,28 @@ void makePlots(const std::filesystem::path& database, const Ranking& ranking, co
   for (const auto& standing : ranking.overall) order += (order.empty() ? "" : ",") + standing.planner;
   plot("plot_benchmark_boxplots.py", {"--db", database.string(), "--order", order}, directory / "boxplots_all.png", notes);
   for (const auto& problem : ranking.problems) {
-    std::optional<std::filesystem::path> paths;
+    // Median-run data of this problem; merged shards each hold the planners they ran.
+    std::vector<std::string> paths;
     for (const auto& root : options.pathDirectories) {
-      if (std::filesystem::exists(root / problem.problem / "scene.json")) paths = root / problem.problem;
+      const auto folder = (root / problem.problem).lexically_normal();
+      if (std::filesystem::exists(folder / "scene.json") &&
+          std::find(paths.begin(), paths.end(), folder.string()) == paths.end()) {
+        paths.push_back(folder.string());
+      }
     }
     // Per-problem figures for problems with plot data, and for every problem of small campaigns.
-    if (!paths && ranking.problemCount() > 4) continue;
+    if (paths.empty() && ranking.problemCount() > 4) continue;
     const auto name = fileSafe(problem.problem);
     plot("plot_benchmark_boxplots.py", {"--db", database.string(), "--problem", problem.problem, "--order", order},
          directory / ("boxplots_" + name + ".png"), notes);
-    if (!paths) continue;
-    plot("plot_benchmark_speed_profiles.py",
-         {"--paths", paths->string(), "--order", order, "--title",
-          "TCP speed of each planner's median run — " + problem.problem},
-         directory / ("speed_" + name + ".png"), notes);
-    plot("plot_benchmark_paths3d.py",
-         {"--paths", paths->string(), "--order", order, "--title", "TCP paths of the median runs — " + problem.problem},
-         directory / ("paths3d_" + name + ".png"), notes);
+    if (paths.empty()) continue;
+    std::vector<std::string> pathArguments{"--order", order, "--paths"};
+    pathArguments.insert(pathArguments.end(), paths.begin(), paths.end());
+    auto speed = pathArguments, view = pathArguments;
+    speed.insert(speed.end(), {"--title", "TCP speed of each planner's median run — " + problem.problem});
+    view.insert(view.end(), {"--title", "TCP paths of the median runs — " + problem.problem});
+    plot("plot_benchmark_speed_profiles.py", speed, directory / ("speed_" + name + ".png"), notes);
+    plot("plot_benchmark_paths3d.py", view, directory / ("paths3d_" + name + ".png"), notes);
   }
 }
 

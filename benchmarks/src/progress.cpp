@@ -53,7 +53,9 @@ void ProgressDisplay::report(const ProgressEvent& event) {
       // Runs of a failed or abandoned job no longer count as outstanding.
       const std::size_t expected = finishedJobs_ * runsPerJob_;
       if (finishedRuns_ < expected) finishedRuns_ = expected;
-      if (!interactive_) {
+      // A failure stays visible on a terminal too: it gets its own line above the status line.
+      if (!interactive_ || event.kind == ProgressEvent::Kind::JobFailed) {
+        if (interactive_) out_ << "\r\033[K";
         out_ << "[" << finishedJobs_ << "/" << jobLabels_.size() << "] " << label << ": ";
         if (event.kind == ProgressEvent::Kind::JobFinished) {
           out_ << event.solvedRuns << "/" << runsPerJob_ << " runs solved";

@@ -125,7 +125,12 @@ void buildBenchmarkDatabase(const std::vector<std::filesystem::path>& logs, cons
                   logs[first].string() + " ... " + logs[last - 1].string() + ":\n" + result.output);
     }
   }
-  std::filesystem::rename(temporary, database);
+  std::error_code ec;
+  std::filesystem::rename(temporary, database, ec);
+  if (ec) {
+    std::filesystem::remove(temporary, ignored);
+    throw Error("cannot move " + temporary.string() + " to " + database.string() + ": " + ec.message());
+  }
 }
 
 }  // namespace arcplan::benchmarks

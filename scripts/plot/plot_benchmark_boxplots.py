@@ -17,6 +17,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from plot_benchmark_data import planner_order  # noqa: E402
+
 # (label, SQL expression over the runs table; columns that may be absent are handled below)
 METRICS = [
     ("execution time (s)", ["execution_time"]),
@@ -79,8 +81,7 @@ def main():
         print("plot_benchmark_boxplots: no runs for %s" % (args.problem or "any problem"), file=sys.stderr)
         return 1
 
-    order = [p for p in args.order.split(",") if p in runs] if args.order else []
-    order += sorted(p for p in runs if p not in order)
+    order = planner_order(runs, args.order)
     labels = ["%s\n%d/%d" % (p, successes.get(p, 0), runs[p]) for p in order]
 
     columns_per_row = 3

@@ -4,13 +4,10 @@
 Reads paths/<suite>/<problem>/scene.json (obstacles: sphere, box, cylinder with position and rotation; start
 and goal TCP positions) and paths/<suite>/<problem>/<planner>.csv (columns t,tcp_speed,x,y,z).
 
-    plot_benchmark_paths3d.py --paths DIR/paths/<suite>/<problem> --out paths3d.png [--title T] [--order ...]
+    plot_benchmark_paths3d.py --paths DIR/paths/<suite>/<problem> [DIR2/...] --out paths3d.png [--title T] [--order ...]
 """
 import argparse
-import csv
-import json
 import math
-import os
 import sys
 
 import matplotlib
@@ -18,6 +15,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402,F401  (registers the 3d projection)
 from mpl_toolkits.mplot3d import Axes3D  # noqa: E402,F401
+
+from plot_benchmark_data import median_run_files, planner_order, read_median_run, read_scene  # noqa: E402
 
 
 def transform(rotation, position, point):
@@ -61,26 +60,22 @@ def draw_obstacle(axis, obstacle):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--paths", required=True)
+    parser.add_argument("--paths", required=True, nargs="+", help="median-run folders (several for merged shards)")
     parser.add_argument("--out", required=True)
     parser.add_argument("--title", default="")
     parser.add_argument("--order", default="")
     args = parser.parse_args()
 
-    with open(os.path.join(args.paths, "scene.json")) as stream:
-        scene = json.load(stream)
-    planners = sorted(name[:-4] for name in os.listdir(args.paths) if name.endswith(".csv"))
-    order = [p for p in args.order.split(",") if p in planners] if args.order else []
-    order += [p for p in planners if p not in order]
+    scene = read_scene(args.paths)
+    files = median_run_files(args.paths)
+    order = planner_order(files, args.order)
 
     figure = plt.figure(figsize=(10, 8))
     axis = figure.add_subplot(111, projection="3d")
     colors = plt.get_cmap("tab20")
     points = [scene["start"], scene["goal"]]
     for index, planner in enumerate(order):
-        with open(os.path.join(args.paths, planner + ".csv")) as stream:
-            rows = list(csv.DictReader(line for line in stream if not line.startswith("#")))
-        xyz = [(float(r["x"]), float(r["y"]), float(r["z"])) for r in rows]
+        xyz = [(r["x"], r["y"], r["z"]) for r in read_median_run(files[planner])]
         if not xyz:
             continue
         points += xyz
@@ -98,6 +93,7 @@ def main():
     half = max(h - l for l, h in zip(low, high)) / 2 + 0.05
     for setter, l, h in zip((axis.set_xlim, axis.set_ylim, axis.set_zlim), low, high):
         setter((l + h) / 2 - half, (l + h) / 2 + half)
+    axis.set_box_aspect((1, 1, 1))
     axis.set_xlabel("x (m)")
     axis.set_ylabel("y (m)")
     axis.set_zlabel("z (m)")

@@ -4,13 +4,10 @@
 Reads the median-run files a campaign writes to paths/<suite>/<problem>/<planner>.csv (header line
 `t,tcp_speed,x,y,z` after `#` comment lines) and draws one curve per planner with the speed limit.
 
-    plot_benchmark_speed_profiles.py --paths DIR/paths/<suite>/<problem> --out speed.png [--vmax 0.25] [--title T]
-                                     [--order arc-auto,RRTConnect,...]
+    plot_benchmark_speed_profiles.py --paths DIR/paths/<suite>/<problem> [DIR2/...] --out speed.png [--vmax 0.25]
+                                     [--title T] [--order arc-auto,RRTConnect,...]
 """
 import argparse
-import csv
-import json
-import os
 import sys
 
 import matplotlib
@@ -18,16 +15,12 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-
-def read_profile(path):
-    with open(path) as stream:
-        lines = [line for line in stream if not line.startswith("#")]
-    return [{key: float(value) for key, value in row.items()} for row in csv.DictReader(lines)]
+from plot_benchmark_data import median_run_files, planner_order, read_median_run, read_scene  # noqa: E402
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--paths", required=True)
+    parser.add_argument("--paths", required=True, nargs="+", help="median-run folders (several for merged shards)")
     parser.add_argument("--vmax", type=float, help="TCP speed limit; default: vmax_mps of the folder's scene.json")
     parser.add_argument("--out", required=True)
     parser.add_argument("--title", default="")
@@ -35,19 +28,17 @@ def main():
     args = parser.parse_args()
 
     if args.vmax is None:
-        with open(os.path.join(args.paths, "scene.json")) as stream:
-            args.vmax = json.load(stream)["vmax_mps"]
-    planners = sorted(name[:-4] for name in os.listdir(args.paths) if name.endswith(".csv"))
-    if not planners:
-        print("plot_benchmark_speed_profiles: no median-run files in %s" % args.paths, file=sys.stderr)
+        args.vmax = read_scene(args.paths)["vmax_mps"]
+    files = median_run_files(args.paths)
+    if not files:
+        print("plot_benchmark_speed_profiles: no median-run files in %s" % ", ".join(args.paths), file=sys.stderr)
         return 1
-    order = [p for p in args.order.split(",") if p in planners] if args.order else []
-    order += [p for p in planners if p not in order]
+    order = planner_order(files, args.order)
 
     figure, axis = plt.subplots(figsize=(11, 5.5))
     colors = plt.get_cmap("tab20")
     for index, planner in enumerate(order):
-        rows = read_profile(os.path.join(args.paths, planner + ".csv"))
+        rows = read_median_run(files[planner])
         if not rows:
             continue
         duration = rows[-1]["t"]
