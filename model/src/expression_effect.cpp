@@ -75,7 +75,8 @@ public:
           const auto underscore = name.rfind('_');
           const std::string base = underscore == std::string::npos ? "" : name.substr(0, underscore);
           const std::string index = underscore == std::string::npos ? "" : name.substr(underscore + 1);
-          const bool numbered = !index.empty() && index.find_first_not_of("0123456789") == std::string::npos;
+          const bool numbered =
+              !index.empty() && index.size() <= 3 && index.find_first_not_of("0123456789") == std::string::npos;
           if (numbered && data.hasSignal(base) && std::stoi(index) < data.channelCount() &&
               data.samples(std::stoi(index)) == data.samples(channel)) {
             bind(name, data.signal(base, std::stoi(index)));

@@ -54,7 +54,11 @@ std::vector<ForceTransferPoint> readForceTransferData(const std::filesystem::pat
     if (point.gearbox.empty()) throw Error(where + ": column gearbox is empty");
     point.ratio = number("ratio");
     if (point.ratio <= 0.0) throw Error(where + ": column ratio must be positive");
-    if (column.count("series")) point.series = static_cast<int>(number("series"));
+    if (column.count("series")) {
+      const double series = number("series");
+      if (series < 0 || series > 1e6 || series != std::floor(series)) throw Error(where + ": column series: expected a small integer");
+      point.series = static_cast<int>(series);
+    }
     std::string direction(trim(fields[column.at("direction")]));
     std::transform(direction.begin(), direction.end(), direction.begin(), ::tolower);
     if (direction != "direct" && direction != "indirect") {

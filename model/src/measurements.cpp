@@ -82,7 +82,7 @@ std::vector<ColumnSource> mapHeader(const std::vector<std::string_view>& header,
     const auto underscore = name.rfind('_');
     if (underscore == std::string::npos || underscore + 1 == name.size()) continue;
     const std::string base = name.substr(0, underscore), index = name.substr(underscore + 1);
-    if (!isKnownVector(base) || !std::all_of(index.begin(), index.end(), ::isdigit)) continue;
+    if (!isKnownVector(base) || index.size() > 3 || !std::all_of(index.begin(), index.end(), ::isdigit)) continue;
     const int joint = std::stoi(index);
     auto& columns = vectorColumns[base];
     if (static_cast<int>(columns.size()) <= joint) columns.resize(joint + 1, -1);
@@ -233,7 +233,8 @@ ColumnMap parseColumnMap(const std::string& text) {
     const auto dash = range.find('-');
     const auto first = parseDouble(range.substr(0, dash));
     const auto last = dash == std::string::npos ? first : parseDouble(range.substr(dash + 1));
-    if (!first || !last || *first < 1 || *last < *first || *first != std::floor(*first) || *last != std::floor(*last)) {
+    if (!first || !last || *first < 1 || *last < *first || *first != std::floor(*first) || *last != std::floor(*last) ||
+        *last > 100000 || *last - *first >= 1000) {
       throw Error("column map entry '" + std::string(entryText) + "': expected 1-based columns like 2 or 2-7");
     }
     ColumnMap::Entry entry{signal, {}};
@@ -265,7 +266,8 @@ std::pair<std::size_t, std::size_t> parseLineRange(const std::string& text, cons
   const auto first = parseDouble(text.substr(0, dash));
   std::optional<double> last = 0.0;
   if (dash != std::string::npos && !trim(text.substr(dash + 1)).empty()) last = parseDouble(text.substr(dash + 1));
-  if (dash == std::string::npos || !first || !last || *first < 1 || *first != std::floor(*first) ||
+  if (dash == std::string::npos || !first || !last || *first < 1 || *first > 1e12 || *last > 1e12 ||
+      *first != std::floor(*first) ||
       *last != std::floor(*last) || (*last != 0.0 && *last < *first)) {
     throw Error(what + ": expected a 1-based line range FIRST-LAST or FIRST-, got '" + text + "'");
   }

@@ -16,6 +16,8 @@
 namespace arcplan::model {
 namespace {
 
+constexpr double kMaxJoint = 1000.0;  // far beyond any arm; keeps indices in int range
+
 std::string at(const std::filesystem::path& source, const YAML::Node& node) {
   std::string text = source.empty() ? std::string("model") : source.string();
   if (node.Mark().line >= 0) text += ":" + std::to_string(node.Mark().line + 1);
@@ -47,7 +49,7 @@ std::vector<double> numbers(const YAML::Node& node, const std::filesystem::path&
 std::vector<int> jointList(const YAML::Node& node, const std::filesystem::path& source, const std::string& field) {
   std::vector<int> joints;
   for (double value : numbers(node, source, field)) {
-    if (value < 0 || value != std::floor(value)) {
+    if (value < 0 || value > kMaxJoint || value != std::floor(value)) {
       throw Error(at(source, node) + ": " + field + ": joint indices are 0-based integers");
     }
     joints.push_back(static_cast<int>(value));
@@ -180,7 +182,9 @@ EffectSpec parseEffectArgument(const std::string& text) {
   if (spec.id.empty()) throw Error("effect '" + text + "': empty effect name");
   if (colon != std::string::npos) {
     for (double value : parseNumberList(text.substr(colon + 1), "effect '" + text + "' joints")) {
-      if (value < 0 || value != std::floor(value)) throw Error("effect '" + text + "': joints are 0-based integers");
+      if (value < 0 || value > kMaxJoint || value != std::floor(value)) {
+        throw Error("effect '" + text + "': joints are 0-based integers");
+      }
       spec.joints.push_back(static_cast<int>(value));
     }
   }
@@ -197,20 +201,22 @@ ModelSpec parseModelYaml(const std::string& yaml, const std::filesystem::path& s
                 ": malformed YAML: " + e.msg);
   }
   if (!root.IsMap()) throw Error(at(source, root) + ": a model file is a map with at least 'kind' and 'effects'");
-  checkKeys(root,
-            {"name", "kind", "load_torque", "joints", "urdf", "gravity", "payload", "derivative_cutoff_hz",
-             "velocity_smoothing", "reference_temperature", "effects"},
-            source, "");
   ModelSpec spec;
   spec.source = source;
   try {
+    checkKeys(root,
+              {"name", "kind", "load_torque", "joints", "urdf", "gravity", "payload", "derivative_cutoff_hz",
+               "velocity_smoothing", "reference_temperature", "effects"},
+              source, "");
     if (!root["kind"]) throw Error(at(source, root) + ": missing 'kind' (joint_current, joint_tracking or gearbox_ftd)");
     spec.kind = parseKind(root["kind"], source);
     if (root["name"]) spec.name = root["name"].as<std::string>();
     if (root["load_torque"]) spec.loadTorque = parseLoadTorque(root["load_torque"], source);
     if (root["joints"]) {
       const double joints = number(root["joints"], source, "joints");
-      if (joints < 1 || joints != std::floor(joints)) throw Error(at(source, root["joints"]) + ": joints: expected a positive integer");
+      if (joints < 1 || joints > kMaxJoint || joints != std::floor(joints)) {
+        throw Error(at(source, root["joints"]) + ": joints: expected a positive integer");
+      }
       spec.joints = static_cast<int>(joints);
     }
     if (root["urdf"]) {

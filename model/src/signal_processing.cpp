@@ -113,7 +113,8 @@ Eigen::MatrixXd smoothDerivative(const Eigen::VectorXd& time, const Eigen::Matri
   std::vector<double> steps(static_cast<std::size_t>(n - 1));
   for (Eigen::Index i = 0; i + 1 < n; ++i) steps[static_cast<std::size_t>(i)] = time[i + 1] - time[i];
   std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
-  const double step = steps[steps.size() / 2];
+  // The median step, unless a gap in the log would make the grid more than 4x longer than the log.
+  const double step = std::max(steps[steps.size() / 2], (time[n - 1] - time[0]) / (4.0 * static_cast<double>(n)));
   const auto gridSize = static_cast<Eigen::Index>(std::floor((time[n - 1] - time[0]) / step + 1e-9)) + 1;
   const Eigen::VectorXd grid = Eigen::VectorXd::LinSpaced(gridSize, time[0], time[0] + step * static_cast<double>(gridSize - 1));
   const Eigen::MatrixXd uniform = interpolateLinear(time, values, grid);

@@ -13,12 +13,18 @@
 #include "arcplan/robot/dynamics.h"
 
 namespace arcplan::model {
+namespace {
+constexpr double kMaxSamples = 1e7;  // 5.5 h at 500 Hz; beyond it a typo, not a log
+}  // namespace
 
 Trajectory excitationTrajectory(const Eigen::VectorXd& center, const ExcitationOptions& options) {
   if (options.duration <= 0.0 || options.rate <= 0.0 || options.harmonics < 1) {
     throw Error("excitation trajectory: duration, rate and harmonics must be positive");
   }
   const auto joints = center.size();
+  if (options.duration * options.rate > kMaxSamples) {
+    throw Error("excitation trajectory: duration x rate must stay below 1e7 samples");
+  }
   const auto samples = static_cast<Eigen::Index>(std::floor(options.duration * options.rate)) + 1;
   Trajectory trajectory;
   trajectory.time = Eigen::VectorXd::LinSpaced(samples, 0.0, static_cast<double>(samples - 1) / options.rate);
@@ -62,7 +68,7 @@ Trajectory readTrajectory(const std::filesystem::path& file, double rate, double
     const std::string name(trim(header[c]));
     if (name == "t" || name == "time" || name == "timestamp") timeColumn = static_cast<int>(c);
     for (const std::string prefix : {"q_", "q", "target_q_"}) {
-      if (name.rfind(prefix, 0) == 0 && name.size() > prefix.size() &&
+      if (name.rfind(prefix, 0) == 0 && name.size() > prefix.size() && name.size() <= prefix.size() + 3 &&
           name.find_first_not_of("0123456789", prefix.size()) == std::string::npos) {
         jointColumn[std::stoi(name.substr(prefix.size()))] = static_cast<int>(c);
       }
@@ -102,6 +108,9 @@ Trajectory readTrajectory(const std::filesystem::path& file, double rate, double
     positions.push_back(row);
   }
   if (times.size() < 4) throw Error(file.string() + ": a trajectory needs at least 4 samples");
+  if ((times.back() - times.front()) * rate > kMaxSamples) {
+    throw Error(file.string() + ": duration x rate must stay below 1e7 samples");
+  }
   const Eigen::Map<const Eigen::VectorXd> sourceTime(times.data(), static_cast<Eigen::Index>(times.size()));
   Eigen::MatrixXd sourceQ(static_cast<Eigen::Index>(times.size()), joints);
   for (std::size_t k = 0; k < positions.size(); ++k) {

@@ -2,7 +2,8 @@
 // Deriving velocities and accelerations a log does not contain, without shifting them in time.
 //
 // Method (documented in docs/model.md): the samples are linearly resampled onto a uniform grid at
-// the median sampling step (robot logs have jittery steps), low-pass filtered with a second-order
+// the median sampling step (robot logs have jittery steps; a coarser step only when a gap would make
+// the grid over 4x longer than the log), low-pass filtered with a second-order
 // Butterworth filter run forwards and backwards (zero phase, effective fourth order, cut-off
 // `cutoffHz`), differentiated with central differences, and interpolated back onto the original
 // sample times. The ends are padded with an odd reflection so the filter starts settled.
