@@ -1,0 +1,85 @@
+#include "parser_targets.h"
+
+#include <fstream>
+#include <stdexcept>
+#include <unistd.h>
+
+#include "arcplan/benchmarks/suite.h"
+#include "arcplan/collision/allowed_collisions.h"
+#include "arcplan/collision/scene.h"
+#include "arcplan/common/error.h"
+#include "arcplan/common/text_parsing.h"
+#include "arcplan/model/force_transfer.h"
+#include "arcplan/model/measurements.h"
+#include "arcplan/model/model_spec.h"
+#include "arcplan/robot/robot_model.h"
+#include "arcplan/trajectory/joint_path.h"
+
+namespace arcplan::fuzz {
+namespace {
+
+// File-based parsers get the input as a file; one per process, rewritten for every input.
+std::filesystem::path inputFile(const std::string& suffix) {
+  const std::filesystem::path base = std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
+  return base / ("arcplan_fuzz_" + std::to_string(::getpid()) + suffix);
+}
+
+std::filesystem::path writeInput(const std::string& input, const std::string& suffix) {
+  const auto file = inputFile(suffix);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << input;
+  return file;
+}
+
+// Named as arcplan's own URDF so relative mesh paths in a mutated UR10e description still resolve.
+void parseUrdf(const std::string& input) { robot::parseRobotModel(input, robot::ur10eUrdfPath()); }
+void parseScene(const std::string& input) { collision::loadScene(writeInput(input, ".yaml")); }
+void parseAllowedCollisions(const std::string& input) { collision::loadAllowedCollisions(writeInput(input, ".yaml")); }
+void parseJointPath(const std::string& input) { trajectory::readJointPathCsv(writeInput(input, ".csv")); }
+void parseRtdeLog(const std::string& input) { model::readLog(writeInput(input, ".csv")); }
+void parseHeaderlessLog(const std::string& input) {
+  model::LogReadOptions options;
+  options.columns = model::parseColumnMap("ur10e_real");
+  model::readLog(writeInput(input, ".csv"), options);
+}
+void parseColumnMap(const std::string& input) { model::parseColumnMap(input); }
+void parseForceTransfer(const std::string& input) { model::readForceTransferData(writeInput(input, ".csv")); }
+void parseModel(const std::string& input) { model::parseModelYaml(input, "fuzz_model.yaml"); }
+void parseSuite(const std::string& input) { benchmarks::loadSuite(writeInput(input, ".yaml")); }
+void parseNumbers(const std::string& input) { parseNumberList(input, "--joints"); }
+
+}  // namespace
+
+const std::vector<ParserTarget>& parserTargets() {
+  static const std::vector<ParserTarget> targets{
+      {"urdf", ".urdf", parseUrdf},
+      {"scene", ".yaml", parseScene},
+      {"allowed_collisions", ".yaml", parseAllowedCollisions},
+      {"joint_path", ".csv", parseJointPath},
+      {"rtde_log", ".csv", parseRtdeLog},
+      {"headerless_log", ".csv", parseHeaderlessLog},
+      {"column_map", "", parseColumnMap},
+      {"force_transfer", ".csv", parseForceTransfer},
+      {"model", ".yaml", parseModel},
+      {"suite", ".yaml", parseSuite},
+      {"number_list", "", parseNumbers},
+  };
+  return targets;
+}
+
+const ParserTarget& parserTarget(const std::string& name) {
+  for (const auto& target : parserTargets()) {
+    if (target.name == name) return target;
+  }
+  throw std::out_of_range("unknown fuzz target " + name);
+}
+
+bool runParserTarget(const ParserTarget& target, std::string_view input) {
+  try {
+    target.parse(std::string(input));
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+}  // namespace arcplan::fuzz
