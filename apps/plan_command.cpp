@@ -1,5 +1,9 @@
 // arcplan plan — solve one scene query with the arc planner or an OMPL planner (DESIGN.md §9): status,
 // reason, the DESIGN.md §6 metrics of the path, and the joint path as CSV.
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -9,10 +13,6 @@
 #include <memory>
 #include <optional>
 #include <sstream>
-
-#include <ompl/geometric/PathGeometric.h>
-#include <ompl/util/Console.h>
-#include <ompl/util/RandomNumbers.h>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/common/error.h"
@@ -49,17 +49,25 @@ std::string statusName(const ompl::base::PlannerStatus& status, bool haveExact) 
 }
 
 // Why an OMPL planner ended without an exact path.
-std::string omplReason(const ompl::base::PlannerStatus& status, const ompl::geometric::SimpleSetup& setup, double time) {
+std::string omplReason(const ompl::base::PlannerStatus& status, const ompl::geometric::SimpleSetup& setup,
+                       double time) {
   std::ostringstream reason;
   switch (ompl::base::PlannerStatus::StatusType(status)) {
     case ompl::base::PlannerStatus::APPROXIMATE_SOLUTION:
       reason << "no exact path within " << time << " s; the best path ends "
              << setup.getProblemDefinition()->getSolutionDifference() << " (joint-space distance) from the goal";
       break;
-    case ompl::base::PlannerStatus::TIMEOUT: reason << "no path within the time limit of " << time << " s"; break;
-    case ompl::base::PlannerStatus::INVALID_START: reason << "invalid start state"; break;
-    case ompl::base::PlannerStatus::INVALID_GOAL: reason << "invalid goal state"; break;
-    default: reason << "planner status: " << status.asString();
+    case ompl::base::PlannerStatus::TIMEOUT:
+      reason << "no path within the time limit of " << time << " s";
+      break;
+    case ompl::base::PlannerStatus::INVALID_START:
+      reason << "invalid start state";
+      break;
+    case ompl::base::PlannerStatus::INVALID_GOAL:
+      reason << "invalid goal state";
+      break;
+    default:
+      reason << "planner status: " << status.asString();
   }
   return reason.str();
 }
@@ -94,8 +102,8 @@ nlohmann::json arcDetails(const planners::ArcPlannerResult& result) {
 
 void printSummary(const nlohmann::json& document, const std::string& reason, const planners::ArcPlanner* arc,
                   const PlanOptions& options, std::size_t waypoints) {
-  std::cout << "plan: scene " << document["scene"].get<std::string>() << ", query " << document["query"].get<std::string>()
-            << ", planner " << document["planner"].get<std::string>() << "\n"
+  std::cout << "plan: scene " << document["scene"].get<std::string>() << ", query "
+            << document["query"].get<std::string>() << ", planner " << document["planner"].get<std::string>() << "\n"
             << "status              " << document["status"].get<std::string>() << "\n";
   if (!reason.empty()) std::cout << "reason              " << reason << "\n";
   std::cout << std::setprecision(6) << "solve time          " << document["solve_time_s"].get<double>() << " s\n";
@@ -185,7 +193,8 @@ void runPlan(const PlanOptions& options) {
       for (const robot::Vector6& q : dense.waypoints) minClearance = std::min(minClearance, clearance(q));
       document["tcp_path_length_m"] = dense.tcpArcLength.back();
       document["joint_path_length_rad"] = trajectory::jointPathLength(path);
-      document["min_clearance_m"] = std::isfinite(minClearance) ? nlohmann::json(minClearance) : nlohmann::json(nullptr);
+      document["min_clearance_m"] =
+          std::isfinite(minClearance) ? nlohmann::json(minClearance) : nlohmann::json(nullptr);
     }
   }
 
@@ -210,12 +219,15 @@ void registerPlanCommand(CLI::App& app) {
       "plan",
       "Plan a scene query with the arc planner (thesis ch. 3) or an OMPL planner; report status, reason, "
       "solve time, TCP/joint path length and clearance; write the joint path");
-  command->add_option("--scene", options->scene, "scene YAML (a path, or a name under data/, e.g. scenes/thesis_obstacle.yaml)")
+  command
+      ->add_option("--scene", options->scene,
+                   "scene YAML (a path, or a name under data/, e.g. scenes/thesis_obstacle.yaml)")
       ->required();
   command->add_option("--query", options->query, "query name in the scene (default: the first)");
-  command->add_option("--planner", options->planner,
-                      "planner: arc, RRTConnect, RRT, RRTstar, PRM, PRMstar, LazyPRM, BKPIECE1, KPIECE1, EST, SBL, "
-                      "BiTRRT, InformedRRTstar, BITstar, ... (case-insensitive)")
+  command
+      ->add_option("--planner", options->planner,
+                   "planner: arc, RRTConnect, RRT, RRTstar, PRM, PRMstar, LazyPRM, BKPIECE1, KPIECE1, EST, SBL, "
+                   "BiTRRT, InformedRRTstar, BITstar, ... (case-insensitive)")
       ->capture_default_str();
   command->add_option("--param", options->parameters,
                       "planner parameter NAME=VALUE, repeatable (arc: sagitta, half_chord, entry_radius, exit_radius, "
@@ -223,8 +235,9 @@ void registerPlanCommand(CLI::App& app) {
   command->add_option("--time", options->time, "time limit for solving [s]")->capture_default_str();
   command->add_option("--seed", options->seed,
                       "seed of OMPL's random numbers, for reproducible sampling planners (set once per process)");
-  command->add_option("--vmax", options->maxTcpSpeed,
-                      "also time-scale the path (PCHIP) under this TCP speed limit [m/s] and report the scaled metrics");
+  command->add_option(
+      "--vmax", options->maxTcpSpeed,
+      "also time-scale the path (PCHIP) under this TCP speed limit [m/s] and report the scaled metrics");
   command->add_option("--json", options->json, "write the result as JSON to this file ('-' for stdout)");
   command->add_option("--path-csv", options->pathCsv, "write the joint path (q0..q5 per waypoint) as CSV");
   command->add_flag("--verbose", options->verbose, "show OMPL's informational messages");

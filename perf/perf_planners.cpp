@@ -5,15 +5,15 @@
 // sampling planner's mean is dominated by its rare long runs. ArcVsRRTConnect alternates the two
 // planners in one loop and reports the ratio of their medians (`speedup`).
 // Run: build/perf/arcplan_perf --benchmark_filter=Planner
+#include <benchmark/benchmark.h>
+#include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/util/Console.h>
+
 #include <algorithm>
 #include <chrono>
 #include <map>
 #include <memory>
 #include <vector>
-
-#include <benchmark/benchmark.h>
-#include <ompl/base/PlannerTerminationCondition.h>
-#include <ompl/util/Console.h>
 
 #include "arcplan/common/resources.h"
 #include "arcplan/planners/planner_registry.h"
@@ -54,7 +54,7 @@ double median(std::vector<double> values) {
 
 ompl::base::PlannerPtr planner(PlanningProblem& planning, const std::string& name, const Parameters& parameters) {
   auto instance = arcplan::planners::makePlanner(name, planning.setup->getSpaceInformation(), planning.plannerContext(),
-                                                  parameters);
+                                                 parameters);
   instance->setProblemDefinition(planning.setup->getProblemDefinition());
   instance->setup();
   return instance;
@@ -69,7 +69,8 @@ void solveRepeatedly(benchmark::State& state, const std::string& sceneName, cons
   state.counters["median_us"] = median(times);
 }
 
-const Parameters kThesisShape{{"sagitta", "0.1"}, {"half_chord", "0.2"}, {"entry_radius", "0.1"}, {"exit_radius", "0.2"}};
+const Parameters kThesisShape{
+    {"sagitta", "0.1"}, {"half_chord", "0.2"}, {"entry_radius", "0.1"}, {"exit_radius", "0.2"}};
 
 void PlannerArcThesisShape(benchmark::State& state) { solveRepeatedly(state, "thesis_obstacle", "arc", kThesisShape); }
 BENCHMARK(PlannerArcThesisShape)->Unit(benchmark::kMicrosecond);
@@ -106,6 +107,11 @@ void PlannerArcVsRRTConnect(benchmark::State& state) {
   state.counters["rrtconnect_median_us"] = median(rrtConnectTimes);
   state.counters["speedup"] = median(rrtConnectTimes) / median(arcTimes);
 }
-BENCHMARK(PlannerArcVsRRTConnect)->Arg(0)->Arg(1)->ArgName("check_motions")->Unit(benchmark::kMicrosecond)->Iterations(400);
+BENCHMARK(PlannerArcVsRRTConnect)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("check_motions")
+    ->Unit(benchmark::kMicrosecond)
+    ->Iterations(400);
 
 }  // namespace

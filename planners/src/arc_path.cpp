@@ -48,9 +48,7 @@ Eigen::Vector2d PlanarArc::tangent(double fraction) const {
   return direction * Eigen::Vector2d(-std::sin(angle), std::cos(angle));
 }
 
-double ArcDetourProfile::arcLength() const {
-  return arcs[0].length() + arcs[1].length() + arcs[2].length();
-}
+double ArcDetourProfile::arcLength() const { return arcs[0].length() + arcs[1].length() + arcs[2].length(); }
 
 double ArcDetourProfile::extraLength() const { return arcLength() - (entryOffset + exitOffset); }
 
@@ -124,16 +122,17 @@ ArcPath::ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, 
     const double exit = detour.position + profile.exitOffset;
     if (entry < lineStart - kLengthTolerance) {
       std::ostringstream message;
-      message << where.str() << ": the entry arc leaves the line bx2 = " << profile.entryOffset << " m before O, but only "
-              << detour.position - lineStart << " m are free before O"
+      message << where.str() << ": the entry arc leaves the line bx2 = " << profile.entryOffset
+              << " m before O, but only " << detour.position - lineStart << " m are free before O"
               << (i == 0 ? " (|AO|)" : " (after the previous detour)")
               << "; reduce half_chord, sagitta or entry_radius";
       throw Error(message.str());
     }
     if (exit > straightLength_ + kLengthTolerance) {
       std::ostringstream message;
-      message << where.str() << ": the exit arc rejoins the line bx3 = " << profile.exitOffset << " m after O, but |OB| = "
-              << straightLength_ - detour.position << " m; reduce half_chord, sagitta or exit_radius";
+      message << where.str() << ": the exit arc rejoins the line bx3 = " << profile.exitOffset
+              << " m after O, but |OB| = " << straightLength_ - detour.position
+              << " m; reduce half_chord, sagitta or exit_radius";
       throw Error(message.str());
     }
     addLine(lineStart, entry);

@@ -1,14 +1,14 @@
 #include "arcplan/planners/arc_planner.h"
 
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/util/Console.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <sstream>
-
-#include <ompl/base/PlannerData.h>
-#include <ompl/base/goals/GoalSampleableRegion.h>
-#include <ompl/util/Console.h>
 
 #include "arcplan/common/error.h"
 #include "arcplan/robot/kinematics.h"
@@ -67,17 +67,22 @@ std::size_t insertSorted(std::vector<Detour>& detours, const Detour& detour) {
 // on which the robot hits it.
 struct ArcPlanner::Blockage {
   const ObstacleBall* obstacle = nullptr;
-  double position = 0.0;               // O: the line point nearest the obstacle's bounding-ball centre
-  double from = 0.0, to = 0.0;         // blocked stretch
-  robot::Vector6 joints;               // a blocked configuration on the line (IK seed for detours)
-  std::string pairs;                   // the colliding pairs there
+  double position = 0.0;        // O: the line point nearest the obstacle's bounding-ball centre
+  double from = 0.0, to = 0.0;  // blocked stretch
+  robot::Vector6 joints;        // a blocked configuration on the line (IK seed for detours)
+  std::string pairs;            // the colliding pairs there
 };
 
 // State of one solve() call.
 struct ArcPlanner::Search {
   Search(ArcPlanner& planner, const ob::PlannerTerminationCondition& ptc)
-      : planner(planner), ptc(ptc), si(*planner.si_), model(*planner.collisionModel_), data(model),
-        previousState(si.allocState()), state(si.allocState()) {}
+      : planner(planner),
+        ptc(ptc),
+        si(*planner.si_),
+        model(*planner.collisionModel_),
+        data(model),
+        previousState(si.allocState()),
+        state(si.allocState()) {}
   ~Search() {
     si.freeState(previousState);
     si.freeState(state);
@@ -152,7 +157,8 @@ struct ArcPlanner::Search {
   }
 };
 
-ArcPlanner::ArcPlanner(const ob::SpaceInformationPtr& si, std::shared_ptr<const collision::CollisionModel> collisionModel,
+ArcPlanner::ArcPlanner(const ob::SpaceInformationPtr& si,
+                       std::shared_ptr<const collision::CollisionModel> collisionModel,
                        const std::vector<collision::Obstacle>& obstacles)
     : ob::Planner(si, "arc"), collisionModel_(std::move(collisionModel)), ik_(collisionModel_->robot()) {
   for (const collision::Obstacle& obstacle : obstacles) {
@@ -164,7 +170,8 @@ ArcPlanner::ArcPlanner(const ob::SpaceInformationPtr& si, std::shared_ptr<const 
   specs_.directed = true;
   declareParam<double>("sagitta", this, &ArcPlanner::setSagitta, &ArcPlanner::getSagitta, "0.:0.01:1.");
   declareParam<double>("half_chord", this, &ArcPlanner::setHalfChord, &ArcPlanner::getHalfChord, "0.01:0.01:1.");
-  declareParam<double>("entry_radius", this, &ArcPlanner::setEntryRadius, &ArcPlanner::getEntryRadius, "0.005:0.005:1.");
+  declareParam<double>("entry_radius", this, &ArcPlanner::setEntryRadius, &ArcPlanner::getEntryRadius,
+                       "0.005:0.005:1.");
   declareParam<double>("exit_radius", this, &ArcPlanner::setExitRadius, &ArcPlanner::getExitRadius, "0.005:0.005:1.");
   declareParam<double>("plane_angle", this, &ArcPlanner::setPlaneAngle, &ArcPlanner::getPlaneAngle, "-3.14:0.1:3.14");
   declareParam<double>("resolution", this, &ArcPlanner::setResolution, &ArcPlanner::getResolution, "0.001:0.001:0.1");
@@ -183,7 +190,9 @@ void ArcPlanner::setExitRadius(double radius) { shape_.exitRadius = checkedParam
 void ArcPlanner::setResolution(double resolution) {
   conversion_.resolution = checkedParameter("resolution", resolution, false);
 }
-void ArcPlanner::setMaxJointStep(double step) { conversion_.maxJointStep = checkedParameter("max_joint_step", step, false); }
+void ArcPlanner::setMaxJointStep(double step) {
+  conversion_.maxJointStep = checkedParameter("max_joint_step", step, false);
+}
 void ArcPlanner::setPlaneAngle(double angle) {
   if (!std::isfinite(angle)) throw Error("arc planner parameter plane_angle must be a finite number (rad)");
   planeAngle_ = angle;
@@ -230,11 +239,13 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
                 "no valid start state (it is missing, outside the joint limits or in collision)");
   }
   if (dynamic_cast<const ob::GoalSampleableRegion*>(pdef_->getGoal().get()) == nullptr) {
-    return fail(ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE, "the goal must be a goal state (or a sampleable goal region)");
+    return fail(ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE,
+                "the goal must be a goal state (or a sampleable goal region)");
   }
   const ob::State* goalState = pis_.nextGoal(ptc);
   if (goalState == nullptr) {
-    return fail(ob::PlannerStatus::INVALID_GOAL, "no valid goal state (it is outside the joint limits or in collision)");
+    return fail(ob::PlannerStatus::INVALID_GOAL,
+                "no valid goal state (it is outside the joint limits or in collision)");
   }
   search.start = search.toJoints(startState);
   search.goal = search.toJoints(goalState);
@@ -255,8 +266,8 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
   std::vector<Detour> detours;  // ascending along the line
   std::vector<Blockage> blockages;
   for (const ObstacleBall& obstacle : obstacles_) {
-    const double u = std::clamp((obstacle.center - search.a.translation()).dot(line.lineDirection()), 0.0,
-                                line.straightLength());
+    const double u =
+        std::clamp((obstacle.center - search.a.translation()).dot(line.lineDirection()), 0.0, line.straightLength());
     const double fraction = line.straightLength() > 0.0 ? u / line.straightLength() : 0.0;
     const robot::Vector6 seed = search.start + fraction * (search.goal - search.start);
     const std::optional<robot::Vector6> q = ik_.solveNearest(line.pose(u), seed);
@@ -273,7 +284,8 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
             << blocked.pairs << ")";
     std::string failure;
     const std::optional<Detour> detour = chooseDetour(search, detours, blocked, failure);
-    if (!detour) return fail(ptc() ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::ABORT, context.str() + ": " + failure);
+    if (!detour)
+      return fail(ptc() ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::ABORT, context.str() + ": " + failure);
     insertSorted(detours, *detour);
     result_.obstacles.push_back(blocked.obstacle->name);
   }
@@ -309,7 +321,8 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
     if (ptc()) return fail(ob::PlannerStatus::TIMEOUT, "time limit reached before a valid path was found");
     const std::string where = detours.empty() ? "straight line" : "arc path";
     if (walked.status != ConversionStatus::Rejected) {
-      return fail(ob::PlannerStatus::ABORT, std::string(toString(walked.status)) + " on the " + where + ": " + walked.reason);
+      return fail(ob::PlannerStatus::ABORT,
+                  std::string(toString(walked.status)) + " on the " + where + ": " + walked.reason);
     }
     const double failedAt = walked.failedAtArcLength;
     const collision::CollisionReport pairs = search.rejectedPairs();
@@ -320,8 +333,9 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
       const auto [from, to] = path->detourSpan(i);
       if (failedAt > from && failedAt <= to + 1e-12) {
         std::ostringstream message;
-        message << "collision on arc detour " << i + 1 << " around '" << result_.obstacles[std::min(i, result_.obstacles.size() - 1)]
-                << "' at TCP arc length " << failedAt << " m (" << describeCollisions(pairs) << ")";
+        message << "collision on arc detour " << i + 1 << " around '"
+                << result_.obstacles[std::min(i, result_.obstacles.size() - 1)] << "' at TCP arc length " << failedAt
+                << " m (" << describeCollisions(pairs) << ")";
         return fail(ob::PlannerStatus::ABORT, message.str());
       }
     }
@@ -339,13 +353,14 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
     }
     // On a line piece the TCP is at distance u from A along the line.
     const double u = (path->position(failedAt) - search.a.translation()).dot(line.lineDirection());
-    const double position = std::clamp((obstacle->center - search.a.translation()).dot(line.lineDirection()), 0.0,
-                                       line.straightLength());
+    const double position =
+        std::clamp((obstacle->center - search.a.translation()).dot(line.lineDirection()), 0.0, line.straightLength());
     Blockage blocked = blockage(search, line, *obstacle, u, search.rejectedJoints, pairs);
     blocked.position = position;
     std::string failure;
     const std::optional<Detour> detour = chooseDetour(search, detours, blocked, failure);
-    if (!detour) return fail(ptc() ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::ABORT, context.str() + ": " + failure);
+    if (!detour)
+      return fail(ptc() ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::ABORT, context.str() + ": " + failure);
     const std::size_t index = insertSorted(detours, *detour);
     result_.obstacles.insert(result_.obstacles.begin() + static_cast<std::ptrdiff_t>(index), obstacle->name);
     double entry = 0.0;
@@ -475,6 +490,11 @@ std::optional<Detour> ArcPlanner::chooseDetour(Search& search, const std::vector
         nearest = s;
       }
     }
+    // The thesis' circumscribed ball: the TCP stays outside the obstacle's bounding ball.
+    if (std::sqrt(nearestDistance) < blocked.obstacle->radius) {
+      failures["TCP inside the bounding ball"]++;
+      continue;
+    }
     const std::optional<robot::Vector6> probe = ik_.solveNearest(path->pose(nearest), blocked.joints);
     if (probe && !collision::isCollisionFree(*collisionModel_, search.data, *probe)) {
       collisionFailure(*probe);
@@ -543,7 +563,8 @@ void ArcPlanner::getPlannerData(ob::PlannerData& data) const {
   data.properties["arc detours INTEGER"] = std::to_string(result_.detours.size());
   data.properties["arc candidates INTEGER"] = std::to_string(result_.candidatesTried);
   data.properties["arc analytic length REAL"] = number(result_.tcpPathLength);
-  const Detour first = result_.detours.empty() ? Detour{0.0, ArcParameters{0.0, 0.0, 0.0, 0.0}, 0.0} : result_.detours[0];
+  const Detour first =
+      result_.detours.empty() ? Detour{0.0, ArcParameters{0.0, 0.0, 0.0, 0.0}, 0.0} : result_.detours[0];
   data.properties["arc sagitta REAL"] = number(first.shape.sagitta);
   data.properties["arc half chord REAL"] = number(first.shape.halfChord);
   data.properties["arc entry radius REAL"] = number(first.shape.entryRadius);

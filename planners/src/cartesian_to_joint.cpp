@@ -12,10 +12,15 @@ namespace {
 constexpr double kGoalTolerance = 1e-6;  // rad per joint
 
 class Converter {
-public:
+ public:
   Converter(const robot::UrInverseKinematics& ik, const ArcPath& path, const JointConversionOptions& options,
             const std::optional<robot::Vector6>& goal, const WaypointCheck& check, JointWaypoints& result)
-      : ik_(ik), path_(path), options_(options), goal_(goal), check_(check), result_(result),
+      : ik_(ik),
+        path_(path),
+        options_(options),
+        goal_(goal),
+        check_(check),
+        result_(result),
         branch_(ik.branchOf(result.joints.front())) {}
 
   // Appends the waypoint at `arcLength` (and bisection points before it); false on failure.
@@ -27,7 +32,8 @@ public:
     if (!q) {
       const bool reachable = !ik_.solveBranches(pose).empty();
       return fail(reachable ? ConversionStatus::JointLimits : ConversionStatus::Unreachable, arcLength,
-                  reachable ? "every IK solution is outside the joint limits" : "the TCP pose is out of reach (no IK solution)");
+                  reachable ? "every IK solution is outside the joint limits"
+                            : "the TCP pose is out of reach (no IK solution)");
     }
     int joint = 0;
     const double step = (*q - previous).cwiseAbs().maxCoeff(&joint);
@@ -66,8 +72,9 @@ public:
     const int goalBranch = ik_.branchOf(*goal_);
     if (arrivalBranch != goalBranch) {
       std::ostringstream message;
-      message << "the path stays on IK branch " << arrivalBranch << " of the start, but the goal configuration is on branch "
-              << goalBranch << " (a TCP path cannot change branch; give a goal on the start's branch)";
+      message << "the path stays on IK branch " << arrivalBranch
+              << " of the start, but the goal configuration is on branch " << goalBranch
+              << " (a TCP path cannot change branch; give a goal on the start's branch)";
       return fail(ConversionStatus::BranchChange, arcLength, message.str());
     }
     const double difference = (arrival - *goal_).cwiseAbs().maxCoeff();
@@ -89,7 +96,7 @@ public:
     return false;
   }
 
-private:
+ private:
   const robot::UrInverseKinematics& ik_;
   const ArcPath& path_;
   const JointConversionOptions& options_;
@@ -103,13 +110,20 @@ private:
 
 const char* toString(ConversionStatus status) {
   switch (status) {
-    case ConversionStatus::Success: return "success";
-    case ConversionStatus::Unreachable: return "unreachable";
-    case ConversionStatus::JointLimits: return "joint limits";
-    case ConversionStatus::JointJump: return "joint jump";
-    case ConversionStatus::BranchChange: return "branch change";
-    case ConversionStatus::GoalMismatch: return "goal mismatch";
-    case ConversionStatus::Rejected: return "rejected";
+    case ConversionStatus::Success:
+      return "success";
+    case ConversionStatus::Unreachable:
+      return "unreachable";
+    case ConversionStatus::JointLimits:
+      return "joint limits";
+    case ConversionStatus::JointJump:
+      return "joint jump";
+    case ConversionStatus::BranchChange:
+      return "branch change";
+    case ConversionStatus::GoalMismatch:
+      return "goal mismatch";
+    case ConversionStatus::Rejected:
+      return "rejected";
   }
   return "unknown";
 }

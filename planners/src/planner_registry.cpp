@@ -1,10 +1,5 @@
 #include "arcplan/planners/planner_registry.h"
 
-#include <algorithm>
-#include <cctype>
-#include <functional>
-#include <map>
-
 #include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
 #include <ompl/geometric/planners/est/ProjEST.h>
@@ -34,6 +29,11 @@
 #include <ompl/geometric/planners/rrt/TRRT.h>
 #include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/geometric/planners/stride/STRIDE.h>
+
+#include <algorithm>
+#include <cctype>
+#include <functional>
+#include <map>
 
 #include "arcplan/common/error.h"
 #include "arcplan/planners/arc_planner.h"
@@ -148,10 +148,11 @@ void setPlannerParameters(ob::Planner& planner, const std::vector<std::pair<std:
       planner.params().getParams(current);
       std::vector<std::string> valid;
       for (const auto& [parameter, setting] : current) valid.push_back(parameter + "=" + setting);
-      throw Error("planner " + planner.getName() + " has no parameter '" + key + "'; its parameters: " +
-                  (valid.empty() ? std::string("(none)") : joined(valid)));
+      throw Error("planner " + planner.getName() + " has no parameter '" + key +
+                  "'; its parameters: " + (valid.empty() ? std::string("(none)") : joined(valid)));
     }
-    const std::string rejected = "planner " + planner.getName() + ": parameter '" + key + "' does not accept '" + value + "'";
+    const std::string rejected =
+        "planner " + planner.getName() + ": parameter '" + key + "' does not accept '" + value + "'";
     bool accepted = false;
     try {
       accepted = planner.params().setParam(key, value);

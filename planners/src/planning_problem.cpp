@@ -1,10 +1,10 @@
 #include "arcplan/planners/planning_problem.h"
 
+#include <ompl/base/ScopedState.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-
-#include <ompl/base/ScopedState.h>
 
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"

@@ -1,14 +1,14 @@
 #pragma once
 // Shared helpers of the planner tests: the thesis scenes as OMPL problems, solving with a planner
 // from the registry, and reading a solution back as joints and TCP poses.
+#include <ompl/geometric/PathGeometric.h>
+
 #include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <ompl/geometric/PathGeometric.h>
 
 #include "arcplan/collision/scene.h"
 #include "arcplan/planners/planning_problem.h"
@@ -34,7 +34,8 @@ inline std::pair<ompl::base::PlannerPtr, ompl::base::PlannerStatus> solve(
     planners::PlanningProblem& problem, const std::string& planner,
     const std::vector<std::pair<std::string, std::string>>& parameters = {}, double time = 5.0) {
   problem.setup->clear();
-  auto instance = planners::makePlanner(planner, problem.setup->getSpaceInformation(), problem.plannerContext(), parameters);
+  auto instance =
+      planners::makePlanner(planner, problem.setup->getSpaceInformation(), problem.plannerContext(), parameters);
   problem.setup->setPlanner(instance);
   problem.setup->setup();
   const auto status = problem.setup->solve(time);
@@ -45,7 +46,8 @@ inline std::vector<robot::Vector6> jointsOf(const ompl::geometric::PathGeometric
   std::vector<robot::Vector6> joints;
   for (std::size_t i = 0; i < path.getStateCount(); ++i) {
     robot::Vector6 q;
-    for (int j = 0; j < 6; ++j) q[j] = *path.getSpaceInformation()->getStateSpace()->getValueAddressAtIndex(path.getState(i), j);
+    for (int j = 0; j < 6; ++j)
+      q[j] = *path.getSpaceInformation()->getStateSpace()->getValueAddressAtIndex(path.getState(i), j);
     joints.push_back(q);
   }
   return joints;

@@ -1,10 +1,10 @@
 // The arc detour geometry against the thesis (Table 3.1, the lengths of Table 3.3 / DESIGN.md §4)
 // and against properties any correct construction must have (C¹ junctions, clearance, lengths).
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <functional>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "arcplan/common/error.h"
 #include "arcplan/planners/arc_path.h"
@@ -36,7 +36,8 @@ ArcParameters thesisShape(double sagittaFactor) {
 }
 
 ArcPath thesisPath(double sagittaFactor, double planeAngle = 0.0) {
-  return ArcPath(toolDownAt(kA), toolDownAt(kB), {Detour{thesisObstacleDistance(), thesisShape(sagittaFactor), planeAngle}});
+  return ArcPath(toolDownAt(kA), toolDownAt(kB),
+                 {Detour{thesisObstacleDistance(), thesisShape(sagittaFactor), planeAngle}});
 }
 
 // Expected length written out independently of the library: the main circle passes through (±r, 0)
@@ -255,7 +256,10 @@ TEST(ArcPath, ChainedDetoursAddTheirExtraLengths) {
 }
 
 TEST(ArcPath, InvalidParametersAreRejectedWithTheirName) {
-  EXPECT_NE(errorMessage([] { makeArcDetourProfile({0.3, 0.2, 0.1, 0.2}); }).find("h <= half_chord"), std::string::npos);
+  EXPECT_NE(errorMessage([] {
+              makeArcDetourProfile({0.3, 0.2, 0.1, 0.2});
+            }).find("h <= half_chord"),
+            std::string::npos);
   EXPECT_NE(errorMessage([] { makeArcDetourProfile({0.0, 0.2, 0.1, 0.2}); }).find("sagitta"), std::string::npos);
   EXPECT_NE(errorMessage([] { makeArcDetourProfile({0.1, 0.2, -0.1, 0.2}); }).find("entry_radius"), std::string::npos);
   EXPECT_NE(errorMessage([] { makeArcDetourProfile({0.1, 0.2, 0.1, NAN}); }).find("exit_radius"), std::string::npos);

@@ -1,12 +1,12 @@
 // ArcPlanner as an OMPL planner: straight line when free, the thesis detour around the particle,
 // chained detours, solid obstacles, the auto search, reasons for failure, the termination
 // condition, planner data and ompl::tools::Benchmark.
-#include <cmath>
-
 #include <gtest/gtest.h>
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/tools/benchmark/Benchmark.h>
+
+#include <cmath>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/common/error.h"
@@ -77,8 +77,8 @@ TEST(ArcPlanner, FreeLineIsTheStraightTcpLine) {
 
 TEST(ArcPlanner, ThesisParticleGetsTheGivenDetourAtO) {
   auto problem = thesisProblem("thesis_obstacle");
-  const auto [planner, status] =
-      solve(problem, "arc", {{"sagitta", "0.1"}, {"half_chord", "0.2"}, {"entry_radius", "0.1"}, {"exit_radius", "0.2"}});
+  const auto [planner, status] = solve(
+      problem, "arc", {{"sagitta", "0.1"}, {"half_chord", "0.2"}, {"entry_radius", "0.1"}, {"exit_radius", "0.2"}});
   ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
   const auto& result = arcOf(planner).lastResult();
   EXPECT_EQ(result.kind, ArcPlannerResult::Kind::Detour);
@@ -157,8 +157,8 @@ TEST(ArcPlanner, RunsInOmplBenchmarkNextToRRTConnect) {
   ompl::tools::Benchmark benchmark(*problem.setup, "arc_vs_rrtconnect");
   benchmark.addPlanner(arcplan::planners::makePlanner("arc", problem.setup->getSpaceInformation(),
                                                       problem.plannerContext(), {{"sagitta", "0.1"}}));
-  benchmark.addPlanner(arcplan::planners::makePlanner("RRTConnect", problem.setup->getSpaceInformation(),
-                                                      problem.plannerContext()));
+  benchmark.addPlanner(
+      arcplan::planners::makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext()));
   ompl::tools::Benchmark::Request request(2.0, 1024.0, 2, 0.05, false, false, false);
   benchmark.benchmark(request);
   const auto& experiment = benchmark.getRecordedExperimentData();
@@ -232,9 +232,10 @@ TEST(ArcPlanner, CollisionOnTheDetourNamesThePair) {
 }
 
 TEST(ArcPlanner, ChainsDetoursAroundSeveralObstacles) {
-  auto problem = freeSceneWith({sphere("first", thesisLinePoint(-0.2), 0.01), sphere("second", thesisLinePoint(0.2), 0.01)});
-  const auto [planner, status] =
-      solve(problem, "arc", {{"sagitta", "0.08"}, {"half_chord", "0.1"}, {"entry_radius", "0.05"}, {"exit_radius", "0.05"}});
+  auto problem =
+      freeSceneWith({sphere("first", thesisLinePoint(-0.2), 0.01), sphere("second", thesisLinePoint(0.2), 0.01)});
+  const auto [planner, status] = solve(
+      problem, "arc", {{"sagitta", "0.08"}, {"half_chord", "0.1"}, {"entry_radius", "0.05"}, {"exit_radius", "0.05"}});
   ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
   const auto& result = arcOf(planner).lastResult();
   EXPECT_EQ(result.obstacles, (std::vector<std::string>{"first", "second"}));
@@ -274,6 +275,27 @@ TEST(ArcPlanner, AutoFindsAShorterValidDetourThanTheThesisShapes) {
   const auto [bounded, boundedStatus] = solve(problem, "arc", {{"auto", "1"}, {"sagitta", "0.1"}});
   ASSERT_EQ(boundedStatus, ob::PlannerStatus::EXACT_SOLUTION);
   EXPECT_GE(arcOf(bounded).lastResult().detours[0].shape.sagitta, 0.1);
+}
+
+TEST(ArcPlanner, AutoKeepsTheTcpOutsideTheCircumscribedBall) {
+  // A thin vertical rod through the line: a small sideways detour would miss the rod itself, but the
+  // thesis' circumscribed ball (radius half the rod's length) must stay clear of the TCP.
+  const Eigen::Vector3d center = thesisLinePoint(0.0);
+  arcplan::collision::Obstacle rod;
+  rod.name = "rod";
+  rod.shape = arcplan::collision::Obstacle::Shape::Cylinder;
+  rod.radius = 0.005;
+  rod.length = 0.2;
+  rod.pose.translation() = center;
+  auto problem = freeSceneWith({rod});
+  const auto [planner, status] = solve(problem, "arc");
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+  ASSERT_EQ(arcOf(planner).lastResult().detours.size(), 1u);
+  const double ballRadius = std::hypot(0.005, 0.1);
+  for (const auto& pose : tcpPoses(jointsOf(problem.setup->getSolutionPath()))) {
+    EXPECT_GE((pose.translation() - center).norm(), ballRadius);
+  }
+  EXPECT_TRUE(problem.setup->getSolutionPath().check());
 }
 
 TEST(ArcPlanner, AutoSaysWhyWhenNoDetourWorks) {

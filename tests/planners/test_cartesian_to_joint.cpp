@@ -1,8 +1,8 @@
 // TCP paths to joints on the start's IK branch: every waypoint reproduces its pose (FK), joint steps
 // stay bounded, and each failure mode is reported with its reason.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "arcplan/planners/cartesian_to_joint.h"
 #include "arcplan/robot/kinematics.h"

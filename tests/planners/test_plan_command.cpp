@@ -1,10 +1,10 @@
 // `arcplan plan` end to end: results, files, determinism with --seed, and every bad-input error.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
-#include <string>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "arcplan/trajectory/joint_path.h"
 #include "support/command.h"
@@ -63,8 +63,8 @@ TEST(PlanCommand, SeedMakesASamplingPlannerReproducible) {
 }
 
 TEST(PlanCommand, VmaxAddsTheScaledMetrics) {
-  const auto result = runArcplan({"plan", "--scene", scene("thesis_obstacle"), "--param", "sagitta=0.1", "--vmax",
-                                  "0.25", "--json", "-"});
+  const auto result = runArcplan(
+      {"plan", "--scene", scene("thesis_obstacle"), "--param", "sagitta=0.1", "--vmax", "0.25", "--json", "-"});
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const auto document = nlohmann::json::parse(result.out);
   EXPECT_GT(document["execution_time_s"].get<double>(), 0.8816 / 0.25);  // cannot beat cruising all the way
@@ -97,8 +97,10 @@ TEST(PlanCommand, BadInputIsRejectedWithAClearMessage) {
       {{"plan", "--scene", "no_such_scene.yaml"}, "no_such_scene.yaml"},
       {{"plan", "--scene", scene("thesis_free"), "--planner", "RRTConect"}, "unknown planner 'RRTConect'"},
       {{"plan", "--scene", scene("thesis_free"), "--param", "range"}, "--param expects NAME=VALUE"},
-      {{"plan", "--scene", scene("thesis_free"), "--planner", "RRT", "--param", "rang=1"}, "RRT has no parameter 'rang'"},
-      {{"plan", "--scene", scene("thesis_free"), "--param", "sagitta=high"}, "parameter 'sagitta' does not accept 'high'"},
+      {{"plan", "--scene", scene("thesis_free"), "--planner", "RRT", "--param", "rang=1"},
+       "RRT has no parameter 'rang'"},
+      {{"plan", "--scene", scene("thesis_free"), "--param", "sagitta=high"},
+       "parameter 'sagitta' does not accept 'high'"},
       {{"plan", "--scene", scene("thesis_free"), "--time", "0"}, "--time must be a positive number"},
       {{"plan", "--scene", scene("thesis_free"), "--vmax", "-1"}, "--vmax must be a positive TCP speed"},
       {{"plan", "--scene", scene("thesis_free"), "--query", "nowhere"}, "nowhere"},
@@ -106,7 +108,8 @@ TEST(PlanCommand, BadInputIsRejectedWithAClearMessage) {
   for (const auto& c : cases) {
     const auto dir = freshTempDirectory("plan_bad");
     auto arguments = c.arguments;
-    arguments.insert(arguments.end(), {"--json", (dir / "out.json").string(), "--path-csv", (dir / "path.csv").string()});
+    arguments.insert(arguments.end(),
+                     {"--json", (dir / "out.json").string(), "--path-csv", (dir / "path.csv").string()});
     const auto result = runArcplan(arguments);
     EXPECT_EQ(result.exitCode, 1) << c.message;
     EXPECT_NE(result.err.find(c.message), std::string::npos) << "expected '" << c.message << "' in: " << result.err;
@@ -120,7 +123,8 @@ TEST(PlanCommand, BadInputIsRejectedWithAClearMessage) {
 TEST(PlanCommand, HelpDescribesTheOptions) {
   const auto result = runArcplan({"plan", "--help"});
   EXPECT_EQ(result.exitCode, 0);
-  for (const char* option : {"--scene", "--query", "--planner", "--param", "--time", "--seed", "--json", "--path-csv", "--vmax"}) {
+  for (const char* option :
+       {"--scene", "--query", "--planner", "--param", "--time", "--seed", "--json", "--path-csv", "--vmax"}) {
     EXPECT_NE(result.out.find(option), std::string::npos) << option;
   }
 }

@@ -1,9 +1,9 @@
 // The planner registry: names, allocation, parameters by name and their errors.
-#include <string>
-
 #include <gtest/gtest.h>
 #include <ompl/geometric/planners/prm/PRM.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
+
+#include <string>
 
 #include "arcplan/common/error.h"
 #include "arcplan/planners/planner_registry.h"
@@ -27,8 +27,8 @@ TEST(PlannerRegistry, HasTheArcPlannerFirstAndTheRequiredOmplPlanners) {
   const auto& names = plannerNames();
   ASSERT_FALSE(names.empty());
   EXPECT_EQ(names.front(), "arc");
-  for (const char* required : {"RRT", "RRTConnect", "RRTstar", "PRM", "PRMstar", "LazyPRM", "BKPIECE1", "KPIECE1", "EST",
-                               "SBL", "BiTRRT", "InformedRRTstar", "BITstar"}) {
+  for (const char* required : {"RRT", "RRTConnect", "RRTstar", "PRM", "PRMstar", "LazyPRM", "BKPIECE1", "KPIECE1",
+                               "EST", "SBL", "BiTRRT", "InformedRRTstar", "BITstar"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
   }
 }
@@ -57,7 +57,8 @@ TEST(PlannerRegistry, NamesMatchIgnoringCaseAndUnknownNamesListTheKnownOnes) {
 
 TEST(PlannerRegistry, ParametersAreSetByName) {
   auto problem = thesisProblem("thesis_free");
-  const auto rrt = makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"range", "0.2"}});
+  const auto rrt =
+      makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"range", "0.2"}});
   EXPECT_DOUBLE_EQ(dynamic_cast<ompl::geometric::RRTConnect&>(*rrt).getRange(), 0.2);
   const auto prm = makePlanner("PRM", problem.setup->getSpaceInformation(), problem.plannerContext(),
                                {{"max_nearest_neighbors", "7"}});
@@ -100,7 +101,8 @@ TEST(PlannerRegistry, ParameterAssignmentsNeedNameAndValue) {
 
 TEST(PlannerRegistry, ArcPlannerNeedsTheCollisionModel) {
   auto problem = thesisProblem("thesis_free");
-  EXPECT_NE(errorMessage([&] { plannerAllocator("arc", PlannerContext{}); }).find("collision model"), std::string::npos);
+  EXPECT_NE(errorMessage([&] { plannerAllocator("arc", PlannerContext{}); }).find("collision model"),
+            std::string::npos);
 }
 
 TEST(PlannerRegistry, RRTConnectSolvesTheThesisProblemWithAValidPath) {

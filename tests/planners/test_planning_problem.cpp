@@ -1,10 +1,10 @@
 // Scene query -> OMPL problem: endpoints from poses (seeded or default IK choice) or joints, and
 // the errors for endpoints that cannot be used.
-#include <algorithm>
-#include <string>
-
 #include <gtest/gtest.h>
 #include <ompl/base/ScopedState.h>
+
+#include <algorithm>
+#include <string>
 
 #include "arcplan/common/error.h"
 #include "arcplan/planners/planning_problem.h"
@@ -80,7 +80,8 @@ TEST(PlanningProblem, JointsAreUsedAsGiven) {
 
 TEST(PlanningProblem, JointsOutsideTheLimitsAreRejected) {
   auto scene = editableScene("thesis_free");
-  scene->queries[0].goal = QueryEndpoint{std::nullopt, std::nullopt, (Vector6() << 0, -1.5, 3.5, -1.5, -1.5, 0).finished()};
+  scene->queries[0].goal =
+      QueryEndpoint{std::nullopt, std::nullopt, (Vector6() << 0, -1.5, 3.5, -1.5, -1.5, 0).finished()};
   const std::string message = problemError(scene);
   EXPECT_NE(message.find("query 'A_to_B', goal"), std::string::npos) << message;
   EXPECT_NE(message.find("joint 2 (elbow_joint) = 3.5 rad is outside its limits"), std::string::npos) << message;
@@ -100,7 +101,8 @@ TEST(PlanningProblem, EndpointsInCollisionAreRejectedWithThePair) {
   const std::string joints = problemError(scene);
   EXPECT_NE(joints.find("start: the joint configuration is in collision ("), std::string::npos) << joints;
   // The same posture as IK seed of the pose: the seed's solution collides.
-  scene->queries[0].start = QueryEndpoint{loadTestScene("thesis_obstacle")->queries[0].start.pose, *colliding, std::nullopt};
+  scene->queries[0].start =
+      QueryEndpoint{loadTestScene("thesis_obstacle")->queries[0].start.pose, *colliding, std::nullopt};
   const std::string seeded = problemError(scene);
   EXPECT_NE(seeded.find("nearest to the seed"), std::string::npos) << seeded;
   EXPECT_NE(seeded.find("choose another seed"), std::string::npos) << seeded;
@@ -108,7 +110,8 @@ TEST(PlanningProblem, EndpointsInCollisionAreRejectedWithThePair) {
 
 TEST(PlanningProblem, UnreachablePoseIsRejected) {
   auto scene = editableScene("thesis_free");
-  scene->queries[0].goal = QueryEndpoint{std::array<double, 6>{3.0, 0.0, 0.3, 0.0, -M_PI, 0.0}, std::nullopt, std::nullopt};
+  scene->queries[0].goal =
+      QueryEndpoint{std::array<double, 6>{3.0, 0.0, 0.3, 0.0, -M_PI, 0.0}, std::nullopt, std::nullopt};
   const std::string message = problemError(scene);
   EXPECT_NE(message.find("goal: the pose is out of reach"), std::string::npos) << message;
   EXPECT_NE(message.find("thesis_free.yaml"), std::string::npos) << message;

@@ -7,15 +7,15 @@
 // MatchesTheCommittedBaseline. After an intended change, regenerate it with
 //   ARCPLAN_UPDATE_BASELINES=1 planners_tests --gtest_filter='ThesisRegression.*'
 // and commit the file with the reason.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/common/atomic_file.h"
@@ -50,7 +50,9 @@ const std::vector<ThesisCase>& thesisCases() {
 std::vector<std::pair<std::string, std::string>> parametersOf(const ThesisCase& c, double resolution = 0.0) {
   std::vector<std::pair<std::string, std::string>> parameters;
   if (c.sagittaFactor > 0.0) {
-    parameters = {{"sagitta", std::to_string(c.sagittaFactor * 0.2)}, {"half_chord", "0.2"}, {"entry_radius", "0.1"},
+    parameters = {{"sagitta", std::to_string(c.sagittaFactor * 0.2)},
+                  {"half_chord", "0.2"},
+                  {"entry_radius", "0.1"},
                   {"exit_radius", "0.2"}};
   }
   if (resolution > 0.0) parameters.emplace_back("resolution", std::to_string(resolution));
@@ -145,7 +147,8 @@ TEST(ThesisRegression, LengthConvergesToTheAnalyticValueAsTheResolutionShrinks) 
       lastMetric = tcpPathLength(r.joints);
     }
     for (std::size_t i = 1; i < polylineErrors.size(); ++i) {
-      EXPECT_GT(polylineErrors[i - 1] / polylineErrors[i], 2.5) << "resolution step " << i;  // pieces split into whole numbers of steps
+      EXPECT_GT(polylineErrors[i - 1] / polylineErrors[i], 2.5)
+          << "resolution step " << i;  // pieces split into whole numbers of steps
       EXPECT_LT(polylineErrors[i - 1] / polylineErrors[i], 5.0) << "resolution step " << i;
     }
     EXPECT_LT(polylineErrors.back(), 1e-4);
@@ -164,13 +167,17 @@ TEST(ThesisRegression, MatchesTheCommittedBaseline) {
   }
   // Tolerances: the runs are deterministic; these allow for floating-point differences between
   // compilers and math libraries, far below anything a change in the planner would cause.
-  const nlohmann::json tolerances = {{"tcp_path_length_m", 1e-6}, {"analytic_tcp_path_length_m", 1e-9},
-                                     {"joint_path_length_rad", 1e-6}, {"min_clearance_m", 1e-5},
-                                     {"joints_rad", 1e-7}, {"waypoints", 0}};
+  const nlohmann::json tolerances = {{"tcp_path_length_m", 1e-6},
+                                     {"analytic_tcp_path_length_m", 1e-9},
+                                     {"joint_path_length_rad", 1e-6},
+                                     {"min_clearance_m", 1e-5},
+                                     {"joints_rad", 1e-7},
+                                     {"waypoints", 0}};
   if (std::getenv("ARCPLAN_UPDATE_BASELINES") != nullptr) {
     const nlohmann::json document = {
-        {"description", "arc planner outputs for the thesis cases (seed Table 3.3): planner defaults except the "
-                        "listed parameters; compared by planners_tests ThesisRegression.MatchesTheCommittedBaseline"},
+        {"description",
+         "arc planner outputs for the thesis cases (seed Table 3.3): planner defaults except the "
+         "listed parameters; compared by planners_tests ThesisRegression.MatchesTheCommittedBaseline"},
         {"tolerances", tolerances},
         {"cases", current}};
     arcplan::writeFileAtomically(baselineFile, document.dump(2) + "\n");
@@ -185,7 +192,8 @@ TEST(ThesisRegression, MatchesTheCommittedBaseline) {
     EXPECT_EQ(expected["name"], actual["name"]);
     EXPECT_EQ(expected["parameters"], actual["parameters"]);
     ASSERT_EQ(expected["waypoints"], actual["waypoints"]);
-    for (const char* key : {"tcp_path_length_m", "analytic_tcp_path_length_m", "joint_path_length_rad", "min_clearance_m"}) {
+    for (const char* key :
+         {"tcp_path_length_m", "analytic_tcp_path_length_m", "joint_path_length_rad", "min_clearance_m"}) {
       EXPECT_NEAR(actual[key].get<double>(), expected[key].get<double>(), tolerances[key].get<double>()) << key;
     }
     for (std::size_t w = 0; w < actual["joints"].size(); ++w) {

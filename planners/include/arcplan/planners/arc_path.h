@@ -10,11 +10,10 @@
 // 3D: the plane contains A→B and the "away" direction: world up made orthogonal to A→B, rotated
 // about A→B by `planeAngle` (right hand). When A→B is vertical, world x takes the role of up.
 // The tool orientation is constant when start and goal agree, else slerped over the arc length.
+#include <Eigen/Geometry>
 #include <array>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 namespace arcplan::planners {
 
@@ -44,12 +43,12 @@ struct PlanarArc {
 // Table 3.1 for one parameter set.
 struct ArcDetourProfile {
   ArcParameters parameters;
-  double mainRadius = 0.0;       // Rs = (h² + r²) / (2h)
-  double mainCenterDepth = 0.0;  // zs = Rs - h: the main arc's centre is (0, -zs)
-  double entryOffset = 0.0;      // bx2: the detour leaves the line at (-bx2, 0)
-  double exitOffset = 0.0;       // bx3: it rejoins the line at (bx3, 0)
-  double entryAngle = 0.0;       // β2
-  double exitAngle = 0.0;        // β3
+  double mainRadius = 0.0;        // Rs = (h² + r²) / (2h)
+  double mainCenterDepth = 0.0;   // zs = Rs - h: the main arc's centre is (0, -zs)
+  double entryOffset = 0.0;       // bx2: the detour leaves the line at (-bx2, 0)
+  double exitOffset = 0.0;        // bx3: it rejoins the line at (bx3, 0)
+  double entryAngle = 0.0;        // β2
+  double exitAngle = 0.0;         // β3
   std::array<PlanarArc, 3> arcs;  // in travel order: entry (arc 2), main (arc 1), exit (arc 3)
 
   // R2·β2 + Rs·(β2 + β3) + R3·β3.
@@ -75,12 +74,12 @@ Eigen::Vector3d avoidanceDirection(const Eigen::Vector3d& lineDirection, double 
 struct PathSample {
   double arcLength = 0.0;  // from A along the path
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  bool junction = false;   // A, B, or a point where two pieces (line/arc) meet
+  bool junction = false;  // A, B, or a point where two pieces (line/arc) meet
 };
 
 // The TCP path from start to goal: the straight line with the given detours (none: a LIN move).
 class ArcPath {
-public:
+ public:
   // Throws arcplan::Error for invalid shapes, detours out of order, overlapping, or not fitting
   // between A and B (bx2 <= |AO|, bx3 <= |OB|), and detours on a zero-length line.
   ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, std::vector<Detour> detours = {});
@@ -107,7 +106,7 @@ public:
   // every junction exactly. Throws arcplan::Error if resolution is not positive.
   std::vector<PathSample> sample(double resolution) const;
 
-private:
+ private:
   struct Piece {
     double startArcLength = 0.0;
     double length = 0.0;

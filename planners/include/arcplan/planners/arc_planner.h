@@ -30,13 +30,13 @@
 // Failures say why (lastResult().reason; also OMPL_INFORM): unreachable pose, joint limits, branch
 // change, collision (with the colliding pairs), no detour fits between A and B, time limit. The
 // status is then ABORT (TIMEOUT when the termination condition stopped it).
+#include <ompl/base/Planner.h>
+#include <ompl/geometric/PathGeometric.h>
+
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <ompl/base/Planner.h>
-#include <ompl/geometric/PathGeometric.h>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/planners/arc_path.h"
@@ -54,17 +54,17 @@ struct ArcPlannerResult {
     Failed,
   };
   Kind kind = Kind::None;
-  std::string reason;                     // why it failed; empty otherwise
-  std::vector<Detour> detours;            // of the returned path
-  std::vector<std::string> obstacles;     // blocking obstacles, in order along the line
-  double solveTime = 0.0;                 // s, this planner's own solve time
-  double tcpPathLength = 0.0;             // m, analytic length of the returned TCP path
-  int candidatesTried = 0;                // detour shapes checked (auto search)
+  std::string reason;                      // why it failed; empty otherwise
+  std::vector<Detour> detours;             // of the returned path
+  std::vector<std::string> obstacles;      // blocking obstacles, in order along the line
+  double solveTime = 0.0;                  // s, this planner's own solve time
+  double tcpPathLength = 0.0;              // m, analytic length of the returned TCP path
+  int candidatesTried = 0;                 // detour shapes checked (auto search)
   std::vector<double> waypointArcLengths;  // TCP arc length of each state of the solution path
 };
 
 class ArcPlanner : public ompl::base::Planner {
-public:
+ public:
   // `collisionModel` names the bodies behind a failed motion and `obstacles` (the scene's) give their
   // bounding balls; both must describe the robot and scene of the SpaceInformation's validity checker.
   ArcPlanner(const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const collision::CollisionModel> collisionModel,
@@ -99,7 +99,7 @@ public:
   // Explicit setting, else on while no sagitta is given.
   bool getAuto() const { return autoSearch_.value_or(shape_.sagitta <= 0.0); }
 
-private:
+ private:
   struct Search;
   struct Blockage;
   struct ObstacleBall {

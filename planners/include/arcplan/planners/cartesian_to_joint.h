@@ -43,7 +43,8 @@ struct JointWaypoints {
 
 // Called for each new waypoint (not the seed) as soon as it is computed, with the previous waypoint;
 // returning false stops the conversion with status Rejected (that waypoint is not appended).
-using WaypointCheck = std::function<bool(const robot::Vector6& previous, const robot::Vector6& joints, double arcLength)>;
+using WaypointCheck =
+    std::function<bool(const robot::Vector6& previous, const robot::Vector6& joints, double arcLength)>;
 
 // Joints for the part [fromArcLength, toArcLength] of the path. `seed` is the configuration at
 // fromArcLength and becomes the first waypoint unchanged. When `goal` is given the last waypoint must
@@ -51,8 +52,7 @@ using WaypointCheck = std::function<bool(const robot::Vector6& previous, const r
 // Throws arcplan::Error for invalid options.
 JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const ArcPath& path, const robot::Vector6& seed,
                                const std::optional<robot::Vector6>& goal, const JointConversionOptions& options,
-                               double fromArcLength = 0.0,
-                               double toArcLength = std::numeric_limits<double>::infinity(),
+                               double fromArcLength = 0.0, double toArcLength = std::numeric_limits<double>::infinity(),
                                const WaypointCheck& check = {});
 
 }  // namespace arcplan::planners

@@ -2,12 +2,12 @@
 // Planners by name: the arc planner and OMPL's geometric planners, as ompl::base::PlannerAllocator
 // (what SimpleSetup and ompl::tools::Benchmark take), with their parameters settable by name
 // ("range" = "0.2") the way `arcplan plan --param` and benchmark suites write them.
+#include <ompl/base/Planner.h>
+
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <ompl/base/Planner.h>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/scene.h"
@@ -42,7 +42,8 @@ ompl::base::PlannerPtr makePlanner(const std::string& name, const ompl::base::Sp
 // Sets each (name, value) through the planner's ParamSet. Throws arcplan::Error naming the planner
 // and parameter: for an unknown parameter (listing the valid ones with their current values) or a
 // value the parameter does not accept.
-void setPlannerParameters(ompl::base::Planner& planner, const std::vector<std::pair<std::string, std::string>>& parameters);
+void setPlannerParameters(ompl::base::Planner& planner,
+                          const std::vector<std::pair<std::string, std::string>>& parameters);
 
 // "name=value" -> (name, value); throws arcplan::Error for text without '=' or with an empty side.
 std::pair<std::string, std::string> parseParameterAssignment(const std::string& text);

@@ -11,10 +11,10 @@
 // Randomness: OMPL's sampling planners draw from ompl::RNG, whose seed is process-global and takes
 // effect only if set (ompl::RNG::setSeed) before the first RNG is created — i.e. before any planner,
 // sampler or SimpleSetup exists. It can be set once per process; `arcplan plan --seed` does so first.
+#include <ompl/geometric/SimpleSetup.h>
+
 #include <memory>
 #include <string>
-
-#include <ompl/geometric/SimpleSetup.h>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/scene.h"
