@@ -173,6 +173,30 @@ std::string standingsTable(const std::vector<PlannerStanding>& standings, bool o
   return out.str();
 }
 
+// Planners x families: success rate and mean rank within each family.
+std::string familyMatrix(const Ranking& ranking) {
+  std::ostringstream out;
+  out << "| planner |";
+  for (const auto& family : ranking.families) out << " " << family.family << " (" << family.problems << ") |";
+  out << "\n|---|";
+  for (std::size_t i = 0; i < ranking.families.size(); ++i) out << "---:|";
+  out << "\n";
+  for (const auto& overall : ranking.overall) {
+    out << "| " << overall.planner << " |";
+    for (const auto& family : ranking.families) {
+      const auto found = std::find_if(family.planners.begin(), family.planners.end(),
+                                      [&](const PlannerStanding& s) { return s.planner == overall.planner; });
+      if (found == family.planners.end()) {
+        out << " – |";
+      } else {
+        out << " " << percent(found->successRate) << " · rank " << formatNumber(found->meanRank, 3) << " |";
+      }
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
 // sqlite3 handles closed on scope exit.
 struct DatabaseCloser {
   void operator()(sqlite3* db) const { sqlite3_close(db); }
@@ -224,10 +248,48 @@ const std::vector<RankedMetric>& rankedMetrics() {
   return metrics;
 }
 
-Ranking rankRuns(const std::map<std::string, std::map<std::string, std::vector<RunValues>>>& runs) {
-  Ranking ranking;
+namespace {
+
+// Mean rank, pooled runs and first places of every planner over `problems`, best first.
+std::vector<PlannerStanding> aggregate(const std::vector<const ProblemRanking*>& problems,
+                                       const std::map<std::string, std::map<std::string, std::vector<RunValues>>>& runs) {
   std::map<std::string, std::vector<int>> ranksOf;
-  std::map<std::string, std::vector<const RunValues*>> allRunsOf;
+  std::map<std::string, std::vector<const RunValues*>> runsOf;
+  for (const auto* problem : problems) {
+    for (const auto& standing : problem->planners) {
+      ranksOf[standing.planner].push_back(standing.rank);
+      for (const auto& run : runs.at(problem->problem).at(standing.planner)) runsOf[standing.planner].push_back(&run);
+    }
+  }
+  std::vector<PlannerStanding> standings;
+  for (const auto& [planner, pooled] : runsOf) {
+    auto standing = standingFromRuns(planner, pooled);
+    const auto& ranks = ranksOf.at(planner);
+    standing.problems = static_cast<int>(ranks.size());
+    standing.meanRank = std::accumulate(ranks.begin(), ranks.end(), 0.0) / static_cast<double>(ranks.size());
+    standing.firstPlaces = static_cast<int>(std::count(ranks.begin(), ranks.end(), 1));
+    standings.push_back(std::move(standing));
+  }
+  const auto better = [](const PlannerStanding& a, const PlannerStanding& b) {
+    if (!nearlyEqual(a.meanRank, b.meanRank)) return a.meanRank < b.meanRank;
+    return !nearlyEqual(a.successRate, b.successRate) && a.successRate > b.successRate;
+  };
+  std::sort(standings.begin(), standings.end(), [&](const PlannerStanding& a, const PlannerStanding& b) {
+    if (better(a, b)) return true;
+    if (better(b, a)) return false;
+    return a.planner < b.planner;
+  });
+  for (std::size_t i = 0; i < standings.size(); ++i) {
+    standings[i].rank = (i > 0 && !better(standings[i - 1], standings[i])) ? standings[i - 1].rank : static_cast<int>(i) + 1;
+  }
+  return standings;
+}
+
+}  // namespace
+
+Ranking rankRuns(const std::map<std::string, std::map<std::string, std::vector<RunValues>>>& runs,
+                 const std::map<std::string, std::string>& families) {
+  Ranking ranking;
   for (const auto& [problem, planners] : runs) {
     ProblemRanking entry;
     entry.problem = problem;
@@ -235,32 +297,23 @@ Ranking rankRuns(const std::map<std::string, std::map<std::string, std::vector<R
       std::vector<const RunValues*> pointers;
       for (const auto& run : plannerRuns) pointers.push_back(&run);
       entry.planners.push_back(standingFromRuns(planner, pointers));
-      allRunsOf[planner].insert(allRunsOf[planner].end(), pointers.begin(), pointers.end());
     }
     rankProblem(entry.planners);
-    for (const auto& standing : entry.planners) ranksOf[standing.planner].push_back(standing.rank);
     ranking.problems.push_back(std::move(entry));
   }
-  for (const auto& [planner, pooled] : allRunsOf) {
-    auto standing = standingFromRuns(planner, pooled);
-    const auto& ranks = ranksOf.at(planner);
-    standing.problems = static_cast<int>(ranks.size());
-    standing.meanRank = std::accumulate(ranks.begin(), ranks.end(), 0.0) / static_cast<double>(ranks.size());
-    standing.firstPlaces = static_cast<int>(std::count(ranks.begin(), ranks.end(), 1));
-    ranking.overall.push_back(std::move(standing));
+  std::vector<const ProblemRanking*> all;
+  std::map<std::string, std::vector<const ProblemRanking*>> byFamily;
+  for (const auto& problem : ranking.problems) {
+    all.push_back(&problem);
+    if (const auto found = families.find(problem.problem); found != families.end() && !found->second.empty()) {
+      byFamily[found->second].push_back(&problem);
+    }
   }
-  const auto better = [](const PlannerStanding& a, const PlannerStanding& b) {
-    if (!nearlyEqual(a.meanRank, b.meanRank)) return a.meanRank < b.meanRank;
-    return !nearlyEqual(a.successRate, b.successRate) && a.successRate > b.successRate;
-  };
-  std::sort(ranking.overall.begin(), ranking.overall.end(), [&](const PlannerStanding& a, const PlannerStanding& b) {
-    if (better(a, b)) return true;
-    if (better(b, a)) return false;
-    return a.planner < b.planner;
-  });
-  for (std::size_t i = 0; i < ranking.overall.size(); ++i) {
-    ranking.overall[i].rank =
-        (i > 0 && !better(ranking.overall[i - 1], ranking.overall[i])) ? ranking.overall[i - 1].rank : static_cast<int>(i) + 1;
+  ranking.overall = aggregate(all, runs);
+  if (byFamily.size() > 1) {
+    for (const auto& [family, members] : byFamily) {
+      ranking.families.push_back({family, static_cast<int>(members.size()), aggregate(members, runs)});
+    }
   }
   return ranking;
 }
@@ -325,7 +378,16 @@ Ranking rankDatabase(const std::filesystem::path& file) {
   }
   if (step != SQLITE_DONE) throw Error(file.string() + ": reading runs failed: " + sqlite3_errmsg(db.get()));
   if (count == 0) throw Error(file.string() + ": the database holds no benchmark runs");
-  auto ranking = rankRuns(runs);
+  // Problem families are an arcplan experiment parameter; logs from elsewhere simply have none.
+  std::map<std::string, std::string> families;
+  if (tableColumns(db.get(), "experiments", file).count("problemkind") != 0) {
+    auto kinds = prepare(db.get(), "SELECT name, problemkind FROM experiments WHERE problemkind IS NOT NULL", file);
+    while (sqlite3_step(kinds.get()) == SQLITE_ROW) {
+      families[reinterpret_cast<const char*>(sqlite3_column_text(kinds.get(), 0))] =
+          reinterpret_cast<const char*>(sqlite3_column_text(kinds.get(), 1));
+    }
+  }
+  auto ranking = rankRuns(runs, families);
   ranking.database = file;
   return ranking;
 }
@@ -353,6 +415,16 @@ std::string rankingMarkdown(const Ranking& ranking) {
          "problems a planner ran, `1st` on how many it ranked first.\n\n"
       << "Metric columns are statistics over the successful runs only (– when there is none).\n\n";
   out << "## Overall\n\n" << standingsTable(ranking.overall, true) << "\n";
+  if (!ranking.families.empty()) {
+    out << "## By problem family\n\n"
+        << "Success rate and mean rank of each planner over the problems of one family (number of problems in "
+           "brackets); the full tables follow.\n\n"
+        << familyMatrix(ranking) << "\n";
+    for (const auto& family : ranking.families) {
+      out << "### " << family.family << " (" << family.problems << " problems)\n\n"
+          << standingsTable(family.planners, true) << "\n";
+    }
+  }
   out << "## Per problem\n\n";
   for (const auto& problem : ranking.problems) {
     out << "### " << problem.problem << "\n\n" << standingsTable(problem.planners, false) << "\n";
@@ -368,6 +440,12 @@ nlohmann::json rankingJson(const Ranking& ranking) {
       "ties share a rank; overall: mean per-problem rank (asc), then pooled success rate (desc)";
   document["planners"] = nlohmann::json::array();
   for (const auto& standing : ranking.overall) document["planners"].push_back(standingJson(standing, true));
+  document["families"] = nlohmann::json::array();
+  for (const auto& family : ranking.families) {
+    nlohmann::json entry{{"name", family.family}, {"problems", family.problems}, {"planners", nlohmann::json::array()}};
+    for (const auto& standing : family.planners) entry["planners"].push_back(standingJson(standing, true));
+    document["families"].push_back(std::move(entry));
+  }
   document["problems"] = nlohmann::json::array();
   for (const auto& problem : ranking.problems) {
     nlohmann::json entry{{"name", problem.problem}, {"planners", nlohmann::json::array()}};
@@ -411,6 +489,9 @@ std::string rankingTerminalTable(const Ranking& ranking, int maxProblemTables) {
   out << "Overall ranking (" << ranking.problemCount() << " problem" << (ranking.problemCount() == 1 ? "" : "s")
       << ", mean of per-problem ranks):\n\n"
       << standingsTable(ranking.overall, true);
+  if (!ranking.families.empty()) {
+    out << "\nBy problem family (success rate · mean rank within the family):\n\n" << familyMatrix(ranking);
+  }
   if (ranking.problemCount() <= maxProblemTables) {
     for (const auto& problem : ranking.problems) {
       out << "\nProblem " << problem.problem << ":\n\n" << standingsTable(problem.planners, false);

@@ -136,6 +136,41 @@ TEST(Ranking, OverallRankIsTheMeanRankOverProblems) {
   EXPECT_EQ(ranking.overall[2].rank, 3);
 }
 
+TEST(Ranking, FamiliesShowWhereAPlannerLoses) {
+  Runs data;
+  // The arc planner wins both line problems and never solves the pillars; RRTConnect solves all.
+  for (const char* line : {"line-1", "line-2"}) {
+    data[line]["arc"] = runs(4, 0, 3.0);
+    data[line]["rrt"] = runs(4, 0, 4.0);
+  }
+  for (const char* pillar : {"pillar-1", "pillar-2", "pillar-3"}) {
+    data[pillar]["arc"] = runs(0, 4, 0.0);
+    data[pillar]["rrt"] = runs(4, 0, 6.0);
+  }
+  const auto ranking = rankRuns(data, {{"line-1", "line"}, {"line-2", "line"}, {"pillar-1", "pillar"},
+                                       {"pillar-2", "pillar"}, {"pillar-3", "pillar"}});
+  ASSERT_EQ(ranking.families.size(), 2u);
+  const auto& line = ranking.families[0];
+  const auto& pillar = ranking.families[1];
+  EXPECT_EQ(line.family, "line");
+  EXPECT_EQ(line.problems, 2);
+  EXPECT_EQ(line.planners[0].planner, "arc");
+  EXPECT_DOUBLE_EQ(line.planners[0].meanRank, 1.0);
+  EXPECT_EQ(pillar.planners[0].planner, "rrt");
+  EXPECT_DOUBLE_EQ(standing(pillar.planners, "arc").successRate, 0.0);
+  EXPECT_DOUBLE_EQ(standing(pillar.planners, "arc").meanRank, 2.0);
+  // Overall: arc (1+1+2+2+2)/5 = 1.6 behind rrt (2+2+1+1+1)/5 = 1.4.
+  EXPECT_EQ(ranking.overall[0].planner, "rrt");
+  EXPECT_NEAR(ranking.overall[0].meanRank, 1.4, 1e-12);
+  const auto json = rankingJson(ranking);
+  EXPECT_EQ(json["families"][1]["name"], "pillar");
+  EXPECT_EQ(json["families"][1]["planners"][0]["name"], "rrt");
+  EXPECT_NE(rankingMarkdown(ranking).find("| arc | 100 % · rank 1 | 0 % · rank 2 |"), std::string::npos)
+      << rankingMarkdown(ranking);
+  // Without families (or with only one) there is no family section.
+  EXPECT_TRUE(rankRuns(data).families.empty());
+}
+
 TEST(Ranking, JsonListsPlannersByRankWithTheDesignKeys) {
   Runs data;
   data["p"]["slow"] = runs(4, 0, 4.0, 2.0);

@@ -51,10 +51,19 @@ struct ProblemRanking {
   std::vector<PlannerStanding> planners; // best first
 };
 
+// The overall standing restricted to one problem family ("pillar", "line-box", ...): mean rank and
+// pooled success over the family's problems, so losses on one kind of scene stay visible.
+struct FamilyRanking {
+  std::string family;
+  int problems = 0;
+  std::vector<PlannerStanding> planners;  // best first
+};
+
 struct Ranking {
   std::filesystem::path database;
   std::vector<ProblemRanking> problems;  // in name order
   std::vector<PlannerStanding> overall;  // best first
+  std::vector<FamilyRanking> families;   // when problems name their family and there are several
   int problemCount() const { return static_cast<int>(problems.size()); }
 };
 
@@ -63,13 +72,16 @@ struct Ranking {
 Ranking rankDatabase(const std::filesystem::path& database);
 
 // Rank planners from per-run data (what rankDatabase does after reading): `runs` maps problem ->
-// planner -> one entry per run; an entry without "execution_time_s" is a failed run.
-Ranking rankRuns(const std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>>& runs);
+// planner -> one entry per run; an entry without "execution_time_s" is a failed run. `families`
+// maps problems to their family (the experiments' `problemkind` column in a database).
+Ranking rankRuns(const std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>>& runs,
+                 const std::map<std::string, std::string>& families = {});
 
 std::string rankingMarkdown(const Ranking& ranking);
 nlohmann::json rankingJson(const Ranking& ranking);
 std::string rankingCsv(const Ranking& ranking);
-// The overall table, and the per-problem tables when there are at most `maxProblemTables` problems.
+// The overall table, success by problem family, and the per-problem tables when there are at most
+// `maxProblemTables` problems.
 std::string rankingTerminalTable(const Ranking& ranking, int maxProblemTables = 4);
 
 // ranking.md, ranking.json and ranking.csv in `directory`, each written atomically.
