@@ -33,6 +33,12 @@ namespace {
 
 // --- the campaign's settings, kept in the output directory -----------------------------------------
 
+void createDirectory(const std::filesystem::path& directory) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (ec) throw Error("cannot create directory " + directory.string() + ": " + ec.message());
+}
+
 nlohmann::json manifestOf(const Suite& suite) {
   nlohmann::json planners = nlohmann::json::array();
   for (const auto& planner : suite.planners) {
@@ -341,7 +347,7 @@ void makePlots(const std::filesystem::path& database, const Ranking& ranking, co
     return;
   }
   const auto directory = options.outDirectory / "plots";
-  std::filesystem::create_directories(directory);
+  createDirectory(directory);
   std::string order;
   for (const auto& standing : ranking.overall) order += (order.empty() ? "" : ",") + standing.planner;
   plot("plot_benchmark_boxplots.py", {"--db", database.string(), "--order", order}, directory / "boxplots_all.png", notes);
@@ -413,7 +419,7 @@ CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (options.outDirectory.empty()) throw Error("--out: an output directory is required");
   detail::checkPlannerConfigurations(suite);  // bad planners or parameters: nothing is written
-  std::filesystem::create_directories(options.outDirectory);
+  createDirectory(options.outDirectory);
   claimOutputDirectory(options.outDirectory, suite);
 
   CampaignResult result;
@@ -490,7 +496,7 @@ CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options) {
 Ranking reportFromDatabase(const std::filesystem::path& database, const ReportOptions& options,
                            std::vector<std::string>& notes) {
   auto ranking = rankDatabase(database);
-  std::filesystem::create_directories(options.outDirectory);
+  createDirectory(options.outDirectory);
   writeRanking(ranking, options.outDirectory);
   if (options.plots) makePlots(database, ranking, options, notes);
   return ranking;

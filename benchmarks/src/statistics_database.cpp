@@ -106,7 +106,11 @@ std::vector<std::filesystem::path> findLogs(const std::vector<std::filesystem::p
 void buildBenchmarkDatabase(const std::vector<std::filesystem::path>& logs, const std::filesystem::path& database) {
   if (logs.empty()) throw Error("no OMPL benchmark logs to put into " + database.string());
   const auto script = findBenchmarkStatisticsScript();
-  if (database.has_parent_path()) std::filesystem::create_directories(database.parent_path());
+  if (database.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(database.parent_path(), ec);
+    if (ec) throw Error("cannot create directory " + database.parent_path().string() + ": " + ec.message());
+  }
   auto temporary = database;
   temporary += ".tmp." + std::to_string(::getpid());
   auto scriptOutput = database;

@@ -163,7 +163,7 @@ const Problem& Suite::problem(const std::string& wanted) const {
 }
 
 Suite loadSuite(const std::filesystem::path& file) {
-  if (!std::filesystem::exists(file)) throw Error("suite file " + file.string() + " not found");
+  if (!std::filesystem::is_regular_file(file)) throw Error("suite file " + file.string() + " not found (or not a file)");
   const SuiteReader reader{file};
   YAML::Node root;
   try {
@@ -227,7 +227,7 @@ std::filesystem::path suiteDirectory() {
 }
 
 std::filesystem::path findSuite(const std::string& nameOrFile) {
-  if (std::filesystem::exists(nameOrFile)) return nameOrFile;
+  if (std::filesystem::is_regular_file(nameOrFile)) return nameOrFile;  // (a folder named "thesis" is not a suite)
   if (isPlainName(nameOrFile)) {
     const auto builtIn = suiteDirectory() / (nameOrFile + ".yaml");
     if (std::filesystem::exists(builtIn)) return builtIn;

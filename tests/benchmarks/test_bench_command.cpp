@@ -70,15 +70,12 @@ bool hasTemporaryFiles(const std::filesystem::path& root) {
 
 const std::vector<std::string> kPlanners{"arc-h1.00r", "arc-h0.50r", "arc-auto", "RRTConnect", "PRM"};
 
-std::vector<std::string> campaignArguments(const std::filesystem::path& out, const std::string& runs = "2",
-                                           bool plots = true) {
-  std::vector<std::string> arguments{"bench", "--suite", "thesis", "--planners", "arc-h1.00r,arc-h0.50r,arc-auto,RRTConnect,PRM",
-                                     "--runs", runs, "--time", "0.5", "-j", "2", "--out", out.string()};
-  if (!plots) arguments.emplace_back("--no-plots");
-  return arguments;
+std::vector<std::string> campaignArguments(const std::filesystem::path& out, const std::string& runs = "2") {
+  return {"bench", "--suite", "thesis", "--planners", "arc-h1.00r,arc-h0.50r,arc-auto,RRTConnect,PRM", "--runs", runs,
+          "--time", "0.5", "-j", "2", "--no-plots", "--out", out.string()};
 }
 
-// One small thesis campaign (5 planners x 2 problems x 2 runs, with plots), shared by the tests below.
+// One small thesis campaign (5 planners x 2 problems x 2 runs), shared by the tests of one process.
 struct Campaign {
   std::filesystem::path out;
   CommandResult result;
@@ -95,7 +92,7 @@ const Campaign& thesisCampaign() {
 
 const double kStraightLength = std::sqrt(0.1 * 0.1 + 0.8 * 0.8 + 0.21 * 0.21);  // |AB| of the thesis poses
 
-TEST(BenchCommand, ThesisCampaignWritesLogsDatabaseRankingAndPlots) {
+TEST(BenchCommand, ThesisCampaignWritesLogsDatabaseAndRanking) {
   const auto& campaign = thesisCampaign();
   ASSERT_EQ(campaign.result.exitCode, 0) << campaign.result.err;
   const auto logs = filesUnder(campaign.out / "logs", ".log");
@@ -109,12 +106,13 @@ TEST(BenchCommand, ThesisCampaignWritesLogsDatabaseRankingAndPlots) {
   for (const char* file : {"benchmark.db", "ranking.md", "ranking.json", "ranking.csv", "campaign.json"}) {
     EXPECT_TRUE(std::filesystem::exists(campaign.out / file)) << file;
   }
-  for (const char* plot : {"boxplots_all.png", "boxplots_thesis_obstacle.png", "speed_thesis_obstacle.png",
-                           "paths3d_thesis_obstacle.png", "speed_thesis_straight.png", "paths3d_thesis_straight.png"}) {
-    const auto file = campaign.out / "plots" / plot;
-    ASSERT_TRUE(std::filesystem::exists(file)) << plot << "\n" << campaign.result.err;
-    EXPECT_EQ(readFile(file).substr(1, 3), "PNG") << plot;
+  // The speed-profile and 3D plots' data: each planner's median run on the plot problems.
+  for (const auto& planner : kPlanners) {
+    const auto csv = readFile(campaign.out / "paths" / "thesis" / "obstacle" / (planner + ".csv"));
+    EXPECT_NE(csv.find("t,tcp_speed,x,y,z\n"), std::string::npos) << planner;
   }
+  EXPECT_TRUE(std::filesystem::exists(campaign.out / "paths" / "thesis" / "straight" / "scene.json"));
+  EXPECT_FALSE(std::filesystem::exists(campaign.out / "plots"));  // --no-plots
   EXPECT_FALSE(hasTemporaryFiles(campaign.out));
   // The terminal shows the ranking table and, without a terminal, one progress line per job.
   EXPECT_NE(campaign.result.out.find("| rank | planner |"), std::string::npos);
@@ -251,11 +249,32 @@ TEST(BenchCommand, RankRecomputesTheSameRankingFromTheDatabase) {
   EXPECT_NE(result.out.find("| rank | planner |"), std::string::npos);
 }
 
+TEST(BenchCommand, RankDrawsBoxPlotsSpeedProfilesAndTcpPaths) {
+  const auto& campaign = thesisCampaign();
+  const auto out = freshTempDirectory("bench_plots");
+  // The database with the plot data of one problem only (found next to it), to keep the test short:
+  // the other problem gets box plots alone.
+  std::filesystem::copy(campaign.out / "benchmark.db", out / "benchmark.db");
+  std::filesystem::create_directories(out / "paths" / "thesis");
+  std::filesystem::copy(campaign.out / "paths" / "thesis" / "obstacle", out / "paths" / "thesis" / "obstacle",
+                        std::filesystem::copy_options::recursive);
+  const auto result = runArcplan({"bench", "rank", "--db", (out / "benchmark.db").string()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  for (const char* plot : {"boxplots_all.png", "boxplots_thesis_obstacle.png", "boxplots_thesis_straight.png",
+                           "speed_thesis_obstacle.png", "paths3d_thesis_obstacle.png"}) {
+    const auto file = out / "plots" / plot;
+    ASSERT_TRUE(std::filesystem::exists(file)) << plot << "\n" << result.err;
+    EXPECT_EQ(readFile(file).substr(1, 3), "PNG") << plot;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out / "plots" / "speed_thesis_straight.png"));  // no data copied
+  EXPECT_FALSE(hasTemporaryFiles(out));
+}
+
 TEST(BenchCommand, ResumingSkipsCompletedJobsAndKeepsTheirLogs) {
   const auto& campaign = thesisCampaign();
   std::map<std::filesystem::path, std::string> before;
   for (const auto& log : filesUnder(campaign.out / "logs", ".log")) before[log] = readFile(log);
-  const auto result = runArcplan(campaignArguments(campaign.out, "2", false));
+  const auto result = runArcplan(campaignArguments(campaign.out));
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.err.find("0 job(s) run, 10 already done"), std::string::npos) << result.err;
   for (const auto& [log, text] : before) EXPECT_EQ(readFile(log), text) << log;

@@ -80,6 +80,17 @@ TEST(Suite, FindSuiteNamesTheBuiltInSuitesWhenNothingMatches) {
   EXPECT_NE(message.find("generated"), std::string::npos) << message;
 }
 
+TEST(Suite, AFolderNamedLikeABuiltInSuiteIsNotTakenForASuiteFile) {
+  const auto dir = testing::freshTempDirectory("suite_cwd");
+  std::filesystem::create_directories(dir / "thesis");  // e.g. a campaign's --out folder
+  const auto previous = std::filesystem::current_path();
+  std::filesystem::current_path(dir);
+  const auto found = findSuite("thesis");
+  std::filesystem::current_path(previous);
+  EXPECT_EQ(found, suiteDirectory() / "thesis.yaml");
+  EXPECT_NE(errorOf([&] { loadSuite(dir / "thesis"); }).find("not a file"), std::string::npos);
+}
+
 TEST(Suite, ReadsProblemsPlannersAndDefaults) {
   const auto file = writeSuite("small", R"(name: small
 runs: 3
