@@ -294,7 +294,7 @@ Problem shelfProblem(const ProblemFactory& factory, std::uint64_t seed, int inde
 
 void emitVector(YAML::Emitter& out, const double* values, int count) {
   out << YAML::Flow << YAML::BeginSeq;
-  for (int i = 0; i < count; ++i) out << values[i];
+  for (int i = 0; i < count; ++i) out << values[i] + 0.0;  // + 0.0 writes -0 as 0
   out << YAML::EndSeq;
 }
 
@@ -314,7 +314,7 @@ std::vector<Problem> generateProblems(const GeneratorSettings& settings) {
 
 std::string sceneToYaml(const collision::Scene& scene) {
   YAML::Emitter out;
-  out.SetDoublePrecision(17);
+  out.SetDoublePrecision(15);  // readable (0.05, not 0.050000000000000003) and within 1e-15 of the value
   out << YAML::BeginMap;
   out << YAML::Key << "name" << YAML::Value << scene.name;
   out << YAML::Key << "robot" << YAML::Value;
