@@ -30,6 +30,7 @@ struct CollisionModel::Implementation {
     int firstBody = -1, secondBody = -1;
     bool self = false;
     std::vector<std::pair<int, int>> parts;
+    std::vector<int> obstacleParts;  // the second body's parts (robot–obstacle groups)
   };
   std::vector<PairGroup> obstacleGroups, selfGroups;
   // Every part pair of every group, for distance queries (which order them by their bounds).
@@ -45,6 +46,8 @@ namespace {
 using Implementation = CollisionModel::Implementation;
 using detail::Part;
 
+// Forward kinematics and the link capsules; part poses are computed on first use (ensurePart), so
+// a state whose links are far from everything never transforms its parts.
 void updateRobot(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
   if (q.size() != model.robot().dof()) {
     throw Error("collision query: expected " + std::to_string(model.robot().dof()) + " joint values, got " +
@@ -52,12 +55,7 @@ void updateRobot(const CollisionModel& model, CollisionData& data, const robot::
   }
   const Implementation& impl = model.implementation();
   robot::forwardKinematics(model.robot(), q, data.kinematics);
-  for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
-    const Part& part = impl.robotParts[i];
-    data.partPoses[i] = data.kinematics.linkPoses[impl.robotPartLink[i]] * part.offset;
-    data.capsuleStarts[i] = data.partPoses[i] * part.capsule.start;
-    data.capsuleEnds[i] = data.partPoses[i] * part.capsule.end;
-  }
+  ++data.stamp;
   for (std::size_t b = 0; b < impl.linkCapsules.size(); ++b) {
     const Eigen::Isometry3d& linkPose = data.kinematics.linkPoses[impl.linkCapsuleLink[b]];
     data.linkCapsuleStarts[b] = linkPose * impl.linkCapsules[b].start;
@@ -65,24 +63,51 @@ void updateRobot(const CollisionModel& model, CollisionData& data, const robot::
   }
 }
 
-// Lower bound of the distance between robot part i and part j (robot part if `self`, else obstacle
-// part) from their bounding volumes; <= 0 when the volumes overlap.
-double boundGap(const Implementation& impl, const CollisionData& data, int i, int j, bool self) {
-  const double radius = impl.robotParts[i].capsule.radius;
-  if (self) {
-    return detail::segmentDistance(data.capsuleStarts[i], data.capsuleEnds[i], data.capsuleStarts[j],
-                                   data.capsuleEnds[j]) -
-           radius - impl.robotParts[j].capsule.radius;
-  }
+void ensurePart(const Implementation& impl, CollisionData& data, int i) {
+  if (data.partStamps[i] == data.stamp) return;
+  const Part& part = impl.robotParts[i];
+  data.partPoses[i] = data.kinematics.linkPoses[impl.robotPartLink[i]] * part.offset;
+  data.capsuleStarts[i] = data.partPoses[i] * part.capsule.start;
+  data.capsuleEnds[i] = data.partPoses[i] * part.capsule.end;
+  data.partStamps[i] = data.stamp;
+}
+
+// Lower bound of the distance between a capsule (segment start-end, radius) and obstacle part j.
+double obstacleGap(const Implementation& impl, const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                   int j) {
   const Part& obstacle = impl.obstacleParts[j];
   if (obstacle.boxBound) {
     const Eigen::Isometry3d& toBox = impl.obstacleInversePoses[j];
-    return detail::capsuleBoxLowerBound(toBox * data.capsuleStarts[i], toBox * data.capsuleEnds[i], radius,
-                                        obstacle.boxHalfExtents);
+    return detail::capsuleBoxLowerBound(toBox * start, toBox * end, radius, obstacle.boxHalfExtents);
   }
-  return detail::segmentDistance(data.capsuleStarts[i], data.capsuleEnds[i], impl.obstacleCapsuleStarts[j],
-                                 impl.obstacleCapsuleEnds[j]) -
-         radius - obstacle.capsule.radius;
+  return detail::segmentDistance(start, end, impl.obstacleCapsuleStarts[j], impl.obstacleCapsuleEnds[j]) - radius -
+         obstacle.capsule.radius;
+}
+
+// Lower bound of the distance between robot part i and part j (robot part if `self`, else obstacle
+// part) from their bounding volumes; <= 0 when the volumes overlap.
+double boundGap(const Implementation& impl, CollisionData& data, int i, int j, bool self) {
+  ensurePart(impl, data, i);
+  const double radius = impl.robotParts[i].capsule.radius;
+  if (!self) return obstacleGap(impl, data.capsuleStarts[i], data.capsuleEnds[i], radius, j);
+  ensurePart(impl, data, j);
+  return detail::segmentDistance(data.capsuleStarts[i], data.capsuleEnds[i], data.capsuleStarts[j], data.capsuleEnds[j]) -
+         radius - impl.robotParts[j].capsule.radius;
+}
+
+// Whether the capsule around a whole link already clears the group's other body.
+bool linksApart(const Implementation& impl, const CollisionData& data, const Implementation::PairGroup& group) {
+  const int a = group.firstBody;
+  const double radius = impl.linkCapsules[a].radius;
+  if (group.self) {
+    const int b = group.secondBody;
+    return detail::segmentDistance(data.linkCapsuleStarts[a], data.linkCapsuleEnds[a], data.linkCapsuleStarts[b],
+                                   data.linkCapsuleEnds[b]) - radius - impl.linkCapsules[b].radius > 0.0;
+  }
+  for (const int j : group.obstacleParts) {
+    if (obstacleGap(impl, data.linkCapsuleStarts[a], data.linkCapsuleEnds[a], radius, j) <= 0.0) return false;
+  }
+  return true;
 }
 
 // FCL compares surfaces; a part entirely inside the other has no intersecting surfaces, so one
@@ -129,18 +154,14 @@ const Eigen::Isometry3d& secondPose(const Implementation& impl, const CollisionD
   return group.self ? data.partPoses[j] : impl.obstacleParts[j].offset;
 }
 
-bool groupCollides(const CollisionModel& model, const CollisionData& data, const Implementation::PairGroup& group) {
+bool groupCollides(const CollisionModel& model, CollisionData& data, const Implementation::PairGroup& group) {
   const Implementation& impl = model.implementation();
   const bool broadPhase = model.options().broadPhase;
-  if (broadPhase && group.self) {
-    const int a = group.firstBody, b = group.secondBody;
-    const double gap = detail::segmentDistance(data.linkCapsuleStarts[a], data.linkCapsuleEnds[a],
-                                               data.linkCapsuleStarts[b], data.linkCapsuleEnds[b]) -
-                       impl.linkCapsules[a].radius - impl.linkCapsules[b].radius;
-    if (gap > 0.0) return false;
-  }
+  if (broadPhase && linksApart(impl, data, group)) return false;
   for (const auto& [i, j] : group.parts) {
     if (broadPhase && boundGap(impl, data, i, j, group.self) > 0.0) continue;
+    ensurePart(impl, data, i);
+    if (group.self) ensurePart(impl, data, j);
     if (partsCollide(impl.robotParts[i], data.partPoses[i], secondPart(impl, group, j), secondPose(impl, data, group, j),
                      model.options())) {
       return true;
@@ -256,17 +277,19 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
   for (int a = 0; a < static_cast<int>(linkNames_.size()); ++a) {
     for (int b = 0; b < static_cast<int>(obstacleNames_.size()); ++b) {
       if (allowed_.isAllowed(linkNames_[a], obstacleNames_[b])) continue;
-      Implementation::PairGroup group{a, b, false, {}};
+      Implementation::PairGroup group{a, b, false, {}, {}};
+      for (std::size_t j = 0; j < impl.obstacleParts.size(); ++j) {
+        if (impl.obstacleParts[j].body == b) group.obstacleParts.push_back(static_cast<int>(j));
+      }
       for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
-        for (std::size_t j = 0; j < impl.obstacleParts.size(); ++j) {
-          if (impl.robotParts[i].body == a && impl.obstacleParts[j].body == b) group.parts.emplace_back(i, j);
-        }
+        if (impl.robotParts[i].body != a) continue;
+        for (const int j : group.obstacleParts) group.parts.emplace_back(i, j);
       }
       impl.obstacleGroups.push_back(std::move(group));
     }
     for (int b = a + 1; b < static_cast<int>(linkNames_.size()); ++b) {
       if (allowed_.isAllowed(linkNames_[a], linkNames_[b])) continue;
-      Implementation::PairGroup group{a, b, true, {}};
+      Implementation::PairGroup group{a, b, true, {}, {}};
       for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
         for (std::size_t j = 0; j < impl.robotParts.size(); ++j) {
           if (impl.robotParts[i].body == a && impl.robotParts[j].body == b) group.parts.emplace_back(i, j);
@@ -300,6 +323,7 @@ CollisionData::CollisionData(const CollisionModel& model)
       partPoses(model.implementation().robotParts.size()),
       capsuleStarts(model.implementation().robotParts.size()),
       capsuleEnds(model.implementation().robotParts.size()),
+      partStamps(model.implementation().robotParts.size(), 0),
       linkCapsuleStarts(model.linkNames().size()),
       linkCapsuleEnds(model.linkNames().size()) {
   distanceOrder.reserve(model.implementation().partPairs.size());
@@ -332,6 +356,7 @@ CollisionReport collide(const CollisionModel& model, CollisionData& data, const 
 DistanceReport distance(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
   updateRobot(model, data, q);
   const Implementation& impl = model.implementation();
+  for (std::size_t i = 0; i < impl.robotParts.size(); ++i) ensurePart(impl, data, static_cast<int>(i));
   // Part pairs nearest first by the lower bound their bounding volumes give; a pair whose bound
   // is not below the best distance found so far cannot improve it.
   data.distanceOrder.clear();

@@ -28,11 +28,16 @@ class Converter {
   bool advance(double arcLength, const Eigen::Isometry3d& pose, bool arrival, int depth = 0) {
     const robot::Vector6& previous = result_.joints.back();
     const double previousArcLength = result_.arcLengths.back();
-    const std::optional<robot::Vector6> q = ik_.solveNearest(pose, previous);
+    // Only the start's branch is solved: a TCP path cannot change branch without passing a
+    // singularity, which shows up below as a joint jump.
+    const auto onBranch = ik_.solveBranch(pose, branch_, previous[5]);
+    const std::optional<robot::Vector6> q = onBranch ? ik_.nearestRepresentation(*onBranch, previous) : std::nullopt;
     if (!q) {
+      if (onBranch) return fail(ConversionStatus::JointLimits, arcLength, "the IK solution is outside the joint limits");
       const bool reachable = !ik_.solveBranches(pose).empty();
-      return fail(reachable ? ConversionStatus::JointLimits : ConversionStatus::Unreachable, arcLength,
-                  reachable ? "every IK solution is outside the joint limits"
+      return fail(reachable ? ConversionStatus::BranchChange : ConversionStatus::Unreachable, arcLength,
+                  reachable ? "the start configuration's IK branch " + std::to_string(branch_) +
+                                  " cannot reach the TCP pose (other branches can)"
                             : "the TCP pose is out of reach (no IK solution)");
     }
     int joint = 0;
@@ -48,8 +53,7 @@ class Converter {
               << " rad): the path passes a singularity or flips IK branch";
       return fail(ConversionStatus::JointJump, arcLength, message.str());
     }
-    // Nearest-solution tracking with bounded steps keeps the branch except across a singularity:
-    // checked where the path ends (and against the goal), not at every waypoint.
+    // The goal must be this configuration (same branch and 2·pi representation).
     if (arrival && !meetsGoal(*q, arcLength)) return false;
     const robot::Vector6 accepted = arrival && goal_ ? *goal_ : *q;
     if (check_ && !check_(previous, accepted, arcLength)) {

@@ -15,7 +15,9 @@ constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kSingularityTolerance = 1e-10;
 
 double wrapToPi(double angle) {
-  angle = std::remainder(angle, kTwoPi);  // in [-pi, pi]
+  // Rounding to the nearest multiple of 2·pi instead of std::remainder: the exact libm remainder
+  // is several times slower and was a fifth of an arc-planner solve.
+  angle -= kTwoPi * std::nearbyint(angle / kTwoPi);  // in [-pi, pi]
   return angle <= -M_PI ? angle + kTwoPi : angle;
 }
 
@@ -102,53 +104,98 @@ UrInverseKinematics::UrInverseKinematics(const RobotModel& model) {
   }
 }
 
-std::vector<Vector6> UrInverseKinematics::solveBranches(const Eigen::Isometry3d& tipPose, double q6AtWristSingularity) const {
+// The closed form goes joint group by joint group: the shoulder choice fixes q1, the wrist choice q5
+// and q6, the elbow choice q2, q3, q4. Each step is a function so that one branch can be solved
+// without the other seven (the planners track one branch along a path).
+struct UrInverseKinematics::TargetFrame {
+  Eigen::Vector3d n, o, a, p;  // tip pose as DH frame 6 in DH frame 0 (columns and origin)
+};
+
+struct UrInverseKinematics::ShoulderStep {
+  double q1, s1, c1;
+};
+
+struct UrInverseKinematics::WristStep {
+  double q5, s5, c5, q6, s6, c6;
+};
+
+UrInverseKinematics::TargetFrame UrInverseKinematics::targetFrame(const Eigen::Isometry3d& tipPose) const {
   const Eigen::Isometry3d t06 = dh0ToBase_ * tipPose * tipToDh6_;
-  const Eigen::Vector3d n = t06.linear().col(0), o = t06.linear().col(1), a = t06.linear().col(2);
-  const Eigen::Vector3d p = t06.translation();
+  return {t06.linear().col(0), t06.linear().col(1), t06.linear().col(2), t06.translation()};
+}
+
+std::optional<UrInverseKinematics::ShoulderStep> UrInverseKinematics::shoulderStep(const TargetFrame& target,
+                                                                                  int shoulder) const {
+  // The wrist-2 centre lies at distance d4 from the vertical arm plane.
+  const Eigen::Vector3d p5 = target.p - dh_.d6 * target.a;
+  const double rho = std::hypot(p5.x(), p5.y());
+  if (rho < std::abs(dh_.d4) * (1.0 - 1e-12)) return std::nullopt;
+  const double phi = std::acos(std::clamp(dh_.d4 / rho, -1.0, 1.0));
+  const double q1 = std::atan2(p5.y(), p5.x()) + M_PI_2 + (shoulder == 0 ? phi : -phi);
+  return ShoulderStep{q1, std::sin(q1), std::cos(q1)};
+}
+
+UrInverseKinematics::WristStep UrInverseKinematics::wristStep(const TargetFrame& target, const ShoulderStep& shoulder,
+                                                              int wrist, double q6AtWristSingularity) const {
+  const auto& [n, o, a, p] = target;
+  const double s1 = shoulder.s1, c1 = shoulder.c1;
+  // q5 from the tool point's offset from the arm plane.
+  const double c5 = std::clamp((p.x() * s1 - p.y() * c1 - dh_.d4) / dh_.d6, -1.0, 1.0);
+  const double q5 = (wrist == 0 ? 1.0 : -1.0) * std::acos(c5);
+  const double s5 = std::sin(q5);
+  double q6 = q6AtWristSingularity;
+  if (std::abs(s5) > kSingularityTolerance) {
+    q6 = std::atan2(-(o.x() * s1 - o.y() * c1) / s5, (n.x() * s1 - n.y() * c1) / s5);
+  }
+  return {q5, s5, c5, q6, std::sin(q6), std::cos(q6)};
+}
+
+std::optional<Vector6> UrInverseKinematics::elbowStep(const TargetFrame& target, const ShoulderStep& shoulder,
+                                                      const WristStep& wrist, int elbow) const {
+  const auto& [n, o, a, p] = target;
   const auto& [d1, a2, a3, d4, d5, d6] = dh_;
+  const double s1 = shoulder.s1, c1 = shoulder.c1, s6 = wrist.s6, c6 = wrist.c6;
+  // Planar 3R for q2, q3, q4 in the arm plane.
+  const Eigen::Vector3d p4 = p - d6 * a + d5 * (s6 * n + c6 * o);
+  const double x = p4.x() * c1 + p4.y() * s1;
+  const double y = p4.z() - d1;
+  const double c3raw = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3);
+  if (std::abs(c3raw) > 1.0 + 1e-9) return std::nullopt;  // out of reach for this (q1, q5)
+  const double c3 = std::clamp(c3raw, -1.0, 1.0);
+  const Eigen::Vector3d x4 = wrist.c5 * (c6 * n - s6 * o) - wrist.s5 * a;
+  const double q234 = std::atan2(x4.z(), x4.x() * c1 + x4.y() * s1);
+  const double q3 = (elbow == 0 ? 1.0 : -1.0) * std::acos(c3);
+  const double q2 = std::atan2(y, x) - std::atan2(a3 * std::sin(q3), a2 + a3 * c3);
+  Vector6 q;
+  q << shoulder.q1, q2, q3, q234 - q2 - q3, wrist.q5, wrist.q6;
+  for (auto& v : q) v = wrapToPi(v);
+  return q;
+}
+
+std::vector<Vector6> UrInverseKinematics::solveBranches(const Eigen::Isometry3d& tipPose, double q6AtWristSingularity) const {
+  const TargetFrame target = targetFrame(tipPose);
   std::vector<Vector6> solutions;
   solutions.reserve(8);
-
-  // q1: the wrist-2 centre lies at distance d4 from the vertical arm plane.
-  const Eigen::Vector3d p5 = p - d6 * a;
-  const double rho = std::hypot(p5.x(), p5.y());
-  if (rho < std::abs(d4) * (1.0 - 1e-12)) return solutions;
-  const double psi = std::atan2(p5.y(), p5.x());
-  const double phi = std::acos(std::clamp(d4 / rho, -1.0, 1.0));
-  for (const double shoulder : {+1.0, -1.0}) {
-    const double q1 = psi + M_PI_2 + shoulder * phi;
-    const double s1 = std::sin(q1), c1 = std::cos(q1);
-    // q5 from the tool point's offset from the arm plane.
-    const double c5 = std::clamp((p.x() * s1 - p.y() * c1 - d4) / d6, -1.0, 1.0);
-    for (const double wrist : {+1.0, -1.0}) {
-      const double q5 = wrist * std::acos(c5);
-      const double s5 = std::sin(q5);
-      double q6 = q6AtWristSingularity;
-      if (std::abs(s5) > kSingularityTolerance) {
-        q6 = std::atan2(-(o.x() * s1 - o.y() * c1) / s5, (n.x() * s1 - n.y() * c1) / s5);
-      }
-      const double s6 = std::sin(q6), c6 = std::cos(q6);
-      // Planar 3R for q2, q3, q4 in the arm plane.
-      const Eigen::Vector3d p4 = p - d6 * a + d5 * (s6 * n + c6 * o);
-      const double x = p4.x() * c1 + p4.y() * s1;
-      const double y = p4.z() - d1;
-      const double c3raw = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3);
-      if (std::abs(c3raw) > 1.0 + 1e-9) continue;  // out of reach for this (q1, q5)
-      const double c3 = std::clamp(c3raw, -1.0, 1.0);
-      const Eigen::Vector3d x4 = std::cos(q5) * (c6 * n - s6 * o) - s5 * a;
-      const double q234 = std::atan2(x4.z(), x4.x() * c1 + x4.y() * s1);
-      for (const double elbow : {+1.0, -1.0}) {
-        const double q3 = elbow * std::acos(c3);
-        const double q2 = std::atan2(y, x) - std::atan2(a3 * std::sin(q3), a2 + a3 * c3);
-        Vector6 q;
-        q << q1, q2, q3, q234 - q2 - q3, q5, q6;
-        for (auto& v : q) v = wrapToPi(v);
-        solutions.push_back(q);
+  for (int shoulderBit = 0; shoulderBit < 2; ++shoulderBit) {
+    const auto shoulder = shoulderStep(target, shoulderBit);
+    if (!shoulder) return solutions;
+    for (int wristBit = 0; wristBit < 2; ++wristBit) {
+      const WristStep wrist = wristStep(target, *shoulder, wristBit, q6AtWristSingularity);
+      for (int elbowBit = 0; elbowBit < 2; ++elbowBit) {
+        if (auto q = elbowStep(target, *shoulder, wrist, elbowBit)) solutions.push_back(*q);
       }
     }
   }
   return solutions;
+}
+
+std::optional<Vector6> UrInverseKinematics::solveBranch(const Eigen::Isometry3d& tipPose, int branch,
+                                                        double q6AtWristSingularity) const {
+  const TargetFrame target = targetFrame(tipPose);
+  const auto shoulder = shoulderStep(target, branch & 1);
+  if (!shoulder) return std::nullopt;
+  return elbowStep(target, *shoulder, wristStep(target, *shoulder, (branch >> 1) & 1, q6AtWristSingularity),
+                   (branch >> 2) & 1);
 }
 
 std::optional<Vector6> UrInverseKinematics::nearestRepresentation(const Vector6& q, const Vector6& reference) const {

@@ -218,3 +218,34 @@ TEST(UrInverseKinematics, RejectsAChainThatIsNotUrType) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(UrInverseKinematics, SolveBranchEqualsThatBranchOfSolveBranches) {
+  const auto& model = arcplan::robot::ur10e();
+  const UrInverseKinematics ik(model);
+  std::mt19937 random(31);
+  int compared = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Vector6 q = randomInLimits(random, model);
+    const auto target = arcplan::robot::tipPose(model, q);
+    const auto all = ik.solveBranches(target);
+    for (int branch = 0; branch < 8; ++branch) {
+      const auto single = ik.solveBranch(target, branch);
+      const auto inAll = std::find_if(all.begin(), all.end(), [&](const Vector6& s) { return ik.branchOf(s) == branch; });
+      ASSERT_EQ(single.has_value(), inAll != all.end()) << "branch " << branch;
+      if (single) {
+        EXPECT_EQ(ik.branchOf(*single), branch);
+        EXPECT_LT((*single - *inAll).cwiseAbs().maxCoeff(), 1e-12);
+        ++compared;
+      }
+    }
+    // The original configuration is the solution of its own branch.
+    const auto own = ik.solveBranch(target, ik.branchOf(q), q[5]);
+    ASSERT_TRUE(own.has_value());
+    EXPECT_LT(angularDistanceModuloTwoPi(*own, q), 1e-9);
+  }
+  EXPECT_GT(compared, 1500);
+}
+
+}  // namespace

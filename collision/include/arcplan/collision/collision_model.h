@@ -9,6 +9,7 @@
 // sends only overlapping pairs to FCL, and also catches a part lying entirely inside another
 // (FCL compares surfaces, so a small particle inside a link would otherwise go unnoticed).
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
@@ -89,6 +90,10 @@ struct CollisionData {
   robot::KinematicsData kinematics;
   std::vector<Eigen::Isometry3d> partPoses;
   std::vector<Eigen::Vector3d> capsuleStarts, capsuleEnds;          // per part
+  // Part poses and capsules are computed when a query first needs them: valid for the current
+  // configuration where partStamps[i] == stamp (incremented by every query).
+  std::vector<std::uint64_t> partStamps;
+  std::uint64_t stamp = 0;
   std::vector<Eigen::Vector3d> linkCapsuleStarts, linkCapsuleEnds;  // per link with geometry
   std::vector<std::pair<double, int>> distanceOrder;  // (lower bound, pair) for distance queries
 };

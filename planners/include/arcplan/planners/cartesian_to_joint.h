@@ -1,7 +1,7 @@
 #pragma once
 // A TCP path to joint waypoints with the analytic UR inverse kinematics, staying on the IK branch of
-// the start configuration: at every sample the in-limit solution nearest to the previous waypoint,
-// steps of any joint bounded (a too-large step is bisected along the path; if that does not help, the
+// the start configuration: at every sample that branch's solution (UrInverseKinematics::solveBranch)
+// in the 2·pi representation nearest to the previous waypoint, steps of any joint bounded (a too-large step is bisected along the path; if that does not help, the
 // path crosses a singularity or changes branch and the conversion fails with the reason).
 #include <functional>
 #include <limits>
