@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <set>
 
 #include <yaml-cpp/yaml.h>
@@ -13,6 +14,10 @@
 
 namespace arcplan::benchmarks {
 namespace {
+
+// Bounds that keep a typo from starting a campaign of months or generating problems for hours.
+constexpr long long kMaximumRuns = 100000;
+constexpr long long kMaximumGeneratedPerKind = 1000;
 
 // Reading context for messages: "suites/x.yaml:12: field 'runs': ..."
 struct SuiteReader {
@@ -67,7 +72,8 @@ struct SuiteReader {
     return value;
   }
 
-  long long count(const YAML::Node& map, const std::string& key, const std::string& what, long long minimum) const {
+  long long count(const YAML::Node& map, const std::string& key, const std::string& what, long long minimum,
+                  long long maximum) const {
     const auto node = map[key];
     long long value = 0;
     try {
@@ -75,7 +81,10 @@ struct SuiteReader {
     } catch (const YAML::Exception&) {
       fail(node, what + ": field '" + key + "' must be a whole number");
     }
-    if (value < minimum) fail(node, what + ": field '" + key + "' must be >= " + std::to_string(minimum));
+    if (value < minimum || value > maximum) {
+      fail(node, what + ": field '" + key + "' must be between " + std::to_string(minimum) + " and " +
+                     std::to_string(maximum));
+    }
     return value;
   }
 
@@ -137,10 +146,10 @@ struct SuiteReader {
     expectKeys(node, {"seed", "line_obstacles", "pillars", "shelves"}, "generate");
     GeneratorSettings settings;
     if (!node["seed"]) fail(node, "generate: missing field 'seed' (problems must be reproducible)");
-    settings.seed = static_cast<std::uint64_t>(count(node, "seed", "generate", 0));
-    if (node["line_obstacles"]) settings.lineObstacles = static_cast<int>(count(node, "line_obstacles", "generate", 0));
-    if (node["pillars"]) settings.pillars = static_cast<int>(count(node, "pillars", "generate", 0));
-    if (node["shelves"]) settings.shelves = static_cast<int>(count(node, "shelves", "generate", 0));
+    settings.seed = static_cast<std::uint64_t>(count(node, "seed", "generate", 0, std::numeric_limits<long long>::max()));
+    if (node["line_obstacles"]) settings.lineObstacles = static_cast<int>(count(node, "line_obstacles", "generate", 0, kMaximumGeneratedPerKind));
+    if (node["pillars"]) settings.pillars = static_cast<int>(count(node, "pillars", "generate", 0, kMaximumGeneratedPerKind));
+    if (node["shelves"]) settings.shelves = static_cast<int>(count(node, "shelves", "generate", 0, kMaximumGeneratedPerKind));
     return settings;
   }
 };
@@ -162,15 +171,10 @@ const Problem& Suite::problem(const std::string& wanted) const {
   throw Error("suite '" + name + "' has no problem '" + wanted + "' (problems: " + list + ")");
 }
 
-Suite loadSuite(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) throw Error("suite file " + file.string() + " not found (or not a file)");
+namespace {
+
+Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
   const SuiteReader reader{file};
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::Exception& e) {
-    throw Error(file.string() + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
-  }
   if (!root || !root.IsMap()) throw Error(file.string() + ": a suite must be a YAML map (name, runs, problems, planners)");
   reader.expectKeys(root, {"name", "description", "runs", "time_limit", "v_max", "problems", "generate", "planners", "plots"},
                     "suite");
@@ -179,7 +183,7 @@ Suite loadSuite(const std::filesystem::path& file) {
   suite.sourceFile = file;
   suite.name = reader.name(root, "name", "suite");
   if (root["description"]) suite.description = reader.text(root, "description", "suite");
-  if (root["runs"]) suite.runs = static_cast<unsigned>(reader.count(root, "runs", "suite", 1));
+  if (root["runs"]) suite.runs = static_cast<unsigned>(reader.count(root, "runs", "suite", 1, kMaximumRuns));
   if (root["time_limit"]) suite.timeLimit = reader.positive(root, "time_limit", "suite");
   if (root["v_max"]) suite.vMax = reader.positive(root, "v_max", "suite");
 
@@ -217,6 +221,19 @@ Suite loadSuite(const std::filesystem::path& file) {
     }
   }
   return suite;
+}
+
+}  // namespace
+
+Suite loadSuite(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file)) throw Error("suite file " + file.string() + " not found (or not a file)");
+  // Any yaml-cpp exception (a syntax error, or a conversion the reader did not anticipate, such as
+  // a map where a name is expected) becomes an arcplan::Error at its line.
+  try {
+    return readSuite(file, YAML::LoadFile(file.string()));
+  } catch (const YAML::Exception& e) {
+    throw Error(file.string() + ":" + std::to_string(e.mark.line + 1) + ": not a valid suite: " + e.msg);
+  }
 }
 
 std::filesystem::path suiteDirectory() {
