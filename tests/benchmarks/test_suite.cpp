@@ -127,7 +127,7 @@ TEST(Suite, BadSuiteFilesAreReportedWithFileLineAndField) {
       {"no_planners", "name: x\nproblems: [{name: p, scene: scene.yaml}]\n", {"no_planners.yaml", "'planners'"}},
       {"no_problems", "name: x\nplanners: [RRT]\n", {"no_problems.yaml", "no problems"}},
       {"bad_runs", "name: x\nruns: 0\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
-       {"bad_runs.yaml:2", "'runs' must be >= 1"}},
+       {"bad_runs.yaml:2", "'runs' must be between 1 and 100000"}},
       {"bad_time", "name: x\ntime_limit: -1\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
        {"bad_time.yaml:2", "'time_limit' must be > 0"}},
       {"bad_name", "name: x\nproblems: [{name: 'a b', scene: scene.yaml}]\nplanners: [RRT]\n",
@@ -140,7 +140,7 @@ TEST(Suite, BadSuiteFilesAreReportedWithFileLineAndField) {
        {"unknown_query.yaml:2", "C_to_D", "A_to_B"}},
       {"unknown_plot", "name: x\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\nplots: [q]\n",
        {"unknown_plot.yaml:4", "no problem named 'q'"}},
-      {"not_yaml", "name: [x\n", {"not_yaml.yaml", "not valid YAML"}},
+      {"not_yaml", "name: [x\n", {"not_yaml.yaml", "not a valid suite"}},
       {"no_seed", "name: x\ngenerate: {pillars: 1}\nplanners: [RRT]\n", {"no_seed.yaml:2", "missing field 'seed'"}},
   };
   for (const auto& bad : cases) {
