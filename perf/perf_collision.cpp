@@ -1,7 +1,8 @@
 // Micro-benchmarks of collision queries per robot state in the thesis scene (table + particle):
 // isCollisionFree, collide and distance, for every FCL bounding-volume type, with and without the
 // capsule broad phase. Each iteration checks the next of 1000 random collision-free states.
-// "naive" sends every non-allowed part pair to FCL (no capsule broad phase).
+// "naive" sends every non-allowed part pair to FCL (no capsule broad phase). CollisionMotion*
+// checks straight joint-space motions, discrete (0.01 rad) vs certified (motion_check.h).
 // Run: build/perf/arcplan_perf --benchmark_filter=Collision --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (the medians are the numbers in docs/collision.md)
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <benchmark/benchmark.h>
 
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/motion_check.h"
 #include "arcplan/common/resources.h"
 
 namespace {
@@ -116,6 +118,69 @@ void CollisionIsCollisionFreePerStateMedian(benchmark::State& state) {
   state.counters["median_us"] = perState[perState.size() / 2];
 }
 BENCHMARK(CollisionIsCollisionFreePerStateMedian)->Unit(benchmark::kMillisecond);
+
+enum class MotionSet { Long, LongFree, Short };
+
+// 500 seeded motions from collision-free random states: RRT-like (Euclidean joint-space length 1–5
+// rad, end anywhere inside the limits), the collision-free ones among such motions (by a 0.001 rad
+// discrete check), and arc-path-like segments (largest joint step 0.05 rad, both ends collision-free).
+const std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>& motions(MotionSet set) {
+  static const auto make = [](MotionSet wanted) {
+    const auto model = makeCollisionModel(thesisScene());
+    CollisionData data(*model);
+    const auto& joints = model->robot().joints();
+    std::mt19937_64 random(23 + static_cast<int>(wanted));
+    std::normal_distribution<double> gaussian;
+    MotionCheckOptions fine;
+    fine.method = MotionCheck::Discrete;
+    fine.maxJointStep = 0.001;
+    std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> result;
+    while (result.size() < 500) {
+      Eigen::VectorXd start(6), direction(6);
+      for (int j = 0; j < 6; ++j) {
+        start[j] = std::uniform_real_distribution<double>(joints[j].limits.lower, joints[j].limits.upper)(random);
+        direction[j] = gaussian(random);
+      }
+      if (!isCollisionFree(*model, data, start)) continue;
+      const double scale = wanted == MotionSet::Short
+                               ? 0.05 / direction.cwiseAbs().maxCoeff()
+                               : std::uniform_real_distribution<double>(1.0, 5.0)(random) / direction.norm();
+      const Eigen::VectorXd end = start + scale * direction;
+      bool inside = true;
+      for (int j = 0; j < 6; ++j) inside = inside && joints[j].limits.lower <= end[j] && end[j] <= joints[j].limits.upper;
+      if (!inside) continue;
+      if (wanted == MotionSet::Short && !isCollisionFree(*model, data, end)) continue;
+      if (wanted == MotionSet::LongFree && !isMotionCollisionFree(*model, data, start, end, nullptr, fine)) continue;
+      result.emplace_back(start, end);
+    }
+    return result;
+  };
+  static const std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> sets[] = {
+      make(MotionSet::Long), make(MotionSet::LongFree), make(MotionSet::Short)};
+  return sets[static_cast<int>(set)];
+}
+
+// Motion checks per second (items_per_second) and the fraction of motions found free.
+void CollisionMotion(benchmark::State& state, MotionCheck method, MotionSet set) {
+  const auto model = makeCollisionModel(thesisScene());
+  CollisionData data(*model);
+  MotionCheckOptions options;
+  options.method = method;
+  const auto& checked = motions(set);
+  std::size_t k = 0, free = 0;
+  for (auto _ : state) {
+    const auto& [start, end] = checked[k++ % checked.size()];
+    free += isMotionCollisionFree(*model, data, start, end, nullptr, options);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(k));
+  state.counters["free_fraction"] = static_cast<double>(free) / static_cast<double>(k);
+}
+BENCHMARK_CAPTURE(CollisionMotion, Discrete_long, MotionCheck::Discrete, MotionSet::Long);
+BENCHMARK_CAPTURE(CollisionMotion, Certified_long, MotionCheck::Certified, MotionSet::Long);
+BENCHMARK_CAPTURE(CollisionMotion, Discrete_long_free, MotionCheck::Discrete, MotionSet::LongFree);
+BENCHMARK_CAPTURE(CollisionMotion, Certified_long_free, MotionCheck::Certified, MotionSet::LongFree);
+BENCHMARK_CAPTURE(CollisionMotion, Discrete_short, MotionCheck::Discrete, MotionSet::Short);
+BENCHMARK_CAPTURE(CollisionMotion, Certified_short, MotionCheck::Certified, MotionSet::Short);
 
 using BV = BoundingVolume;
 // The default model: ConvexGJK boolean queries and distances with the capsule broad phase.

@@ -2,52 +2,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
 #include "arcplan/common/error.h"
-#include "parts.h"
+#include "model_implementation.h"
 
 namespace arcplan::collision {
-
-// Robot parts move with their link; obstacle parts are fixed in base_link, so their bounding
-// volumes are precomputed in world coordinates.
-struct CollisionModel::Implementation {
-  std::vector<detail::Part> robotParts;  // Part::body indexes linkNames()
-  std::vector<int> robotPartLink;        // index into robot().links(), for forward kinematics
-  // Per link with geometry (indexed like linkNames()): a capsule around all its parts, in the link
-  // frame, so far-apart link pairs are dismissed with one test instead of one per part pair.
-  std::vector<detail::Capsule> linkCapsules;
-  std::vector<int> linkCapsuleLink;
-  std::vector<detail::Part> obstacleParts;  // Part::body indexes obstacleNames(), Part::offset is the world pose
-  std::vector<Eigen::Vector3d> obstacleCapsuleStarts, obstacleCapsuleEnds;
-  std::vector<Eigen::Isometry3d> obstacleInversePoses;
-
-  // The parts of one non-allowed body pair; `second` is an obstacle part for robot–obstacle groups.
-  struct PairGroup {
-    int firstBody = -1, secondBody = -1;
-    bool self = false;
-    std::vector<std::pair<int, int>> parts;
-    std::vector<int> obstacleParts;  // the second body's parts (robot–obstacle groups)
-  };
-  std::vector<PairGroup> obstacleGroups, selfGroups;
-  // Every part pair of every group, for distance queries (which order them by their bounds).
-  struct PartPair {
-    const PairGroup* group;
-    int first, second;
-  };
-  std::vector<PartPair> partPairs;
-};
-
 namespace {
 
-using Implementation = CollisionModel::Implementation;
+using detail::Implementation;
 using detail::Part;
 
-// Forward kinematics and the link capsules; part poses are computed on first use (ensurePart), so
-// a state whose links are far from everything never transforms its parts.
+// FCL compares surfaces; a part entirely inside the other has no intersecting surfaces, so one
+// point of each is tested against the other's solid as well.
+bool oneInsideOther(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB) {
+  return a.solid.contains(poseA.inverse() * (poseB * b.referencePoint)) ||
+         b.solid.contains(poseB.inverse() * (poseA * a.referencePoint));
+}
+
+}  // namespace
+
+namespace detail {
+
 void updateRobot(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
   if (q.size() != model.robot().dof()) {
     throw Error("collision query: expected " + std::to_string(model.robot().dof()) + " joint values, got " +
@@ -63,69 +43,19 @@ void updateRobot(const CollisionModel& model, CollisionData& data, const robot::
   }
 }
 
-void ensurePart(const Implementation& impl, CollisionData& data, int i) {
-  if (data.partStamps[i] == data.stamp) return;
-  const Part& part = impl.robotParts[i];
-  data.partPoses[i] = data.kinematics.linkPoses[impl.robotPartLink[i]] * part.offset;
-  data.capsuleStarts[i] = data.partPoses[i] * part.capsule.start;
-  data.capsuleEnds[i] = data.partPoses[i] * part.capsule.end;
-  data.partStamps[i] = data.stamp;
-}
-
-// Lower bound of the distance between a capsule (segment start-end, radius) and obstacle part j.
-double obstacleGap(const Implementation& impl, const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
-                   int j) {
-  const Part& obstacle = impl.obstacleParts[j];
-  if (obstacle.boxBound) {
-    const Eigen::Isometry3d& toBox = impl.obstacleInversePoses[j];
-    return detail::capsuleBoxLowerBound(toBox * start, toBox * end, radius, obstacle.boxHalfExtents);
-  }
-  return detail::segmentDistance(start, end, impl.obstacleCapsuleStarts[j], impl.obstacleCapsuleEnds[j]) - radius -
-         obstacle.capsule.radius;
-}
-
-// Lower bound of the distance between robot part i and part j (robot part if `self`, else obstacle
-// part) from their bounding volumes; <= 0 when the volumes overlap.
-double boundGap(const Implementation& impl, CollisionData& data, int i, int j, bool self) {
-  ensurePart(impl, data, i);
-  const double radius = impl.robotParts[i].capsule.radius;
-  if (!self) return obstacleGap(impl, data.capsuleStarts[i], data.capsuleEnds[i], radius, j);
-  ensurePart(impl, data, j);
-  return detail::segmentDistance(data.capsuleStarts[i], data.capsuleEnds[i], data.capsuleStarts[j], data.capsuleEnds[j]) -
-         radius - impl.robotParts[j].capsule.radius;
-}
-
-// Whether the capsule around a whole link already clears the group's other body.
-bool linksApart(const Implementation& impl, const CollisionData& data, const Implementation::PairGroup& group) {
+double linkGap(const Implementation& impl, const CollisionData& data, const Implementation::PairGroup& group) {
   const int a = group.firstBody;
   const double radius = impl.linkCapsules[a].radius;
   if (group.self) {
     const int b = group.secondBody;
-    return detail::segmentDistance(data.linkCapsuleStarts[a], data.linkCapsuleEnds[a], data.linkCapsuleStarts[b],
-                                   data.linkCapsuleEnds[b]) - radius - impl.linkCapsules[b].radius > 0.0;
+    return segmentDistance(data.linkCapsuleStarts[a], data.linkCapsuleEnds[a], data.linkCapsuleStarts[b],
+                           data.linkCapsuleEnds[b]) - radius - impl.linkCapsules[b].radius;
   }
+  double gap = std::numeric_limits<double>::infinity();
   for (const int j : group.obstacleParts) {
-    if (obstacleGap(impl, data.linkCapsuleStarts[a], data.linkCapsuleEnds[a], radius, j) <= 0.0) return false;
+    gap = std::min(gap, obstacleGap(impl, data.linkCapsuleStarts[a], data.linkCapsuleEnds[a], radius, j));
   }
-  return true;
-}
-
-// FCL compares surfaces; a part entirely inside the other has no intersecting surfaces, so one
-// point of each is tested against the other's solid as well.
-bool oneInsideOther(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB) {
-  return a.solid.contains(poseA.inverse() * (poseB * b.referencePoint)) ||
-         b.solid.contains(poseB.inverse() * (poseA * a.referencePoint));
-}
-
-bool partsCollide(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
-                  const CollisionModelOptions& options) {
-  static const fcl::CollisionRequestd request;  // one contact, no contact details: boolean answer
-  fcl::CollisionResultd result;
-  if (options.convexCollision && a.convexGeometry && b.convexGeometry) {
-    return fcl::collide(a.convexGeometry.get(), poseA, b.convexGeometry.get(), poseB, request, result) > 0;
-  }
-  if (fcl::collide(a.collisionGeometry.get(), poseA, b.collisionGeometry.get(), poseB, request, result) > 0) return true;
-  return oneInsideOther(a, poseA, b, poseB);
+  return gap;
 }
 
 double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
@@ -145,13 +75,31 @@ double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& 
   return std::max(d, 0.0);  // FCL reports -1 or 0 for intersecting shapes
 }
 
-const Part& secondPart(const Implementation& impl, const Implementation::PairGroup& group, int j) {
-  return group.self ? impl.robotParts[j] : impl.obstacleParts[j];
+}  // namespace detail
+
+namespace {
+
+using detail::boundGap;
+using detail::ensurePart;
+using detail::partsDistance;
+using detail::secondPart;
+using detail::secondPose;
+using detail::updateRobot;
+
+// Whether the capsule around a whole link already clears the group's other body.
+bool linksApart(const Implementation& impl, const CollisionData& data, const Implementation::PairGroup& group) {
+  return detail::linkGap(impl, data, group) > 0.0;
 }
 
-const Eigen::Isometry3d& secondPose(const Implementation& impl, const CollisionData& data,
-                                    const Implementation::PairGroup& group, int j) {
-  return group.self ? data.partPoses[j] : impl.obstacleParts[j].offset;
+bool partsCollide(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+                  const CollisionModelOptions& options) {
+  static const fcl::CollisionRequestd request;  // one contact, no contact details: boolean answer
+  fcl::CollisionResultd result;
+  if (options.convexCollision && a.convexGeometry && b.convexGeometry) {
+    return fcl::collide(a.convexGeometry.get(), poseA, b.convexGeometry.get(), poseB, request, result) > 0;
+  }
+  if (fcl::collide(a.collisionGeometry.get(), poseA, b.collisionGeometry.get(), poseB, request, result) > 0) return true;
+  return oneInsideOther(a, poseA, b, poseB);
 }
 
 bool groupCollides(const CollisionModel& model, CollisionData& data, const Implementation::PairGroup& group) {
@@ -277,7 +225,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
   for (int a = 0; a < static_cast<int>(linkNames_.size()); ++a) {
     for (int b = 0; b < static_cast<int>(obstacleNames_.size()); ++b) {
       if (allowed_.isAllowed(linkNames_[a], obstacleNames_[b])) continue;
-      Implementation::PairGroup group{a, b, false, {}, {}};
+      Implementation::PairGroup group{a, b, false, {}, {}, {}};
       for (std::size_t j = 0; j < impl.obstacleParts.size(); ++j) {
         if (impl.obstacleParts[j].body == b) group.obstacleParts.push_back(static_cast<int>(j));
       }
@@ -289,7 +237,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
     }
     for (int b = a + 1; b < static_cast<int>(linkNames_.size()); ++b) {
       if (allowed_.isAllowed(linkNames_[a], linkNames_[b])) continue;
-      Implementation::PairGroup group{a, b, true, {}, {}};
+      Implementation::PairGroup group{a, b, true, {}, {}, {}};
       for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
         for (std::size_t j = 0; j < impl.robotParts.size(); ++j) {
           if (impl.robotParts[i].body == a && impl.robotParts[j].body == b) group.parts.emplace_back(i, j);
@@ -300,9 +248,11 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
   }
   for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
     for (const auto& group : *groups) {
+      impl.groups.push_back(&group);
       for (const auto& [i, j] : group.parts) impl.partPairs.push_back({&group, i, j});
     }
   }
+  detail::computeMotionBounds(*robot_, impl);
 }
 
 CollisionModel::~CollisionModel() = default;
@@ -325,7 +275,9 @@ CollisionData::CollisionData(const CollisionModel& model)
       capsuleEnds(model.implementation().robotParts.size()),
       partStamps(model.implementation().robotParts.size(), 0),
       linkCapsuleStarts(model.linkNames().size()),
-      linkCapsuleEnds(model.linkNames().size()) {
+      linkCapsuleEnds(model.linkNames().size()),
+      motionPairs(model.implementation().groups.size()),
+      motionJoints(model.robot().dof()) {
   distanceOrder.reserve(model.implementation().partPairs.size());
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
@@ -54,40 +53,23 @@ double CollisionStateValidityChecker::clearance(const ob::State* state) const {
   return distance(model(), *lease, jointsOf(state, model().robot().dof())).minimum();
 }
 
-JointMotionValidator::JointMotionValidator(ob::SpaceInformation* si, double maxJointStep)
-    : ob::MotionValidator(si), maxJointStep_(maxJointStep) {
-  if (!(maxJointStep > 0.0)) throw Error("joint motion validator: maxJointStep must be positive");
+JointMotionValidator::JointMotionValidator(ob::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
+                                           MotionCheckOptions options)
+    : ob::MotionValidator(si), pool_(std::move(model)), options_(options) {
+  validate(options_);
 }
 
 int JointMotionValidator::segmentCount(const ob::State* s1, const ob::State* s2) const {
-  const auto* a = s1->as<ob::RealVectorStateSpace::StateType>()->values;
-  const auto* b = s2->as<ob::RealVectorStateSpace::StateType>()->values;
-  double largestStep = 0.0;
-  for (unsigned j = 0; j < si_->getStateDimension(); ++j) largestStep = std::max(largestStep, std::abs(b[j] - a[j]));
-  return std::max(1, static_cast<int>(std::ceil(largestStep / maxJointStep_)));
+  const int dof = pool_.model().robot().dof();
+  return discreteSegmentCount(jointsOf(s1, dof), jointsOf(s2, dof), options_.maxJointStep);
 }
 
 bool JointMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
-  if (!si_->isValid(s2)) {
-    ++invalid_;
-    return false;
-  }
-  const int segments = segmentCount(s1, s2);
-  bool valid = true;
-  if (segments > 1) {
-    ob::State* test = si_->allocState();
-    std::queue<std::pair<int, int>> intervals;  // ranges of intermediate states still to check
-    intervals.emplace(1, segments - 1);
-    while (valid && !intervals.empty()) {
-      const auto [first, last] = intervals.front();
-      intervals.pop();
-      const int middle = (first + last) / 2;
-      si_->getStateSpace()->interpolate(s1, s2, static_cast<double>(middle) / segments, test);
-      valid = si_->isValid(test);
-      if (first < middle) intervals.emplace(first, middle - 1);
-      if (middle < last) intervals.emplace(middle + 1, last);
-    }
-    si_->freeState(test);
+  const int dof = pool_.model().robot().dof();
+  bool valid = si_->isValid(s2);
+  if (valid) {
+    const auto lease = pool_.lease();
+    valid = isMotionCollisionFree(pool_.model(), *lease, jointsOf(s1, dof), jointsOf(s2, dof), nullptr, options_);
   }
   valid ? ++valid_ : ++invalid_;
   return valid;
@@ -95,43 +77,41 @@ bool JointMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2)
 
 bool JointMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                        std::pair<ob::State*, double>& lastValid) const {
-  const int segments = segmentCount(s1, s2);
-  ob::State* test = si_->allocState();
-  bool valid = true;
-  int step = 1;
-  for (; step <= segments; ++step) {
-    const ob::State* checked = s2;
-    if (step < segments) {
-      si_->getStateSpace()->interpolate(s1, s2, static_cast<double>(step) / segments, test);
-      checked = test;
-    }
-    if (!si_->isValid(checked)) {
-      valid = false;
-      break;
-    }
+  const int dof = pool_.model().robot().dof();
+  // Both checks below cover the collisions of s2; the joint bounds are the rest of its validity (a
+  // straight motion between states inside the bounds stays inside).
+  double fraction = 0.0;
+  bool valid = si_->satisfiesBounds(s2);
+  if (valid) {
+    const auto lease = pool_.lease();
+    valid = isMotionCollisionFree(pool_.model(), *lease, jointsOf(s1, dof), jointsOf(s2, dof), &fraction, options_);
   }
-  si_->freeState(test);
   if (valid) {
     ++valid_;
     return true;
   }
-  lastValid.second = static_cast<double>(step - 1) / segments;
-  if (lastValid.first != nullptr) si_->getStateSpace()->interpolate(s1, s2, lastValid.second, lastValid.first);
+  lastValid.second = fraction;
+  if (lastValid.first != nullptr) si_->getStateSpace()->interpolate(s1, s2, fraction, lastValid.first);
   ++invalid_;
   return false;
 }
 
-ob::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model, double maxJointStep) {
+ob::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model,
+                                             const MotionCheckOptions& motionCheck) {
   if (!model) throw Error("makeSpaceInformation: no collision model");
   auto space = makeJointStateSpace(model->robot());
   auto si = std::make_shared<ob::SpaceInformation>(space);
-  si->setStateValidityChecker(std::make_shared<CollisionStateValidityChecker>(si.get(), std::move(model)));
-  si->setMotionValidator(std::make_shared<JointMotionValidator>(si.get(), maxJointStep));
-  // Only used by code that asks SpaceInformation for its resolution; the motion validator above
-  // works with maxJointStep directly.
-  si->setStateValidityCheckingResolution(std::min(1.0, maxJointStep / space->getMaximumExtent()));
+  si->setStateValidityChecker(std::make_shared<CollisionStateValidityChecker>(si.get(), model));
+  si->setMotionValidator(std::make_shared<JointMotionValidator>(si.get(), std::move(model), motionCheck));
+  si->setStateValidityCheckingResolution(std::min(1.0, motionCheck.maxJointStep / space->getMaximumExtent()));
   si->setup();
   return si;
+}
+
+ob::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model, double maxJointStep) {
+  MotionCheckOptions motionCheck;
+  motionCheck.maxJointStep = maxJointStep;
+  return makeSpaceInformation(std::move(model), motionCheck);
 }
 
 }  // namespace arcplan::collision

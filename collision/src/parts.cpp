@@ -237,6 +237,7 @@ Part makeMeshPart(const robot::TriangleMesh& mesh, Solid solid, const CollisionM
   }
   part.solid = std::move(solid);
   part.referencePoint = mesh.vertices.front();
+  part.hullPoints = mesh.vertices;
   return part;
 }
 
@@ -318,6 +319,7 @@ Part boxPart(const Eigen::Vector3d& size) {
                          (corner & 4 ? 0.5 : -0.5) * size.z());
   }
   part.capsule = fitCapsule(corners);
+  part.hullPoints = corners;
   part.boxHalfExtents = size / 2.0;
   part.solid.kind = Solid::Kind::Box;
   part.solid.halfExtents = size / 2.0;

@@ -43,6 +43,10 @@ struct Part {
   Eigen::Vector3d boxHalfExtents = Eigen::Vector3d::Zero();
   Solid solid;
   Eigen::Vector3d referencePoint = Eigen::Vector3d::Zero();  // a point of the part, in the part frame
+  // Points whose convex hull contains the part, in the part frame (mesh vertices, box corners;
+  // empty for spheres and cylinders, whose capsule stands in): the farthest point of the part from
+  // anything is one of them, which is what motion bounds need.
+  std::vector<Eigen::Vector3d> hullPoints;
 };
 
 // One part per closed component of the mesh (edge-connected triangles after welding identical

@@ -96,6 +96,16 @@ struct CollisionData {
   std::uint64_t stamp = 0;
   std::vector<Eigen::Vector3d> linkCapsuleStarts, linkCapsuleEnds;  // per link with geometry
   std::vector<std::pair<double, int>> distanceOrder;  // (lower bound, pair) for distance queries
+  // Motion checks (motion_check.h): per non-allowed body pair, how fast its distance can shrink
+  // along the motion [m per unit of the motion's fraction], the fractions before / after which it is
+  // proven apart, and where those certificates were measured.
+  struct MotionPair {
+    double rate = 0.0;
+    double certifiedFromStart = 0.0, certifiedFromEnd = 1.0;
+    double measuredFromStart = 0.0, measuredFromEnd = 1.0;
+  };
+  std::vector<MotionPair> motionPairs;
+  robot::JointVector motionJoints;  // the configuration on the motion being checked
 };
 
 using NamePair = std::pair<std::string, std::string>;

@@ -1,7 +1,7 @@
 #pragma once
 // OMPL glue: the joint space of a RobotModel as a RealVectorStateSpace, a state validity checker
-// (collision + joint bounds, clearance from the distance query) and a motion validator that checks
-// straight joint-space motions at a fixed maximum joint step. Any OMPL geometric planner can use
+// (collision + joint bounds, clearance from the distance query) and a motion validator for straight
+// joint-space motions (certified by default, see motion_check.h). Any OMPL geometric planner can use
 // the SpaceInformation from makeSpaceInformation; all three are safe to call from several threads.
 #include <memory>
 #include <utility>
@@ -12,6 +12,7 @@
 
 #include "arcplan/collision/collision_data_pool.h"
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/motion_check.h"
 
 namespace arcplan::collision {
 
@@ -37,27 +38,36 @@ private:
 
 class JointMotionValidator : public ompl::base::MotionValidator {
 public:
-  // maxJointStep [rad]: no joint moves more than this between two checked states.
-  JointMotionValidator(ompl::base::SpaceInformation* si, double maxJointStep);
+  // Checks motions with isMotionCollisionFree(model, ..., options); throws arcplan::Error for
+  // options out of range.
+  JointMotionValidator(ompl::base::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
+                       MotionCheckOptions options = {});
 
-  // s1 is taken as valid (OMPL's convention); s2 and the states in between are checked, in
-  // bisection order so a blocked motion is usually rejected after a few checks.
+  // s1 is taken as valid (OMPL's convention, though the certified check measures it as well); s2
+  // must be valid (si->isValid, exact) and the motion collision-free.
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
-  // Checks from s1 toward s2 in order; on failure lastValid gets the last valid state (if
-  // lastValid.first is not null) and its fraction of the motion.
+  // Checks from s1 toward s2; on failure lastValid gets the last valid state (if lastValid.first is
+  // not null) and its fraction of the motion, in [0, 1) (0 when s2 is outside the joint bounds).
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
-  double maxJointStep() const { return maxJointStep_; }
-  // Number of segments the motion s1 -> s2 is split into (at least 1).
+  const MotionCheckOptions& options() const { return options_; }
+  double maxJointStep() const { return options_.maxJointStep; }
+  // Number of segments a discrete check splits the motion s1 -> s2 into (at least 1).
   int segmentCount(const ompl::base::State* s1, const ompl::base::State* s2) const;
 
 private:
-  double maxJointStep_;
+  CollisionDataPool pool_;
+  MotionCheckOptions options_;
 };
 
-// Joint state space + CollisionStateValidityChecker + JointMotionValidator, set up.
+// Joint state space + CollisionStateValidityChecker + JointMotionValidator, set up. The
+// SpaceInformation's state validity checking resolution (used by OMPL for path interpolation, not
+// by the validator) follows motionCheck.maxJointStep.
 ompl::base::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model,
-                                                     double maxJointStep = 0.01);
+                                                     const MotionCheckOptions& motionCheck = {});
+// The same with the default (certified) motion check and the given maxJointStep, for callers that
+// only choose the resolution.
+ompl::base::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model, double maxJointStep);
 
 }  // namespace arcplan::collision

@@ -1,0 +1,115 @@
+#pragma once
+// CollisionModel's internals, shared by the per-state queries (collision_model.cpp) and the
+// motion checks (motion_check.cpp): the parts, the non-allowed pair groups, the motion bounds, and
+// the building blocks of a query (forward kinematics, bounding-volume gaps, exact part distances).
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "arcplan/collision/collision_model.h"
+#include "parts.h"
+
+namespace arcplan::collision {
+
+// Robot parts move with their link; obstacle parts are fixed in base_link, so their bounding
+// volumes are precomputed in world coordinates.
+struct CollisionModel::Implementation {
+  std::vector<detail::Part> robotParts;  // Part::body indexes linkNames()
+  std::vector<int> robotPartLink;        // index into robot().links(), for forward kinematics
+  // Per link with geometry (indexed like linkNames()): a capsule around all its parts, in the link
+  // frame, so far-apart link pairs are dismissed with one test instead of one per part pair.
+  std::vector<detail::Capsule> linkCapsules;
+  std::vector<int> linkCapsuleLink;
+  std::vector<detail::Part> obstacleParts;  // Part::body indexes obstacleNames(), Part::offset is the world pose
+  std::vector<Eigen::Vector3d> obstacleCapsuleStarts, obstacleCapsuleEnds;
+  std::vector<Eigen::Isometry3d> obstacleInversePoses;
+
+  // Motion bounds (motion_check.cpp), per link with geometry b and joint j: movedBy(b, j) when j
+  // is an ancestor joint of b, and then jointReach(b, j) >= the distance of every point of b's
+  // geometry from j's axis in every configuration (0 otherwise).
+  Eigen::MatrixXd jointReach;
+  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> movedBy;
+
+  // The parts of one non-allowed body pair; `second` is an obstacle part for robot–obstacle groups.
+  struct PairGroup {
+    int firstBody = -1, secondBody = -1;
+    bool self = false;
+    std::vector<std::pair<int, int>> parts;
+    std::vector<int> obstacleParts;  // the second body's parts (robot–obstacle groups)
+    // On a straight joint motion with steps dq the pair's distance shrinks at most by
+    // relativeReach · |dq| (motion_check.cpp).
+    Eigen::VectorXd relativeReach;
+  };
+  std::vector<PairGroup> obstacleGroups, selfGroups;
+  std::vector<const PairGroup*> groups;  // obstacle groups, then self groups
+  // Every part pair of every group, for distance queries (which order them by their bounds).
+  struct PartPair {
+    const PairGroup* group;
+    int first, second;
+  };
+  std::vector<PartPair> partPairs;
+};
+
+namespace detail {
+
+using Implementation = CollisionModel::Implementation;
+
+// Forward kinematics and the link capsules; part poses are computed on first use (ensurePart), so
+// a state whose links are far from everything never transforms its parts.
+void updateRobot(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
+
+inline void ensurePart(const Implementation& impl, CollisionData& data, int i) {
+  if (data.partStamps[i] == data.stamp) return;
+  const Part& part = impl.robotParts[i];
+  data.partPoses[i] = data.kinematics.linkPoses[impl.robotPartLink[i]] * part.offset;
+  data.capsuleStarts[i] = data.partPoses[i] * part.capsule.start;
+  data.capsuleEnds[i] = data.partPoses[i] * part.capsule.end;
+  data.partStamps[i] = data.stamp;
+}
+
+// Lower bound of the distance between a capsule (segment start-end, radius) and obstacle part j.
+inline double obstacleGap(const Implementation& impl, const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                          double radius, int j) {
+  const Part& obstacle = impl.obstacleParts[j];
+  if (obstacle.boxBound) {
+    const Eigen::Isometry3d& toBox = impl.obstacleInversePoses[j];
+    return capsuleBoxLowerBound(toBox * start, toBox * end, radius, obstacle.boxHalfExtents);
+  }
+  return segmentDistance(start, end, impl.obstacleCapsuleStarts[j], impl.obstacleCapsuleEnds[j]) - radius -
+         obstacle.capsule.radius;
+}
+
+// Lower bound of the distance between robot part i and part j (robot part if `self`, else obstacle
+// part) from their bounding volumes; <= 0 when the volumes overlap.
+inline double boundGap(const Implementation& impl, CollisionData& data, int i, int j, bool self) {
+  ensurePart(impl, data, i);
+  const double radius = impl.robotParts[i].capsule.radius;
+  if (!self) return obstacleGap(impl, data.capsuleStarts[i], data.capsuleEnds[i], radius, j);
+  ensurePart(impl, data, j);
+  return segmentDistance(data.capsuleStarts[i], data.capsuleEnds[i], data.capsuleStarts[j], data.capsuleEnds[j]) -
+         radius - impl.robotParts[j].capsule.radius;
+}
+
+// Lower bound of the distance between the group's two bodies from the capsule around its link
+// (and the obstacle parts' bounds); <= 0 when they overlap.
+double linkGap(const Implementation& impl, const CollisionData& data, const Implementation::PairGroup& group);
+
+// Distance between two parts (0 when they touch or one is inside the other).
+double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+                     bool boundsOverlap, const CollisionModelOptions& options);
+
+inline const Part& secondPart(const Implementation& impl, const Implementation::PairGroup& group, int j) {
+  return group.self ? impl.robotParts[j] : impl.obstacleParts[j];
+}
+
+inline const Eigen::Isometry3d& secondPose(const Implementation& impl, const CollisionData& data,
+                                           const Implementation::PairGroup& group, int j) {
+  return group.self ? data.partPoses[j] : impl.obstacleParts[j].offset;
+}
+
+// Fills impl.jointReach, impl.movedBy and every group's relativeReach (motion_check.cpp).
+void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl);
+
+}  // namespace detail
+}  // namespace arcplan::collision
