@@ -145,9 +145,10 @@ void runRank(const RankOptions& options) {
 
 void registerBenchCommand(CLI::App& app) {
   auto options = std::make_shared<BenchOptions>();
-  CLI::App* command = app.add_subcommand(
-      "bench",
-      "Benchmark the arc planner against OMPL's planners on a problem suite: OMPL benchmark logs, an SQLite database "
+  CLI::App* command =
+      app.add_subcommand("bench", "benchmark planners on a problem suite: OMPL logs, database, ranking, plots");
+  command->footer(
+      "Runs the arc planner against OMPL's planners on a problem suite: OMPL benchmark logs, an SQLite database "
       "made by ompl_benchmark_statistics, a ranking (ranking.md/json/csv) by success rate and execution time after "
       "PCHIP scaling at the TCP speed limit, and plots. Resumable (completed jobs are skipped) and shardable.");
   command->add_option("--suite", options->suite, "built-in suite name (thesis, generated) or a suite YAML file")

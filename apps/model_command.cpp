@@ -192,7 +192,7 @@ void runSimulate(const ModelOptions& o) {
 
 void registerModelCommand(CLI::App& app) {
   auto* modelCommand = app.add_subcommand(
-      "model", "compare a robot model with measured logs, diagnose the missing physical effect, add it, refit");
+      "model", "compare a robot model with measured logs, diagnose the missing effect, add it, refit");
   modelCommand->require_subcommand(1);
   auto o = std::make_shared<ModelOptions>();
 

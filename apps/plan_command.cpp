@@ -215,10 +215,10 @@ void runPlan(const PlanOptions& options) {
 
 void registerPlanCommand(CLI::App& app) {
   auto options = std::make_shared<PlanOptions>();
-  CLI::App* command = app.add_subcommand(
-      "plan",
-      "Plan a scene query with the arc planner (thesis ch. 3) or an OMPL planner; report status, reason, "
-      "solve time, TCP/joint path length and clearance; write the joint path");
+  CLI::App* command = app.add_subcommand("plan", "plan a scene query with the arc planner or an OMPL planner");
+  command->footer(
+      "Solves a scene query with the arc planner (thesis ch. 3) or an OMPL planner; reports status, reason, "
+      "solve time, TCP/joint path length and clearance; writes the joint path.");
   command
       ->add_option("--scene", options->scene,
                    "scene YAML (a path, or a name under data/, e.g. scenes/thesis_obstacle.yaml)")

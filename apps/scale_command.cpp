@@ -127,10 +127,10 @@ void runScale(const ScaleOptions& options) {
 
 void registerScaleCommand(CLI::App& app) {
   auto options = std::make_shared<ScaleOptions>();
-  auto* scale = app.add_subcommand(
-      "scale",
-      "time-scale a joint path (PCHIP) so the TCP speed never exceeds --vmax: ramp up over --rise, cruise, brake; "
-      "slower where a joint speed limit requires it; checked with forward kinematics every 2 ms");
+  auto* scale = app.add_subcommand("scale", "time-scale a joint path under a TCP speed limit (PCHIP)");
+  scale->footer(
+      "Time-scales a joint path (PCHIP) so the TCP speed never exceeds --vmax: ramp up over --rise, cruise, brake; "
+      "slower where a joint speed limit requires it; checked with forward kinematics every 2 ms.");
   auto* scene = scale->add_option("--scene", options->scene, "scene YAML; its robot is used (default: built-in UR10e)");
   scale->add_option("--urdf", options->urdf, "robot URDF instead of a scene")->excludes(scene);
   scale->add_option("--path-csv", options->pathCsv, "joint path: header q0,...,q5, one waypoint [rad] per line")
