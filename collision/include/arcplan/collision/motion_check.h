@@ -9,9 +9,9 @@
 // M_L against an obstacle; for two links only the joints that move them relative to each other
 // count). The check measures every non-allowed pair at the two ends and then moves a front from
 // each end, each pair re-measured where its certificate runs out, until the certificates meet.
-// Cheap lower bounds (the capsules of the broad phase) are used where they give a long enough step,
-// exact distances (FCL) otherwise. A pair measured closer than `minimumClearance` rejects the
-// motion. So:
+// Cheap lower bounds (the capsules of the broad phase) are used where they certify the rest of the
+// motion or are at least `minimumClearance`, exact distances (FCL) below. A pair measured closer
+// than `minimumClearance` rejects the motion. So:
 //   - a motion that collides anywhere is always rejected;
 //   - a motion along which every pair keeps at least minimumClearance is always accepted;
 //   - a motion that comes closer than minimumClearance without touching may go either way.
