@@ -1,6 +1,7 @@
-// Planner solve times on the thesis query (thesis_obstacle.yaml, A_to_B; motion validator at
-// 0.01 rad): the arc planner with the thesis shape h = 0.5 r (waypoint validation, and every motion
-// validated), its auto search, the straight line of thesis_free, and RRTConnect on the same problem.
+// Planner solve times on the thesis query (thesis_obstacle.yaml, A_to_B; the certified motion
+// validator): the arc planner with the thesis shape h = 0.5 r (defaults: waypoints 1 cm apart, every
+// motion validated; and variants), its auto search, the straight line of thesis_free, and RRTConnect
+// on the same problem.
 // Each benchmark times every solve itself and reports the median (counter `median_us`), because a
 // sampling planner's mean is dominated by its rare long runs. ArcVsRRTConnect alternates the two
 // planners in one loop and reports the ratio of their medians (`speedup`).
@@ -75,12 +76,21 @@ const Parameters kThesisShape{
 void PlannerArcThesisShape(benchmark::State& state) { solveRepeatedly(state, "thesis_obstacle", "arc", kThesisShape); }
 BENCHMARK(PlannerArcThesisShape)->Unit(benchmark::kMicrosecond);
 
-void PlannerArcThesisShapeCheckMotions(benchmark::State& state) {
+// Only the waypoints validated (check_motions = 0), as MoveIt validates Cartesian paths.
+void PlannerArcThesisShapeWaypointsOnly(benchmark::State& state) {
   Parameters parameters = kThesisShape;
-  parameters.emplace_back("check_motions", "1");
+  parameters.emplace_back("check_motions", "0");
   solveRepeatedly(state, "thesis_obstacle", "arc", parameters);
 }
-BENCHMARK(PlannerArcThesisShapeCheckMotions)->Unit(benchmark::kMicrosecond);
+BENCHMARK(PlannerArcThesisShapeWaypointsOnly)->Unit(benchmark::kMicrosecond);
+
+// The thesis' waypoint spacing (5 cm), every motion validated.
+void PlannerArcThesisShapeFiveCentimetres(benchmark::State& state) {
+  Parameters parameters = kThesisShape;
+  parameters.emplace_back("resolution", "0.05");
+  solveRepeatedly(state, "thesis_obstacle", "arc", parameters);
+}
+BENCHMARK(PlannerArcThesisShapeFiveCentimetres)->Unit(benchmark::kMicrosecond);
 
 void PlannerArcAuto(benchmark::State& state) { solveRepeatedly(state, "thesis_obstacle", "arc", {}); }
 BENCHMARK(PlannerArcAuto)->Unit(benchmark::kMicrosecond);
@@ -95,7 +105,7 @@ BENCHMARK(PlannerRRTConnect)->Unit(benchmark::kMicrosecond);
 void PlannerArcVsRRTConnect(benchmark::State& state) {
   PlanningProblem& planning = problem("thesis_obstacle");
   Parameters arcParameters = kThesisShape;
-  if (state.range(0) == 1) arcParameters.emplace_back("check_motions", "1");
+  if (state.range(0) == 5) arcParameters.emplace_back("resolution", "0.05");
   const auto arc = planner(planning, "arc", arcParameters);
   const auto rrtConnect = planner(planning, "RRTConnect", {});
   std::vector<double> arcTimes, rrtConnectTimes;
@@ -108,9 +118,9 @@ void PlannerArcVsRRTConnect(benchmark::State& state) {
   state.counters["speedup"] = median(rrtConnectTimes) / median(arcTimes);
 }
 BENCHMARK(PlannerArcVsRRTConnect)
-    ->Arg(0)
     ->Arg(1)
-    ->ArgName("check_motions")
+    ->Arg(5)
+    ->ArgName("waypoint_spacing_cm")
     ->Unit(benchmark::kMicrosecond)
     ->Iterations(400);
 

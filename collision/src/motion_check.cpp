@@ -301,6 +301,66 @@ bool isMotionCollisionFree(const CollisionModel& model, CollisionData& data, con
   return certifiedMotionFree(model, data, qa, qb, lastValidFraction, options.minimumClearance);
 }
 
+PathCertifier::PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance)
+    : model_(model), data_(data), minimumClearance_(minimumClearance) {
+  validate(MotionCheckOptions{MotionCheck::Certified, 0.01, minimumClearance});
+  budget_.resize(model.implementation().groups.size());
+  used_.resize(budget_.size());
+  bound_.resize(budget_.size());
+}
+
+bool PathCertifier::anchorAll(const robot::JointRef& q) {
+  const Implementation& impl = model_.implementation();
+  detail::updateRobot(model_, data_, q);
+  ++measurements_;
+  for (std::size_t k = 0; k < budget_.size(); ++k) {
+    // The capsule bounds are taken as soon as they reach a few centimetres: enough for several waypoints.
+    const PairMeasurement measured = measurePair(model_, data_, *impl.groups[k], 0.05, minimumClearance_);
+    if (measured.tooClose) return false;
+    budget_[k] = measured.gap;
+    used_[k] = 0.0;
+  }
+  last_ = q;
+  return true;
+}
+
+bool PathCertifier::start(const robot::JointRef& q) {
+  checkJoints(model_, q, q);
+  return anchorAll(q);
+}
+
+bool PathCertifier::extend(const robot::JointRef& q) {
+  checkJoints(model_, last_, q);
+  const Implementation& impl = model_.implementation();
+  step_ = (q - last_).cwiseAbs();
+  bool remeasured = false;
+  for (std::size_t k = 0; k < budget_.size(); ++k) {
+    bound_[k] = impl.groups[k]->relativeReach.dot(step_);
+    if (used_[k] + bound_[k] < budget_[k]) continue;
+    // This pair's clearance at its anchor does not cover the motion: measure it again at the
+    // motion's start (one forward kinematics for every pair that needs it).
+    if (!remeasured) {
+      detail::updateRobot(model_, data_, last_);
+      ++measurements_;
+      remeasured = true;
+    }
+    const PairMeasurement measured =
+        measurePair(model_, data_, *impl.groups[k], std::max(bound_[k], minimumClearance_), minimumClearance_);
+    if (measured.tooClose) return false;
+    budget_[k] = measured.gap;
+    used_[k] = 0.0;
+    if (bound_[k] >= budget_[k]) {
+      // Not even this one motion: advance along it conservatively, then start afresh at its end.
+      ++measurements_;
+      if (!certifiedMotionFree(model_, data_, last_, q, nullptr, minimumClearance_)) return false;
+      return anchorAll(q);
+    }
+  }
+  for (std::size_t k = 0; k < budget_.size(); ++k) used_[k] += bound_[k];
+  last_ = q;
+  return true;
+}
+
 int discreteSegmentCount(const robot::JointRef& qa, const robot::JointRef& qb, double maxJointStep) {
   const double largestStep = qa.size() == 0 ? 0.0 : (qb - qa).cwiseAbs().maxCoeff();
   return std::max(1, static_cast<int>(std::ceil(largestStep / maxJointStep)));

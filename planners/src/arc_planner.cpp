@@ -10,6 +10,8 @@
 #include <map>
 #include <sstream>
 
+#include "arcplan/collision/motion_check.h"
+#include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/robot/kinematics.h"
 
@@ -104,6 +106,7 @@ struct ArcPlanner::Search {
   // Validate motions, not only waypoints: check_motions, or a detour from the auto search (the
   // shortest detours pass close to the obstacle).
   bool strict = false;
+  std::optional<collision::PathCertifier> certifier;  // of the current walk, when strict
 
   void toState(const robot::Vector6& q, ob::State* target) const {
     for (int j = 0; j < 6; ++j) *si.getStateSpace()->getValueAddressAtIndex(target, j) = q[j];
@@ -115,18 +118,28 @@ struct ArcPlanner::Search {
     return q;
   }
 
-  // The SpaceInformation's verdict on the motion previous -> q: the motion validator's (`strict`), or
-  // the validity of q alone (waypoints a bounded joint step apart).
+  // The verdict on the motion previous -> q: certified like the motion validator's (`strict`), or
+  // the SpaceInformation's validity of q alone (waypoints a bounded joint step apart).
   bool validMotion(const robot::Vector6& previous, const robot::Vector6& q, bool strict) {
-    toState(q, state);
-    if (!strict) return si.isValid(state);
-    toState(previous, previousState);
-    return si.checkMotion(previousState, state);
+    if (!strict) {
+      toState(q, state);
+      return si.isValid(state);
+    }
+    // The path certifier validates each motion like JointMotionValidator's certified check, with
+    // its minimum clearance, but reuses one waypoint's clearance for the next few waypoints.
+    if (!certifier) {
+      const auto* validator = dynamic_cast<const collision::JointMotionValidator*>(si.getMotionValidator().get());
+      certifier.emplace(model, data, validator != nullptr ? validator->options().minimumClearance
+                                                          : collision::MotionCheckOptions{}.minimumClearance);
+      if (!certifier->start(previous)) return false;
+    }
+    return certifier->extend(q);
   }
 
   // Continues the validated `prefix` (waypoints this path shares with the last one) to the goal and
   // stops at the first motion that fails. Returns prefix + continuation.
   JointWaypoints walk(const ArcPath& path, const JointWaypoints& prefix) {
+    certifier.reset();  // a walk continues from the prefix's last waypoint
     const WaypointCheck check = [this](const robot::Vector6& previous, const robot::Vector6& q, double) {
       if (ptc()) return false;
       if (validMotion(previous, q, strict)) return true;
@@ -202,6 +215,7 @@ void ArcPlanner::clear() {
   Planner::clear();
   result_ = ArcPlannerResult{};
   solution_.reset();
+  solutionJoints_.clear();
 }
 
 void ArcPlanner::setup() {
@@ -225,6 +239,7 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
   checkValidity();
   result_ = ArcPlannerResult{};
   solution_.reset();
+  solutionJoints_.clear();
   struct Timer {
     ArcPlannerResult& result;
     std::chrono::steady_clock::time_point start;
@@ -309,13 +324,15 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
       result_.detours = detours;
       result_.tcpPathLength = path->length();
       result_.waypointArcLengths = walked.arcLengths;
-      solution_ = std::make_shared<og::PathGeometric>(si_);
+      solutionJoints_ = walked.joints;
+      // The problem definition gets its own path: simplifying it must not change what this planner
+      // reports (getPlannerData builds its states from solutionJoints_).
+      auto path = std::make_shared<og::PathGeometric>(si_);
       for (const robot::Vector6& q : walked.joints) {
         search.toState(q, search.state);
-        solution_->append(search.state);
+        path->append(search.state);
       }
-      // The problem definition gets its own copy: simplifying it must not change what this planner reports.
-      pdef_->addSolutionPath(std::make_shared<og::PathGeometric>(*solution_), false, 0.0, getName());
+      pdef_->addSolutionPath(path, false, 0.0, getName());
       return ob::PlannerStatus::EXACT_SOLUTION;
     }
     if (ptc()) return fail(ob::PlannerStatus::TIMEOUT, "time limit reached before a valid path was found");
@@ -570,7 +587,17 @@ void ArcPlanner::getPlannerData(ob::PlannerData& data) const {
   data.properties["arc entry radius REAL"] = number(first.shape.entryRadius);
   data.properties["arc exit radius REAL"] = number(first.shape.exitRadius);
   data.properties["arc plane angle REAL"] = number(first.planeAngle);
-  if (!solution_) return;
+  if (solutionJoints_.empty()) return;
+  // Built on request only: PlannerData refers to states the planner owns.
+  if (!solution_) {
+    solution_ = std::make_shared<og::PathGeometric>(si_);
+    ob::State* state = si_->allocState();
+    for (const robot::Vector6& q : solutionJoints_) {
+      for (int j = 0; j < 6; ++j) *si_->getStateSpace()->getValueAddressAtIndex(state, j) = q[j];
+      solution_->append(state);
+    }
+    si_->freeState(state);
+  }
   const std::vector<ob::State*>& states = solution_->getStates();
   for (std::size_t i = 0; i < states.size(); ++i) {
     const ob::PlannerDataVertex vertex(states[i]);

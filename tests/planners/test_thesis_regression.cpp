@@ -55,7 +55,11 @@ std::vector<std::pair<std::string, std::string>> parametersOf(const ThesisCase& 
                   {"entry_radius", "0.1"},
                   {"exit_radius", "0.2"}};
   }
-  if (resolution > 0.0) parameters.emplace_back("resolution", std::to_string(resolution));
+  if (resolution > 0.0) {
+    parameters.emplace_back("resolution", std::to_string(resolution));
+    // Only the TCP spacing sets the waypoints then: no joint-step bisection between them.
+    parameters.emplace_back("max_joint_step", "0.5");
+  }
   return parameters;
 }
 

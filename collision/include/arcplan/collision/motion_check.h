@@ -48,6 +48,37 @@ bool isMotionCollisionFree(const CollisionModel& model, CollisionData& data, con
                            const robot::JointRef& qb, double* lastValidFraction = nullptr,
                            const MotionCheckOptions& options = {});
 
+// Certifies a joint path motion by motion while it grows: for planners that build a path waypoint by
+// waypoint (the arc planner) and want every motion validated. A pair's clearance measured at one
+// waypoint also certifies the following motions as long as the pair's accumulated motion bound
+// stays below it, so a densely sampled path (waypoints 1 cm apart) needs a measurement only every
+// few waypoints instead of two per motion. What it accepts carries the guarantee of the certified
+// check above: no configuration on an accepted motion collides.
+class PathCertifier {
+public:
+  // model and data must outlive the certifier; data is used as its workspace.
+  PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance = 0.001);
+
+  // Starts a path at q: false if q collides or is closer than minimumClearance to a collision.
+  bool start(const robot::JointRef& q);
+  // Certifies the straight motion from the last accepted configuration to q and accepts q; false
+  // (and q not accepted) if the motion cannot be certified.
+  bool extend(const robot::JointRef& q);
+  // Configurations measured with forward kinematics so far (for benchmarks and tests).
+  int measurements() const { return measurements_; }
+
+private:
+  bool anchorAll(const robot::JointRef& q);
+
+  const CollisionModel& model_;
+  CollisionData& data_;
+  double minimumClearance_;
+  robot::JointVector last_, step_;
+  // Per pair: clearance at its anchor waypoint, motion bound consumed since, bound of this motion.
+  std::vector<double> budget_, used_, bound_;
+  int measurements_ = 0;
+};
+
 // Segments of a discrete check: ceil(largest |qb_j − qa_j| / maxJointStep), at least 1.
 int discreteSegmentCount(const robot::JointRef& qa, const robot::JointRef& qb, double maxJointStep);
 

@@ -9,9 +9,10 @@
 // point O on the line nearest its bounding-ball centre (a particle: that point; a solid: the thesis'
 // circumscribed ball) and gets an arc detour (arc_path.h); with none the answer is the straight
 // line. The TCP path is converted to joints on the start's IK branch (cartesian_to_joint.h) and
-// validated with the SpaceInformation: every waypoint (isValid; waypoints at most `resolution` apart
-// along the TCP path and `max_joint_step` apart in every joint, like MoveIt's Cartesian paths), or
-// with check_motions every motion between waypoints (checkMotion, at the motion validator's resolution).
+// validated with the SpaceInformation: every motion between consecutive waypoints (checkMotion: with
+// arcplan's certified motion validator no configuration along it collides), or with check_motions = 0
+// only the waypoints themselves (isValid; waypoints at most `resolution` apart along the TCP path and
+// `max_joint_step` apart in every joint, like MoveIt's Cartesian paths).
 //
 // Parameters (declareParam: they appear in benchmark logs and are set by name):
 //   sagitta         h (m); 0 = not given. With auto: the smallest sagitta searched
@@ -19,9 +20,9 @@
 //   entry_radius    R2 (m), default 0.1 (thesis 0.5·r)
 //   exit_radius     R3 (m), default 0.2 (thesis r)
 //   plane_angle     rotation of the avoidance plane about A→B from "up" (rad), default 0
-//   resolution      largest TCP arc length between waypoints (m), default 0.05
-//   max_joint_step  largest joint change between waypoints (rad), default 0.1
-//   check_motions   validate motions (1) instead of waypoints (0, default)
+//   resolution      largest TCP arc length between waypoints (m), default 0.01
+//   max_joint_step  largest joint change between waypoints (rad), default 0.05
+//   check_motions   validate every motion (1, default) or only the waypoints (0)
 //   auto            search h, r, R2, R3 and the plane angle for the shortest detour valid for the
 //                   whole robot (default: on while no sagitta is given, off once one is); a path
 //                   with a searched detour has every motion validated, since the shortest detours
@@ -121,11 +122,14 @@ class ArcPlanner : public ompl::base::Planner {
   ArcParameters shape_{0.0, 0.2, 0.1, 0.2};  // thesis r, R2 = 0.5 r, R3 = r; no sagitta
   double planeAngle_ = 0.0;
   std::optional<bool> autoSearch_;
-  // 5 cm between waypoints: the spacing that reproduces the thesis' measured path lengths (Table 3.3).
-  JointConversionOptions conversion_{0.05, 0.1, 6};
-  bool checkMotions_ = false;
+  // 1 cm between waypoints: the joint path then follows the arcs to a fraction of a millimetre and
+  // its time scaling has no speed dips at the waypoints (5 cm reproduces the thesis' measured, shorter
+  // polyline lengths of Table 3.3, at the price of TCP chords of up to 3 mm on the entry arc).
+  JointConversionOptions conversion_{0.01, 0.05, 6};
+  bool checkMotions_ = true;
   ArcPlannerResult result_;
-  std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
+  std::vector<robot::Vector6> solutionJoints_;  // the last solution's waypoints
+  mutable std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
 };
 
 }  // namespace arcplan::planners
