@@ -77,7 +77,7 @@ TEST(OmplValidity, MotionValidatorCatchesAnObstacleBetweenValidEndpoints) {
   ball.radius = 0.03;
   ball.pose.translation() = arcplan::robot::tipPose(arcplan::robot::ur10e(), kSolutionA).translation();
   scene.obstacles.push_back(ball);
-  const auto si = makeSpaceInformation(makeCollisionModel(scene), 0.01);
+  const auto si = makeSpaceInformation(makeCollisionModel(scene));
   Vector6 from = kSolutionA, to = kSolutionA;
   from[0] -= 0.3;
   to[0] += 0.3;
@@ -104,7 +104,9 @@ TEST(OmplValidity, MotionValidatorCatchesAnObstacleBetweenValidEndpoints) {
 }
 
 TEST(OmplValidity, SegmentCountFollowsTheLargestJointStep) {
-  const auto si = makeSpaceInformation(sceneModel("thesis_free.yaml"), 0.05);
+  MotionCheckOptions options;
+  options.maxJointStep = 0.05;
+  const auto si = makeSpaceInformation(sceneModel("thesis_free.yaml"), options);
   const auto* validator = dynamic_cast<const JointMotionValidator*>(si->getMotionValidator().get());
   ASSERT_NE(validator, nullptr);
   Vector6 to = kSolutionA;

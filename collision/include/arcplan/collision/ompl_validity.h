@@ -62,12 +62,9 @@ private:
 };
 
 // Joint state space + CollisionStateValidityChecker + JointMotionValidator, set up. The
-// SpaceInformation's state validity checking resolution (used by OMPL for path interpolation, not
-// by the validator) follows motionCheck.maxJointStep.
+// SpaceInformation's state validity checking resolution (what OMPL planners treat as the longest
+// motion checked in one piece) is OMPL's default for certified motions and maxJointStep for discrete ones.
 ompl::base::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model,
                                                      const MotionCheckOptions& motionCheck = {});
-// The same with the default (certified) motion check and the given maxJointStep, for callers that
-// only choose the resolution.
-ompl::base::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model, double maxJointStep);
 
 }  // namespace arcplan::collision

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/motion_check.h"
 #include "arcplan/collision/scene.h"
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
@@ -27,8 +28,7 @@ namespace arcplan::planners {
 extern const robot::Vector6 kDefaultIkSeed;
 
 struct PlanningProblemOptions {
-  // rad: largest joint step between the states the motion validator checks (collision::JointMotionValidator).
-  double maxJointStep = 0.01;
+  collision::MotionCheckOptions motionCheck;  // how the SpaceInformation's motion validator checks motions
 };
 
 struct PlanningProblem {
