@@ -107,6 +107,7 @@ struct ArcPlanner::Search {
   // shortest detours pass close to the obstacle).
   bool strict = false;
   std::optional<collision::PathCertifier> certifier;  // of the current walk, when strict
+  double margin = 0.0;  // m, the clearance strict validation keeps: the planner's or the validator's, the larger
 
   void toState(const robot::Vector6& q, ob::State* target) const {
     for (int j = 0; j < 6; ++j) *si.getStateSpace()->getValueAddressAtIndex(target, j) = q[j];
@@ -128,9 +129,7 @@ struct ArcPlanner::Search {
     // The path certifier validates each motion like JointMotionValidator's certified check, with
     // its minimum clearance, but reuses one waypoint's clearance for the next few waypoints.
     if (!certifier) {
-      const auto* validator = dynamic_cast<const collision::JointMotionValidator*>(si.getMotionValidator().get());
-      certifier.emplace(model, data, validator != nullptr ? validator->options().minimumClearance
-                                                          : collision::MotionCheckOptions{}.minimumClearance);
+      certifier.emplace(model, data, margin);
       if (!certifier->start(previous)) return false;
     }
     return certifier->extend(q);
@@ -160,13 +159,43 @@ struct ArcPlanner::Search {
     return combined;
   }
 
-  // The colliding pairs behind the rejected motion: at its end state, else along it.
-  collision::CollisionReport rejectedPairs() {
-    collision::CollisionReport report = collision::collide(model, data, rejectedJoints);
-    for (int k = 1; k < 16 && report.valid; ++k) {
-      report = collision::collide(model, data, rejectedPrevious + (rejectedJoints - rejectedPrevious) * (k / 16.0));
+  // Why the rejected motion was rejected: the pairs colliding at its end state or along it; else
+  // (no collision, but closer than the clearance) the closest pair along it.
+  struct Rejection {
+    collision::CollisionReport pairs;
+    bool collides = true;
+    double closest = 0.0;  // m, when it does not collide
+
+    std::string describe(double clearance) const {
+      std::ostringstream text;
+      if (collides) {
+        text << "collision (" << describeCollisions(pairs) << ")";
+      } else {
+        text << "closer than the " << clearance << " m clearance (" << describeCollisions(pairs) << " at " << closest
+             << " m)";
+      }
+      return text.str();
     }
-    return report;
+  };
+  Rejection rejection() {
+    const auto along = [&](int k) -> robot::Vector6 {
+      return rejectedPrevious + (rejectedJoints - rejectedPrevious) * (k / 16.0);
+    };
+    Rejection result;
+    result.pairs = collision::collide(model, data, rejectedJoints);
+    for (int k = 1; k < 16 && result.pairs.valid; ++k) result.pairs = collision::collide(model, data, along(k));
+    if (!result.pairs.valid) return result;
+    result.collides = false;
+    result.closest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= 16; ++k) {
+      const collision::DistanceReport d = collision::distance(model, data, along(k));
+      const bool obstacleCloser = d.obstacleDistance <= d.selfDistance;
+      if (d.minimum() < result.closest) {
+        result.closest = d.minimum();
+        result.pairs.collisions = {obstacleCloser ? d.obstaclePair : d.selfPair};
+      }
+    }
+    return result;
   }
 };
 
@@ -191,11 +220,13 @@ ArcPlanner::ArcPlanner(const ob::SpaceInformationPtr& si,
   declareParam<double>("max_joint_step", this, &ArcPlanner::setMaxJointStep, &ArcPlanner::getMaxJointStep,
                        "0.001:0.001:0.5");
   declareParam<bool>("check_motions", this, &ArcPlanner::setCheckMotions, &ArcPlanner::getCheckMotions, "0,1");
+  declareParam<double>("clearance", this, &ArcPlanner::setClearance, &ArcPlanner::getClearance, "0.:0.005:0.2");
   declareParam<bool>("auto", this, &ArcPlanner::setAuto, &ArcPlanner::getAuto, "0,1");
 }
 
 ArcPlanner::~ArcPlanner() = default;
 
+void ArcPlanner::setClearance(double clearance) { clearance_ = checkedParameter("clearance", clearance, true); }
 void ArcPlanner::setSagitta(double sagitta) { shape_.sagitta = checkedParameter("sagitta", sagitta, true); }
 void ArcPlanner::setHalfChord(double halfChord) { shape_.halfChord = checkedParameter("half_chord", halfChord, false); }
 void ArcPlanner::setEntryRadius(double radius) { shape_.entryRadius = checkedParameter("entry_radius", radius, false); }
@@ -248,6 +279,9 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
 
   Search search(*this, ptc);
   search.strict = checkMotions_;
+  const auto* validator = dynamic_cast<const collision::JointMotionValidator*>(si_->getMotionValidator().get());
+  search.margin = std::max(clearance_, validator != nullptr ? validator->options().minimumClearance
+                                                            : collision::MotionCheckOptions{}.minimumClearance);
   const ob::State* startState = pis_.nextStart();
   if (startState == nullptr) {
     return fail(ob::PlannerStatus::INVALID_START,
@@ -342,17 +376,18 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
                   std::string(toString(walked.status)) + " on the " + where + ": " + walked.reason);
     }
     const double failedAt = walked.failedAtArcLength;
-    const collision::CollisionReport pairs = search.rejectedPairs();
+    const auto rejection = search.rejection();
+    const collision::CollisionReport& pairs = rejection.pairs;
+    const std::string why = rejection.describe(search.margin);
     std::ostringstream context;
-    context << "collision on the " << where << " at TCP arc length " << failedAt << " m (" << describeCollisions(pairs)
-            << ")";
+    context << why << " on the " << where << " at TCP arc length " << failedAt << " m";
     for (std::size_t i = 0; i < detours.size(); ++i) {
       const auto [from, to] = path->detourSpan(i);
       if (failedAt > from && failedAt <= to + 1e-12) {
         std::ostringstream message;
-        message << "collision on arc detour " << i + 1 << " around '"
+        message << why << " on arc detour " << i + 1 << " around '"
                 << result_.obstacles[std::min(i, result_.obstacles.size() - 1)] << "' at TCP arc length " << failedAt
-                << " m (" << describeCollisions(pairs) << ")";
+                << " m";
         return fail(ob::PlannerStatus::ABORT, message.str());
       }
     }

@@ -239,7 +239,9 @@ TEST(ArcPlanner, CollisionOnTheDetourNamesThePair) {
   const auto [planner, status] = solve(problem, "arc", {{"sagitta", "0.15"}, {"plane_angle", std::to_string(M_PI_2)}});
   EXPECT_EQ(status, ob::PlannerStatus::ABORT);
   const std::string& reason = arcOf(planner).lastResult().reason;
-  EXPECT_NE(reason.find("collision on arc detour 1"), std::string::npos) << reason;
+  // The detour comes closer than the 1 cm clearance before it would collide.
+  EXPECT_NE(reason.find("closer than the 0.01 m clearance"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("on arc detour 1"), std::string::npos) << reason;
   EXPECT_NE(reason.find("side_block"), std::string::npos) << reason;
 }
 
@@ -333,6 +335,32 @@ TEST(ArcPlanner, ParameterSettersRejectOutOfRangeValues) {
   EXPECT_FALSE(arc.getAuto());
   arc.setAuto(true);
   EXPECT_TRUE(arc.getAuto());
+}
+
+}  // namespace
+
+namespace {
+
+TEST(ArcPlanner, AutoDetourKeepsTheRequestedClearance) {
+  for (const double clearance : {0.01, 0.03}) {
+    auto problem = thesisProblem("thesis_obstacle");
+    const auto [planner, status] = solve(problem, "arc", {{"clearance", std::to_string(clearance)}});
+    ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+    // Every configuration along the path (sampled every 2 mrad here) keeps the clearance.
+    arcplan::collision::CollisionData data(*problem.collisionModel);
+    const auto joints = jointsOf(problem.setup->getSolutionPath());
+    double closest = INFINITY;
+    for (std::size_t i = 1; i < joints.size(); ++i) {
+      const int samples = static_cast<int>(std::ceil((joints[i] - joints[i - 1]).cwiseAbs().maxCoeff() / 2e-3)) + 1;
+      for (int k = 0; k <= samples; ++k) {
+        const arcplan::robot::Vector6 q = joints[i - 1] + (joints[i] - joints[i - 1]) * (double(k) / samples);
+        closest = std::min(closest, arcplan::collision::distance(*problem.collisionModel, data, q).minimum());
+      }
+    }
+    EXPECT_GE(closest, clearance - 1e-6) << "clearance " << clearance;
+    // The shortest detour keeping it: not much more (a larger clearance costs path length).
+    EXPECT_LT(closest, clearance + 0.02) << "clearance " << clearance;
+  }
 }
 
 }  // namespace

@@ -23,6 +23,9 @@
 //   resolution      largest TCP arc length between waypoints (m), default 0.01
 //   max_joint_step  largest joint change between waypoints (rad), default 0.05
 //   check_motions   validate every motion (1, default) or only the waypoints (0)
+//   clearance       with check_motions: the smallest distance (m) every configuration of the path
+//                   keeps from obstacles and between links, default 0.01 (the motion validator's
+//                   own margin if larger); the auto search returns the shortest detour keeping it
 //   auto            search h, r, R2, R3 and the plane angle for the shortest detour valid for the
 //                   whole robot (default: on while no sagitta is given, off once one is); a path
 //                   with a searched detour has every motion validated, since the shortest detours
@@ -96,6 +99,8 @@ class ArcPlanner : public ompl::base::Planner {
   double getMaxJointStep() const { return conversion_.maxJointStep; }
   void setCheckMotions(bool enabled) { checkMotions_ = enabled; }
   bool getCheckMotions() const { return checkMotions_; }
+  void setClearance(double clearance);
+  double getClearance() const { return clearance_; }
   void setAuto(bool enabled) { autoSearch_ = enabled; }
   // Explicit setting, else on while no sagitta is given.
   bool getAuto() const { return autoSearch_.value_or(shape_.sagitta <= 0.0); }
@@ -127,6 +132,8 @@ class ArcPlanner : public ompl::base::Planner {
   // polyline lengths of Table 3.3, at the price of TCP chords of up to 3 mm on the entry arc).
   JointConversionOptions conversion_{0.01, 0.05, 6};
   bool checkMotions_ = true;
+  // A detour that grazes the obstacle is valid but useless next to people: 1 cm by default.
+  double clearance_ = 0.01;
   ArcPlannerResult result_;
   std::vector<robot::Vector6> solutionJoints_;  // the last solution's waypoints
   mutable std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
