@@ -1,24 +1,35 @@
-// Uses an installed arcplan: the built-in UR10e, forward and inverse kinematics of thesis pose A.
-#include <cmath>
+// A program of your own on an installed arcplan: plan the thesis query with the arc planner (case d,
+// h = 0.5 r) through OMPL, then time-scale the path under the collaborative TCP speed limit.
 #include <iostream>
 
-#include <arcplan/robot/kinematics.h>
-#include <arcplan/robot/pose.h>
-#include <arcplan/robot/ur_inverse_kinematics.h>
+#include <ompl/base/PlannerStatus.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+
+#include <arcplan/collision/scene.h>
+#include <arcplan/common/resources.h>
+#include <arcplan/planners/planner_registry.h>
+#include <arcplan/planners/planning_problem.h>
+#include <arcplan/trajectory/metrics.h>
+#include <arcplan/trajectory/time_scaling.h>
 
 int main() {
-  const auto& robot = arcplan::robot::ur10e();
-  const arcplan::robot::UrInverseKinematics ik(robot);
-  const auto poseA = arcplan::robot::poseFromXyzRpy({0.4, -0.4, 0.25, 0.0, -M_PI, M_PI / 2});
-  arcplan::robot::Vector6 seed;
-  seed << -1.1, -1.5, 2.35, -2.4, -1.57, -1.1;
-  const auto q = ik.solveNearest(poseA, seed);
-  if (!q) {
-    std::cerr << "pose A unreachable\n";
-    return 1;
+  auto scene = std::make_shared<const arcplan::collision::Scene>(
+      arcplan::collision::loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"));
+  auto problem = arcplan::planners::makePlanningProblem(scene);  // OMPL SimpleSetup with start and goal
+  problem.setup->setPlanner(arcplan::planners::makePlanner(
+      "arc", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"sagitta", "0.1"}}));
+  if (problem.setup->solve(1.0) != ompl::base::PlannerStatus::EXACT_SOLUTION) return 1;
+
+  arcplan::trajectory::JointPath path;
+  for (const auto* state : problem.setup->getSolutionPath().getStates()) {
+    const auto* values = state->as<ompl::base::RealVectorStateSpace::StateType>()->values;
+    path.push_back(Eigen::Map<const arcplan::robot::Vector6>(values));
   }
-  const auto reached = arcplan::robot::tipPose(robot, *q);
-  std::cout << "joints " << q->transpose() << "\n";
-  std::cout << "tool0 " << reached.translation().transpose() << "\n";
-  return (reached.translation() - poseA.translation()).norm() < 1e-9 ? 0 : 1;
+  arcplan::trajectory::TimeScalingOptions limits;
+  limits.maxTcpSpeed = 0.25;
+  const auto trajectory = arcplan::trajectory::scaleToTcpSpeed(problem.collisionModel->robot(), path, limits);
+  const auto metrics = arcplan::trajectory::computeMetrics(path, trajectory);
+  std::cout << "tcp path length " << metrics.tcpPathLength << " m, execution time " << metrics.executionTime
+            << " s, peak tcp speed " << metrics.peakTcpSpeed << " m/s\n";
+  return metrics.peakTcpSpeed <= limits.maxTcpSpeed ? 0 : 1;
 }
