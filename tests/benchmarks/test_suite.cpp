@@ -9,18 +9,12 @@
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/error.h"
 #include "support/command.h"
+#include "support/error_message.h"
 
 namespace arcplan::benchmarks {
 namespace {
 
-std::string errorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using arcplan::testing::errorMessageOf;
 
 // A suite file in a fresh folder, with the thesis scene copied next to it.
 std::filesystem::path writeSuite(const std::string& name, const std::string& text) {
@@ -74,7 +68,7 @@ TEST(Suite, GeneratedSuiteHasAtLeastFiftyProblemsOfEveryFamily) {
 }
 
 TEST(Suite, FindSuiteNamesTheBuiltInSuitesWhenNothingMatches) {
-  const auto message = errorOf([] { findSuite("no_such_suite"); });
+  const auto message = errorMessageOf([] { findSuite("no_such_suite"); });
   EXPECT_NE(message.find("no_such_suite"), std::string::npos) << message;
   EXPECT_NE(message.find("thesis"), std::string::npos) << message;
   EXPECT_NE(message.find("generated"), std::string::npos) << message;
@@ -88,7 +82,7 @@ TEST(Suite, AFolderNamedLikeABuiltInSuiteIsNotTakenForASuiteFile) {
   const auto found = findSuite("thesis");
   std::filesystem::current_path(previous);
   EXPECT_EQ(found, suiteDirectory() / "thesis.yaml");
-  EXPECT_NE(errorOf([&] { loadSuite(dir / "thesis"); }).find("not a file"), std::string::npos);
+  EXPECT_NE(errorMessageOf([&] { loadSuite(dir / "thesis"); }).find("not a file"), std::string::npos);
 }
 
 TEST(Suite, ReadsProblemsPlannersAndDefaults) {
@@ -146,7 +140,7 @@ TEST(Suite, BadSuiteFilesAreReportedWithFileLineAndField) {
   for (const auto& bad : cases) {
     SCOPED_TRACE(bad.name);
     const auto file = writeSuite(bad.name, bad.text);
-    const auto message = errorOf([&] { loadSuite(file); });
+    const auto message = errorMessageOf([&] { loadSuite(file); });
     for (const auto& fragment : bad.expected) EXPECT_NE(message.find(fragment), std::string::npos) << message;
   }
 }
@@ -160,7 +154,7 @@ TEST(Suite, SelectPlannersKeepsTheGivenOrderAndAddsRegistryPlanners) {
   EXPECT_EQ(suite.planners[1].parameters.at("sagitta"), "0.1");
   EXPECT_EQ(suite.planners[2].planner, "PRMstar");
   EXPECT_TRUE(suite.planners[2].parameters.empty());
-  EXPECT_NE(errorOf([&] { selectPlanners(suite, {"a/b"}); }).find("'a/b'"), std::string::npos);
+  EXPECT_NE(errorMessageOf([&] { selectPlanners(suite, {"a/b"}); }).find("'a/b'"), std::string::npos);
 }
 
 TEST(Shards, ParseAcceptsOnlyKOfN) {
@@ -168,7 +162,7 @@ TEST(Shards, ParseAcceptsOnlyKOfN) {
   EXPECT_EQ(parseShard("2/8").count, 8);
   EXPECT_EQ(parseShard("1/1").count, 1);
   for (const char* bad : {"0/2", "3/2", "2", "a/b", "1.5/2", "-1/2", "1/0", ""}) {
-    const auto message = errorOf([&] { parseShard(bad); });
+    const auto message = errorMessageOf([&] { parseShard(bad); });
     EXPECT_NE(message.find("--shard"), std::string::npos) << bad << ": " << message;
   }
 }

@@ -13,20 +13,14 @@
 #include "arcplan/model/model_spec.h"
 #include "arcplan/robot/dynamics.h"
 #include "model/model_test_support.h"
+#include "support/error_message.h"
 
 namespace {
 
+using arcplan::testing::errorMessageOf;
+
 using namespace arcplan::model;
 using arcplan::Error;
-
-std::string errorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 ModelSpec currentModel(const std::string& effects) {
   return parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: " + effects + "\n", "test.yaml");
@@ -84,21 +78,21 @@ TEST(ModelFile, ParsesJointsOptionsExpressionsAndRoundTripsWithParameters) {
 }
 
 TEST(ModelFile, BadFilesNameTheFieldAndWhatWasExpected) {
-  const auto unknownEffect = errorOf([] { currentModel("[drive_gain, frobnication]"); });
+  const auto unknownEffect = errorMessageOf([] { currentModel("[drive_gain, frobnication]"); });
   EXPECT_NE(unknownEffect.find("unknown effect 'frobnication'"), std::string::npos) << unknownEffect;
   EXPECT_NE(unknownEffect.find("load_friction"), std::string::npos);  // lists the known ones
   EXPECT_NE(unknownEffect.find("test.yaml"), std::string::npos);
-  EXPECT_NE(errorOf([] { parseModelYaml("kind: joint_torque\neffects: []\n", "k.yaml"); }).find("unknown kind 'joint_torque'"),
+  EXPECT_NE(errorMessageOf([] { parseModelYaml("kind: joint_torque\neffects: []\n", "k.yaml"); }).find("unknown kind 'joint_torque'"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { parseModelYaml("kind: joint_current\neffect: []\n", "k.yaml"); }).find("unknown key 'effect'"),
+  EXPECT_NE(errorMessageOf([] { parseModelYaml("kind: joint_current\neffect: []\n", "k.yaml"); }).find("unknown key 'effect'"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { parseModelYaml("kind: joint_tracking\neffects: [coulomb]\n", "k.yaml"); })
+  EXPECT_NE(errorMessageOf([] { parseModelYaml("kind: joint_tracking\neffects: [coulomb]\n", "k.yaml"); })
                 .find("does not apply to kind joint_tracking"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { currentModel("[{id: stribeck, width: 2}]"); }).find("unknown option 'width'"), std::string::npos);
-  EXPECT_NE(errorOf([] { currentModel("[coulomb, coulomb]"); }).find("listed twice"), std::string::npos);
-  EXPECT_NE(errorOf([] { parseModelYaml("kind: [\n", "bad.yaml"); }).find("bad.yaml:"), std::string::npos);
-  EXPECT_NE(errorOf([] { parseEffectArgument("coulomb:1,x"); }).find("not a finite number"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { currentModel("[{id: stribeck, width: 2}]"); }).find("unknown option 'width'"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { currentModel("[coulomb, coulomb]"); }).find("listed twice"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { parseModelYaml("kind: [\n", "bad.yaml"); }).find("bad.yaml:"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { parseEffectArgument("coulomb:1,x"); }).find("not a finite number"), std::string::npos);
 }
 
 class CatalogueOnSyntheticLog : public ::testing::Test {
@@ -243,7 +237,7 @@ TEST(UserEffects, RegisteredClassAndExpressionAreFittedLikeCatalogueEffects) {
   if (!isRegisteredEffect("cubic_drag")) {
     registerEffect("cubic_drag", [](const EffectSpec& s) { return std::make_unique<CubicDrag>(s); });
   }
-  EXPECT_NE(errorOf([] { registerEffect("coulomb", [](const EffectSpec& s) { return std::make_unique<CubicDrag>(s); }); })
+  EXPECT_NE(errorMessageOf([] { registerEffect("coulomb", [](const EffectSpec& s) { return std::make_unique<CubicDrag>(s); }); })
                 .find("already registered"),
             std::string::npos);
   auto motion = arcplan::testing::makeMotionLog(3000, 200.0);
@@ -262,12 +256,12 @@ TEST(UserEffects, RegisteredClassAndExpressionAreFittedLikeCatalogueEffects) {
     EXPECT_NEAR(fitted.effects[1].values[j][0], -0.2, 1e-9);
     EXPECT_NEAR(fitted.effects[2].values[j][0], 0.1, 1e-9);
   }
-  const auto unknown = errorOf([&] {
+  const auto unknown = errorMessageOf([&] {
     const auto bad = currentModel("[{id: broken, expression: \"qd*torque\"}]");
     fitModel(bad, makeJointDataset(motion.log, bad));
   });
   EXPECT_NE(unknown.find("unknown column 'torque'"), std::string::npos) << unknown;
-  EXPECT_NE(errorOf([] { currentModel("[{id: bad, expression: \"qd*(\"}]"); }).find("expression"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { currentModel("[{id: bad, expression: \"qd*(\"}]"); }).find("expression"), std::string::npos);
 }
 
 TEST(Fitting, RecoversParametersWithHonestStandardErrors) {
@@ -312,14 +306,14 @@ TEST(Fitting, EffectsOnMissingSignalsOrJointsAreErrors) {
   auto motion = arcplan::testing::makeMotionLog(500, 100.0);
   motion.log.vectors.erase("joint_temperatures");
   const auto warm = currentModel("[temperature_friction]");
-  const auto message = errorOf([&] { fitModel(warm, makeJointDataset(motion.log, warm)); });
+  const auto message = errorMessageOf([&] { fitModel(warm, makeJointDataset(motion.log, warm)); });
   EXPECT_NE(message.find("temperature"), std::string::npos) << message;
   const auto far = currentModel("[coulomb:7]");
-  EXPECT_NE(errorOf([&] { fitModel(far, makeJointDataset(motion.log, far)); }).find("joint 7 does not exist"),
+  EXPECT_NE(errorMessageOf([&] { fitModel(far, makeJointDataset(motion.log, far)); }).find("joint 7 does not exist"),
             std::string::npos);
   auto spec = currentModel("[offset]");
   spec.joints = 7;
-  EXPECT_NE(errorOf([&] { fitModel(spec, makeJointDataset(motion.log, spec)); }).find("mismatched joint count"),
+  EXPECT_NE(errorMessageOf([&] { fitModel(spec, makeJointDataset(motion.log, spec)); }).find("mismatched joint count"),
             std::string::npos);
 }
 

@@ -8,8 +8,11 @@
 #include "arcplan/common/error.h"
 #include "arcplan/model/measurements.h"
 #include "support/command.h"
+#include "support/error_message.h"
 
 namespace {
+
+using arcplan::testing::errorMessageOf;
 
 using arcplan::Error;
 using arcplan::model::LogReadOptions;
@@ -21,15 +24,6 @@ std::filesystem::path writeText(const std::string& name, const std::string& text
   const auto file = dir / name;
   std::ofstream(file) << text;
   return file;
-}
-
-std::string errorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(Measurements, ReadsUrRtdeCommaSeparatedWithHeader) {
@@ -131,7 +125,7 @@ TEST(Measurements, LineRangeSelectsPartOfTheFile) {
   ASSERT_EQ(log.rows(), 4u);
   EXPECT_DOUBLE_EQ(log.time[0], 2.0);  // line 4 holds t = 2
   EXPECT_DOUBLE_EQ(log.time[3], 5.0);
-  EXPECT_NE(errorOf([] { arcplan::model::parseLineRange("7-4", "--rows"); }).find("--rows"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { arcplan::model::parseLineRange("7-4", "--rows"); }).find("--rows"), std::string::npos);
 }
 
 TEST(Measurements, WrittenLogsReadBackIdentically) {
@@ -153,32 +147,32 @@ TEST(Measurements, WrittenLogsReadBackIdentically) {
 
 TEST(Measurements, BadInputGivesClearErrors) {
   // Unknown column in a column map.
-  EXPECT_NE(errorOf([] { parseColumnMap("timestamp=1, actual_torque=2-7"); }).find("unknown column 'actual_torque'"),
+  EXPECT_NE(errorMessageOf([] { parseColumnMap("timestamp=1, actual_torque=2-7"); }).find("unknown column 'actual_torque'"),
             std::string::npos);
   // A column map wider than the rows.
   LogReadOptions wide;
   wide.columns = parseColumnMap("timestamp=1, actual_q=2-7");
   const auto narrow = writeText("narrow.csv", "0,1,2,3\n1,1,2,3\n");
-  EXPECT_NE(errorOf([&] { readLog(narrow, wide); }).find("unknown column"), std::string::npos);
+  EXPECT_NE(errorMessageOf([&] { readLog(narrow, wide); }).find("unknown column"), std::string::npos);
   // Mismatched joint counts.
-  EXPECT_NE(errorOf([] { parseColumnMap("timestamp=1, actual_q=2-7, actual_current=8-12"); }).find("mismatched joint count"),
+  EXPECT_NE(errorMessageOf([] { parseColumnMap("timestamp=1, actual_q=2-7, actual_current=8-12"); }).find("mismatched joint count"),
             std::string::npos);
   const auto mismatched = writeText("mismatch.csv", "timestamp,actual_q_0,actual_q_1,actual_current_0\n0,1,2,3\n");
-  const auto mismatchMessage = errorOf([&] { readLog(mismatched); });
+  const auto mismatchMessage = errorMessageOf([&] { readLog(mismatched); });
   EXPECT_NE(mismatchMessage.find("mismatched joint count"), std::string::npos) << mismatchMessage;
   EXPECT_NE(mismatchMessage.find("mismatch.csv"), std::string::npos);
   // Empty logs: no lines at all, or a header without rows.
-  EXPECT_NE(errorOf([] { readLog(writeText("empty.csv", "")); }).find("empty"), std::string::npos);
-  EXPECT_NE(errorOf([] { readLog(writeText("header.csv", "timestamp,actual_q_0\n")); }).find("no data rows"),
+  EXPECT_NE(errorMessageOf([] { readLog(writeText("empty.csv", "")); }).find("empty"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { readLog(writeText("header.csv", "timestamp,actual_q_0\n")); }).find("no data rows"),
             std::string::npos);
   // Every row invalid: the message carries the drop report.
-  const auto allBad = errorOf([] { readLog(writeText("allbad.csv", "timestamp,actual_q_0\n0,nan\n1,1e300\n")); });
+  const auto allBad = errorMessageOf([] { readLog(writeText("allbad.csv", "timestamp,actual_q_0\n0,nan\n1,1e300\n")); });
   EXPECT_NE(allBad.find("no valid rows"), std::string::npos) << allBad;
   EXPECT_NE(allBad.find("NaN"), std::string::npos) << allBad;
   // Headerless without a map; missing file; no timestamp column.
-  EXPECT_NE(errorOf([] { readLog(writeText("nomap.csv", "0,1\n1,2\n")); }).find("--columns"), std::string::npos);
-  EXPECT_NE(errorOf([] { readLog("/nonexistent/log.csv"); }).find("does not exist"), std::string::npos);
-  EXPECT_NE(errorOf([] { readLog(writeText("notime.csv", "actual_q_0\n1\n")); }).find("timestamp"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { readLog(writeText("nomap.csv", "0,1\n1,2\n")); }).find("--columns"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { readLog("/nonexistent/log.csv"); }).find("does not exist"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { readLog(writeText("notime.csv", "actual_q_0\n1\n")); }).find("timestamp"), std::string::npos);
 }
 
 }  // namespace

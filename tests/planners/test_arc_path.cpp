@@ -8,8 +8,11 @@
 
 #include "arcplan/common/error.h"
 #include "arcplan/planners/arc_path.h"
+#include "support/error_message.h"
 
 namespace {
+
+using arcplan::testing::errorMessageOf;
 
 using arcplan::planners::ArcParameters;
 using arcplan::planners::ArcPath;
@@ -66,15 +69,6 @@ double polylineLength(const std::vector<arcplan::planners::PathSample>& samples)
     length += (samples[i].pose.translation() - samples[i - 1].pose.translation()).norm();
   }
   return length;
-}
-
-std::string errorMessage(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const arcplan::Error& error) {
-    return error.what();
-  }
-  return "(no error)";
 }
 
 TEST(ArcPath, StraightLengthIsThesisCaseA) {
@@ -256,37 +250,37 @@ TEST(ArcPath, ChainedDetoursAddTheirExtraLengths) {
 }
 
 TEST(ArcPath, InvalidParametersAreRejectedWithTheirName) {
-  EXPECT_NE(errorMessage([] {
+  EXPECT_NE(errorMessageOf([] {
               makeArcDetourProfile({0.3, 0.2, 0.1, 0.2});
             }).find("h <= half_chord"),
             std::string::npos);
-  EXPECT_NE(errorMessage([] { makeArcDetourProfile({0.0, 0.2, 0.1, 0.2}); }).find("sagitta"), std::string::npos);
-  EXPECT_NE(errorMessage([] { makeArcDetourProfile({0.1, 0.2, -0.1, 0.2}); }).find("entry_radius"), std::string::npos);
-  EXPECT_NE(errorMessage([] { makeArcDetourProfile({0.1, 0.2, 0.1, NAN}); }).find("exit_radius"), std::string::npos);
-  EXPECT_NE(errorMessage([] { makeArcDetourProfile({0.1, -1.0, 0.1, 0.1}); }).find("half_chord"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { makeArcDetourProfile({0.0, 0.2, 0.1, 0.2}); }).find("sagitta"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { makeArcDetourProfile({0.1, 0.2, -0.1, 0.2}); }).find("entry_radius"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { makeArcDetourProfile({0.1, 0.2, 0.1, NAN}); }).find("exit_radius"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { makeArcDetourProfile({0.1, -1.0, 0.1, 0.1}); }).find("half_chord"), std::string::npos);
 }
 
 TEST(ArcPath, DetourMustFitBetweenAAndB) {
   // bx2 = 0.283 m for h = r = 0.2, R2 = 0.1: O closer than that to A cannot work.
-  const std::string entry = errorMessage([] {
+  const std::string entry = errorMessageOf([] {
     ArcPath(toolDownAt(kA), toolDownAt(kB), {Detour{0.25, thesisShape(1.0), 0.0}});
   });
   EXPECT_NE(entry.find("bx2"), std::string::npos) << entry;
   EXPECT_NE(entry.find("|AO|"), std::string::npos) << entry;
-  const std::string exit = errorMessage([] {
+  const std::string exit = errorMessageOf([] {
     ArcPath(toolDownAt(kA), toolDownAt(kB), {Detour{0.6, thesisShape(1.0), 0.0}});
   });
   EXPECT_NE(exit.find("|OB|"), std::string::npos) << exit;
-  const std::string overlap = errorMessage([] {
+  const std::string overlap = errorMessageOf([] {
     const ArcParameters small{0.05, 0.08, 0.04, 0.04};
     ArcPath(toolDownAt(kA), toolDownAt(kB), {Detour{0.3, small, 0.0}, Detour{0.35, small, 0.0}});
   });
   EXPECT_NE(overlap.find("previous detour"), std::string::npos) << overlap;
-  const std::string zero = errorMessage([] {
+  const std::string zero = errorMessageOf([] {
     ArcPath(toolDownAt(kA), toolDownAt(kA), {Detour{0.0, thesisShape(1.0), 0.0}});
   });
   EXPECT_NE(zero.find("|AB| = 0"), std::string::npos) << zero;
-  EXPECT_NE(errorMessage([] { thesisPath(0.5).sample(0.0); }).find("resolution"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { thesisPath(0.5).sample(0.0); }).find("resolution"), std::string::npos);
 }
 
 }  // namespace

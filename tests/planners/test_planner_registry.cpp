@@ -8,20 +8,14 @@
 #include "arcplan/common/error.h"
 #include "arcplan/planners/planner_registry.h"
 #include "planners/planner_test_support.h"
+#include "support/error_message.h"
 
 namespace {
 
+using arcplan::testing::errorMessageOf;
+
 using namespace arcplan::planners;
 using arcplan::testing::thesisProblem;
-
-std::string errorMessage(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const arcplan::Error& error) {
-    return error.what();
-  }
-  return "(no error)";
-}
 
 TEST(PlannerRegistry, HasTheArcPlannerFirstAndTheRequiredOmplPlanners) {
   const auto& names = plannerNames();
@@ -49,7 +43,7 @@ TEST(PlannerRegistry, NamesMatchIgnoringCaseAndUnknownNamesListTheKnownOnes) {
   EXPECT_EQ(canonicalPlannerName("ARC"), "arc");
   EXPECT_TRUE(isArcPlanner("Arc"));
   EXPECT_FALSE(isArcPlanner("PRM"));
-  const std::string message = errorMessage([] { canonicalPlannerName("RRTConect"); });
+  const std::string message = errorMessageOf([] { canonicalPlannerName("RRTConect"); });
   EXPECT_NE(message.find("unknown planner 'RRTConect'"), std::string::npos) << message;
   EXPECT_NE(message.find("RRTConnect"), std::string::npos) << message;
   EXPECT_NE(message.find("BITstar"), std::string::npos) << message;
@@ -67,12 +61,12 @@ TEST(PlannerRegistry, ParametersAreSetByName) {
 
 TEST(PlannerRegistry, UnknownParameterListsTheValidOnes) {
   auto problem = thesisProblem("thesis_free");
-  const std::string message = errorMessage([&] {
+  const std::string message = errorMessageOf([&] {
     makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"rang", "0.2"}});
   });
   EXPECT_NE(message.find("RRTConnect has no parameter 'rang'"), std::string::npos) << message;
   EXPECT_NE(message.find("range="), std::string::npos) << message;
-  const std::string arc = errorMessage([&] {
+  const std::string arc = errorMessageOf([&] {
     makePlanner("arc", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"height", "0.1"}});
   });
   EXPECT_NE(arc.find("sagitta="), std::string::npos) << arc;
@@ -81,11 +75,11 @@ TEST(PlannerRegistry, UnknownParameterListsTheValidOnes) {
 
 TEST(PlannerRegistry, ValueThePlannerCannotTakeIsRejected) {
   auto problem = thesisProblem("thesis_free");
-  const std::string message = errorMessage([&] {
+  const std::string message = errorMessageOf([&] {
     makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"range", "far"}});
   });
   EXPECT_NE(message.find("parameter 'range' does not accept 'far'"), std::string::npos) << message;
-  const std::string arc = errorMessage([&] {
+  const std::string arc = errorMessageOf([&] {
     makePlanner("arc", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"resolution", "-0.01"}});
   });
   EXPECT_NE(arc.find("resolution must be a finite number > 0"), std::string::npos) << arc;
@@ -95,13 +89,13 @@ TEST(PlannerRegistry, ParameterAssignmentsNeedNameAndValue) {
   EXPECT_EQ(parseParameterAssignment("range=0.2"), (std::pair<std::string, std::string>{"range", "0.2"}));
   EXPECT_EQ(parseParameterAssignment("goal_bias=0.05=x").second, "0.05=x");
   for (const char* bad : {"range", "=0.2", "range=", ""}) {
-    EXPECT_NE(errorMessage([&] { parseParameterAssignment(bad); }).find("NAME=VALUE"), std::string::npos) << bad;
+    EXPECT_NE(errorMessageOf([&] { parseParameterAssignment(bad); }).find("NAME=VALUE"), std::string::npos) << bad;
   }
 }
 
 TEST(PlannerRegistry, ArcPlannerNeedsTheCollisionModel) {
   auto problem = thesisProblem("thesis_free");
-  EXPECT_NE(errorMessage([&] { plannerAllocator("arc", PlannerContext{}); }).find("collision model"),
+  EXPECT_NE(errorMessageOf([&] { plannerAllocator("arc", PlannerContext{}); }).find("collision model"),
             std::string::npos);
 }
 
