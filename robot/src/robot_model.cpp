@@ -153,9 +153,13 @@ RobotModel parseRobotModel(const std::string& urdfXml, const std::filesystem::pa
   const auto tip = urdf->getLink(chain.tipLink);
   if (!tip) throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' not found (links: " + knownLinks(*urdf) + ")");
 
-  // The moving chain: walk up from the tip to the base.
+  // The moving chain: walk up from the tip to the base. urdfdom accepts links whose joints form a
+  // loop away from the root (found by fuzzing), so the walk is bounded by the number of links.
   std::vector<urdf::LinkConstSharedPtr> chainLinks;
   for (urdf::LinkConstSharedPtr link = tip; link; link = link->getParent()) {
+    if (chainLinks.size() > urdf->links_.size()) {
+      throw Error(where(sourceFile) + ": the joints above tip link '" + chain.tipLink + "' form a loop");
+    }
     chainLinks.push_back(link);
     if (link->name == chain.baseLink) break;
   }

@@ -233,3 +233,23 @@ TEST(RobotModel, PrismaticJointOnTheChainIsRejected) {
 }
 
 }  // namespace
+
+namespace {
+
+// Found by fuzzing: urdfdom accepts joints that close a loop away from the root.
+TEST(RobotModel, JointLoopAboveTheTipIsAnError) {
+  const std::string urdf = R"(<robot name="loop"><link name="base_link"/><link name="a"/><link name="tool0"/>
+<joint name="j1" type="revolute"><parent link="a"/><child link="tool0"/><axis xyz="0 0 1"/>
+<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+<joint name="j2" type="revolute"><parent link="tool0"/><child link="a"/><axis xyz="0 0 1"/>
+<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>)";
+  try {
+    arcplan::robot::parseRobotModel(urdf, "loop.urdf");
+    FAIL() << "no error";
+  } catch (const arcplan::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("loop.urdf: the joints above tip link 'tool0' form a loop"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
