@@ -1,6 +1,7 @@
 #include "parser_targets.h"
 
 #include <fstream>
+#include <set>
 #include <stdexcept>
 #include <unistd.h>
 
@@ -25,8 +26,17 @@ std::filesystem::path inputFile(const std::string& suffix) {
 }
 
 std::filesystem::path writeInput(const std::string& input, const std::string& suffix) {
+  // The files (one per suffix) go when the process ends.
+  static struct InputFiles {
+    std::set<std::filesystem::path> written;
+    ~InputFiles() {
+      std::error_code ignored;
+      for (const auto& file : written) std::filesystem::remove(file, ignored);
+    }
+  } inputFiles;
   const auto file = inputFile(suffix);
   std::ofstream(file, std::ios::binary | std::ios::trunc) << input;
+  inputFiles.written.insert(file);
   return file;
 }
 

@@ -8,10 +8,27 @@
 
 namespace arcplan::testing {
 
+namespace {
+
+// Every directory a test process made is removed when it exits, unless ARCPLAN_KEEP_TEST_FILES is set
+// (to look at what a failing test wrote).
+struct TemporaryDirectories {
+  std::vector<std::filesystem::path> created;
+  ~TemporaryDirectories() {
+    if (std::getenv("ARCPLAN_KEEP_TEST_FILES") != nullptr) return;
+    std::error_code ignored;
+    for (const auto& dir : created) std::filesystem::remove_all(dir, ignored);
+  }
+};
+
+}  // namespace
+
 std::filesystem::path freshTempDirectory(const std::string& name) {
+  static TemporaryDirectories directories;
   const auto dir = std::filesystem::temp_directory_path() / ("arcplan_test_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  directories.created.push_back(dir);
   return dir;
 }
 

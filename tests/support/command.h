@@ -17,7 +17,8 @@ struct CommandResult {
 CommandResult runArcplan(const std::vector<std::string>& arguments,
                          const std::vector<std::pair<std::string, std::string>>& environment = {});
 
-// A fresh, empty directory under the system temp folder, unique per test.
+// A fresh, empty directory under the system temp folder, unique per test process and name; removed
+// when the process exits (kept when ARCPLAN_KEEP_TEST_FILES is set).
 std::filesystem::path freshTempDirectory(const std::string& name);
 
 std::string readFile(const std::filesystem::path& file);
