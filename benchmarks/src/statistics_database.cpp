@@ -6,14 +6,10 @@
 #include <sstream>
 #include <string>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "arcplan/common/error.h"
-
-extern char** environ;
+#include "arcplan/common/process.h"
 
 namespace arcplan::benchmarks {
 namespace {
@@ -23,43 +19,6 @@ constexpr std::size_t kLogsPerCall = 200;
 
 bool isExecutable(const std::filesystem::path& file) {
   return std::filesystem::is_regular_file(file) && ::access(file.c_str(), X_OK) == 0;
-}
-
-struct ProcessResult {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr interleaved
-};
-
-// Runs argv without a shell, capturing its output in a temporary file (the script prints one line
-// per log file; we show it only when something goes wrong).
-ProcessResult runCapturing(const std::vector<std::string>& argv, const std::filesystem::path& outputFile) {
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, outputFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  ProcessResult result;
-  if (spawned != 0) {
-    result.output = "cannot start " + argv[0];
-    return result;
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return result;
-  }
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(outputFile);
-  std::ostringstream text;
-  text << in.rdbuf();
-  result.output = text.str();
-  std::error_code ignored;
-  std::filesystem::remove(outputFile, ignored);
-  return result;
 }
 
 }  // namespace
@@ -113,8 +72,6 @@ void buildBenchmarkDatabase(const std::vector<std::filesystem::path>& logs, cons
   }
   auto temporary = database;
   temporary += ".tmp." + std::to_string(::getpid());
-  auto scriptOutput = database;
-  scriptOutput += ".output." + std::to_string(::getpid());
   std::error_code ignored;
   std::filesystem::remove(temporary, ignored);
   for (std::size_t first = 0; first < logs.size(); first += kLogsPerCall) {
@@ -122,7 +79,7 @@ void buildBenchmarkDatabase(const std::vector<std::filesystem::path>& logs, cons
     if (first > 0) argv.emplace_back("-a");
     const auto last = std::min(logs.size(), first + kLogsPerCall);
     for (std::size_t i = first; i < last; ++i) argv.push_back(logs[i].string());
-    const auto result = runCapturing(argv, scriptOutput);
+    const auto result = runProcess(argv, ProcessOutput::Capture);
     if (result.exitCode != 0) {
       std::filesystem::remove(temporary, ignored);
       throw Error(script.string() + " failed (exit " + std::to_string(result.exitCode) + ") on logs " +
