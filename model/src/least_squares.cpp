@@ -10,7 +10,11 @@ namespace arcplan::model {
 NormalEquations NormalEquations::of(const Eigen::MatrixXd& columns, const Eigen::VectorXd& target) {
   NormalEquations e;
   e.gram = Eigen::MatrixXd::Zero(columns.cols(), columns.cols());
-  e.gram.selfadjointView<Eigen::Lower>().rankUpdate(columns.transpose());
+  // A model without parameters (joint_tracking's base) has no columns; Eigen's product kernel must
+  // not see the empty matrix (UBSan flags its null data pointer).
+  if (columns.cols() > 0 && columns.rows() > 0) {
+    e.gram.selfadjointView<Eigen::Lower>().rankUpdate(columns.transpose());
+  }
   e.gram.triangularView<Eigen::StrictlyUpper>() = e.gram.transpose();
   e.moment = columns.transpose() * target;
   e.squares = target.squaredNorm();

@@ -4,10 +4,12 @@
 set -euo pipefail
 build_dir="$1"
 source_dir="$2"
+consumer_flags="${3:-}"  # compiler and linker flags of the consumer (the sanitizers of a sanitized build)
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build_dir" --prefix "$work/prefix" >/dev/null
-cmake -S "$source_dir/examples/consumer" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S "$source_dir/examples/consumer" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_CXX_FLAGS="$consumer_flags" -DCMAKE_EXE_LINKER_FLAGS="$consumer_flags" >/dev/null
 cmake --build "$work/build" -j 2 >/dev/null
 # The installed data (URDF, meshes, scenes) must be found from the install tree, not the sources.
 mv "$work/prefix" "$work/moved_prefix"

@@ -1,4 +1,5 @@
 #include <fstream>
+#include <ostream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -33,9 +34,13 @@ TEST(RobotCommand, InverseKinematicsListsSolutionsAndNearest) {
 }
 
 struct BadInput {
+  std::string name;  // of the test case
   std::vector<std::string> arguments;
   std::string expectedMessage;
 };
+
+// Names the case in test listings (gtest would dump the struct's bytes).
+void PrintTo(const BadInput& input, std::ostream* out) { *out << input.name; }
 
 class RobotCommandBadInput : public ::testing::TestWithParam<BadInput> {};
 
@@ -53,15 +58,19 @@ TEST_P(RobotCommandBadInput, OneClearLineAndNonZeroExit) {
 
 INSTANTIATE_TEST_SUITE_P(
     Errors, RobotCommandBadInput,
-    ::testing::Values(BadInput{{"robot", "fk", "--joints", "0,0,0,0,0"}, "expected 6 comma-separated numbers, got 5"},
-                      BadInput{{"robot", "fk", "--joints", "0,0,zero,0,0,0"}, "'zero' is not a finite number"},
-                      BadInput{{"robot", "fk", "--joints", "0,0,4,0,0,0"}, "outside its limits"},
-                      BadInput{{"robot", "fk", "--joints", "0,0,0,0,0,0", "--urdf", "/nonexistent/robot.urdf"},
-                               "/nonexistent/robot.urdf does not exist"},
-                      BadInput{{"robot", "fk", "--joints", "0,0,0,0,0,0", "--tip", "gripper"}, "'gripper' not found"},
-                      BadInput{{"robot", "ik", "--pose", "2.5,0,0.3,0,-3.14159,0"}, "out of reach"},
-                      BadInput{{"robot", "ik", "--pose", "0.4,-0.4,0.25,0,-3.14159,1.57", "--seed", "1,2"},
-                               "--seed: expected 6"}));
+    ::testing::Values(
+        BadInput{"FiveJoints", {"robot", "fk", "--joints", "0,0,0,0,0"}, "expected 6 comma-separated numbers, got 5"},
+        BadInput{"NotANumber", {"robot", "fk", "--joints", "0,0,zero,0,0,0"}, "'zero' is not a finite number"},
+        BadInput{"OutsideLimits", {"robot", "fk", "--joints", "0,0,4,0,0,0"}, "outside its limits"},
+        BadInput{"MissingUrdf",
+                 {"robot", "fk", "--joints", "0,0,0,0,0,0", "--urdf", "/nonexistent/robot.urdf"},
+                 "/nonexistent/robot.urdf does not exist"},
+        BadInput{"UnknownTip", {"robot", "fk", "--joints", "0,0,0,0,0,0", "--tip", "gripper"}, "'gripper' not found"},
+        BadInput{"OutOfReach", {"robot", "ik", "--pose", "2.5,0,0.3,0,-3.14159,0"}, "out of reach"},
+        BadInput{"ShortSeed",
+                 {"robot", "ik", "--pose", "0.4,-0.4,0.25,0,-3.14159,1.57", "--seed", "1,2"},
+                 "--seed: expected 6"}),
+    [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
 
 TEST(RobotCommand, MalformedUrdfSaysWhere) {
   const auto dir = arcplan::testing::freshTempDirectory("robot_bad_urdf");
