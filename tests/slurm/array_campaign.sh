@@ -24,6 +24,10 @@ wait_gone 300 "$array" "$rank"
 tasks="$(completions "$array")"
 [ "$tasks" = "$(printf '%s COMPLETED 0:0\n' 1 2 3 4)" ] || fail "array tasks did not each complete once: $tasks"
 [ "$(completions "$rank")" = "- COMPLETED 0:0" ] || fail "rank job: $(completions "$rank"); $(cat "$work"/rank-*.out)"
+last_task_end="$(jobcomp "$array" EndTime | sort | tail -n 1)"
+rank_start="$(jobcomp "$rank" StartTime)"
+[ -n "$last_task_end" ] && [ -n "$rank_start" ] && [[ ! "$rank_start" < "$last_task_end" ]] ||
+  fail "the afterok rank job started at $rank_start, before the last array task ended at $last_task_end"
 for task in 1 2 3 4; do
   out="$work/bench-${array}_$task.out"
   [ -f "$out" ] || fail "array task $task left no output"

@@ -70,25 +70,35 @@ wait_gone() {
   done
 }
 
-# completions JOBID: the finished-job records (jobcomp/filetxt) of a job or of an array's tasks,
-# one line each: "<task or -> <JobState> <ExitCode>". slurmctld writes the record as the job ends.
-completions() {
+# jobcomp JOBID FIELD...: fields of the finished-job records (jobcomp/filetxt) of a job or of an
+# array's tasks, one line per record, sorted. slurmctld writes the record as the job ends.
+jobcomp() {
   local file="${ARCPLAN_SLURM_DIR:-/tmp/arcplan-slurm}/log/jobcomp.txt"
   [ -f "$file" ] || return 0
-  awk -v id="$1" '
+  local id="$1"
+  shift
+  awk -v id="$id" -v wanted="$*" '
     {
-      job = ""; array = ""; task = "-"; state = ""; code = ""
+      delete field
       for (i = 1; i <= NF; ++i) {
-        split($i, kv, "=")
-        if (kv[1] == "JobId") job = kv[2]
-        else if (kv[1] == "ArrayJobId") array = kv[2]
-        else if (kv[1] == "ArrayTaskId") task = kv[2]
-        else if (kv[1] == "JobState") state = kv[2]
-        else if (kv[1] == "ExitCode") code = kv[2]
+        eq = index($i, "=")
+        if (eq > 0) field[substr($i, 1, eq - 1)] = substr($i, eq + 1)
       }
-      if (array == id || (array == "" && job == id) || (array == "0" && job == id)) print task, state, code
+      array = ("ArrayJobId" in field) ? field["ArrayJobId"] : ""
+      if (array == id || ((array == "" || array == "0") && field["JobId"] == id)) {
+        n = split(wanted, names, " ")
+        line = ""
+        for (k = 1; k <= n; ++k) {
+          value = (names[k] in field) ? field[names[k]] : "-"
+          line = line (k > 1 ? " " : "") value
+        }
+        print line
+      }
     }' "$file" | sort -n
 }
+
+# completions JOBID: "<array task or -> <JobState> <ExitCode>" per finished job or array task.
+completions() { jobcomp "$1" ArrayTaskId JobState ExitCode; }
 
 # finished_lines FILE...: the campaign jobs the bench outputs report as finished ("problem · planner").
 finished_lines() {
