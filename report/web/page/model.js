@@ -1,0 +1,158 @@
+// The model session report: the error after every step, measured vs predicted per channel with the
+// worst windows, the residual against the signals, the diagnosis ranking with its explanations and
+// the model-file lines that add the suggested effects.
+"use strict";
+
+(function modelReport() {
+  const data = REPORT;
+  const steps = (data.history && data.history.steps) || [];
+
+  function overviewSection() {
+    const section = addSection("overview", "Session",
+      "A model-vs-measurements session (arcplan model compare / diagnose / fit with --out). Lower errors are better: " +
+      "NRMSE is the RMS error divided by the standard deviation of the measured signal (1 = no better than its mean).");
+    const last = steps[steps.length - 1];
+    const entries = [["folder", data.source], ["steps", String(steps.length)],
+                     ["model effects now", last ? last.effects.join(", ") : "–"],
+                     ["overall NRMSE now", last ? formatNumber(last.train.overall_nrmse) + " on the fitted data" +
+                       (last.validation ? ", " + formatNumber(last.validation.overall_nrmse) + " on the validation data" : "") : "–"]];
+    section.appendChild(el("dl", {class: "settings"}, entries.flatMap(([k, v]) => [el("dt", {text: k}), el("dd", {text: v})])));
+    const notes = missingNotes(data.missing);
+    if (notes) section.appendChild(notes);
+  }
+
+  function historySection() {
+    if (steps.length === 0) return;
+    const section = addSection("history", "Error after every step",
+      "The overall NRMSE after each compare or fit step of the session: it falls as the missing physical effects are added.");
+    const labels = steps.map(step => step.step + ": " + step.command);
+    const traces = [{type: "scatter", mode: "lines+markers", name: "fitted data", x: labels, y: steps.map(s => s.train.overall_nrmse)}];
+    if (steps.some(s => s.validation)) {
+      traces.push({type: "scatter", mode: "lines+markers", name: "validation data", x: labels,
+                   y: steps.map(s => s.validation ? s.validation.overall_nrmse : null)});
+    }
+    const container = el("div", {class: "plot wide", id: "history-plot"});
+    section.appendChild(container);
+    plot(container, traces, {yaxis: {title: {text: "overall NRMSE"}, rangemode: "tozero"}, xaxis: {automargin: true}});
+    const channels = Object.keys(steps[0].train.channels);
+    const columns = [{label: "step", value: row => row.step}, {label: "command", text: true, value: row => row.command, cell: row => row.command},
+                     {label: "overall NRMSE", value: row => row.train.overall_nrmse},
+                     {label: "validation NRMSE", value: row => row.validation ? row.validation.overall_nrmse : null}]
+      .concat(channels.map(channel => ({label: "RMSE " + channel, value: row => (row.validation || row.train).channels[channel].rmse})));
+    section.appendChild(sortableTable("history-table", columns, steps.map(step => Object.assign({key: step.step}, step))));
+  }
+
+  // Windows to shade: only where the comparison analysed failures (its dataset) and on a time axis.
+  function worstWindows(dataset) {
+    const comparison = data.comparison;
+    if (!comparison || !comparison.worst_windows) return [];
+    if (comparison.failures_analysed_on !== dataset) return [];
+    return comparison.worst_windows.filter(w => w.axis === "time_s");
+  }
+
+  function seriesSection() {
+    const available = ["validation", "data"].filter(which => data.series[which]);
+    if (available.length === 0) return;
+    const section = addSection("series", "Measured vs predicted",
+      "Each channel's measured signal and the model's prediction; the worst windows (largest normalised residual) are shaded. " +
+      "Drag to zoom into a window, double-click to reset.");
+    const grid = el("div", {class: "plots"});
+    function draw(which) {
+      grid.replaceChildren();
+      const shading = worstWindows(which).map(w => ({type: "rect", xref: "x", yref: "paper", x0: w.start, x1: w.end, y0: 0, y1: 1,
+                                                     fillcolor: "#f4a261", opacity: 0.25, line: {width: 0}}));
+      data.series[which].channels.forEach((channel, index) => {
+        const container = el("div", {class: "plot series-plot", id: "series-" + index, "data-channel": channel.channel});
+        grid.appendChild(container);
+        plot(container, [
+          {type: "scatter", mode: "lines", name: "measured", x: channel.time, y: channel.measured, line: {color: "#1f77b4", width: 1}},
+          {type: "scatter", mode: "lines", name: "predicted", x: channel.time, y: channel.predicted, line: {color: "#ff7f0e", width: 1}},
+        ], {title: {text: channel.channel, font: {size: 14}}, shapes: shading, xaxis: {title: {text: "time (s)"}},
+            legend: {orientation: "h", y: -0.25}});
+      });
+    }
+    section.appendChild(el("div", {class: "controls"}, [selectControl("data", available.map(which => ({value: which,
+      label: which === "validation" ? "validation data (held out) — " + data.series[which].file : "fitted data — " + data.series[which].file})), draw)]));
+    section.appendChild(grid);
+    draw(available[0]);
+
+    const windows = data.comparison && data.comparison.worst_windows;
+    if (windows && windows.length) {
+      section.appendChild(el("h3", {text: "Worst windows (" + data.comparison.failures_analysed_on + " data)"}));
+      section.appendChild(sortableTable("worst-windows", [
+        {label: "start", value: w => w.start}, {label: "end", value: w => w.end}, {label: "NRMSE in window", value: w => w.nrmse},
+        {label: "worst channel", text: true, value: w => w.worst_channel, cell: w => w.worst_channel}],
+        windows.map((w, i) => Object.assign({key: i}, w))));
+    }
+  }
+
+  function residualSection() {
+    const which = ["validation", "data"].find(w => data.series[w]);
+    if (!which) return;
+    const channels = data.series[which].channels;
+    const section = addSection("residual", "Residual against the signals",
+      "The residual (measured − predicted) of one channel against each signal: a pattern (a step at zero speed, a slope with load, " +
+      "a ripple with the angle) is an effect the model is missing.");
+    const grid = el("div", {class: "plots"});
+    function draw(indexText) {
+      const channel = channels[Number(indexText)];
+      const residual = channel.measured.map((m, i) => m - channel.predicted[i]);
+      grid.replaceChildren();
+      for (const [signal, values] of Object.entries(channel.signals)) {
+        const container = el("div", {class: "plot residual-plot", id: "residual-" + signal});
+        grid.appendChild(container);
+        plot(container, [{type: "scatter", mode: "markers", name: signal, x: values, y: residual,
+                          marker: {size: 3, color: "#1f77b4", opacity: 0.5}}],
+             {title: {text: "residual vs " + signal, font: {size: 14}}, xaxis: {title: {text: signal}},
+              yaxis: {title: {text: "residual"}}, showlegend: false});
+      }
+    }
+    section.appendChild(el("div", {class: "controls"}, [selectControl("channel", channels.map((c, i) => ({value: String(i), label: c.channel})), draw)]));
+    section.appendChild(grid);
+    draw("0");
+  }
+
+  function diagnosisSection() {
+    const diagnosis = data.diagnosis;
+    if (!diagnosis) return;
+    const section = addSection("diagnosis", "What is missing: the diagnosis",
+      "Every catalogue effect not yet in the model, fitted to the residual and scored on " + diagnosis.heldout +
+      ". The share of the held-out residual it removes ranks it; suggested effects pass the significance test.");
+    section.appendChild(el("p", {class: "explanation", text: diagnosis.summary}));
+    const ranking = diagnosis.ranking.map((candidate, index) => Object.assign({key: candidate.effect, rank: index + 1}, candidate));
+    const container = el("div", {class: "plot wide", id: "diagnosis-plot"});
+    section.appendChild(container);
+    plot(container, [{type: "bar", orientation: "h", x: ranking.map(c => 100 * c.heldout_reduction), y: ranking.map(c => c.effect),
+                      marker: {color: ranking.map(c => c.suggested ? "#2ca02c" : "#9aa5b1")},
+                      hovertemplate: "%{y}: %{x:.1f} % of the held-out residual<extra></extra>"}],
+         {xaxis: {title: {text: "held-out residual removed (%)"}}, yaxis: {autorange: "reversed", automargin: true}});
+    section.appendChild(sortableTable("diagnosis-table", [
+      {label: "rank", value: c => c.rank},
+      {label: "effect", text: true, value: c => c.effect, cell: c => c.effect},
+      {label: "joints", text: true, value: c => c.joints.join(","), cell: c => c.joints.join(", ") || "–"},
+      {label: "held-out removed", value: c => c.heldout_reduction, cell: c => formatNumber(100 * c.heldout_reduction, 3) + " %"},
+      {label: "score (ΔIC)", value: c => c.score},
+      {label: "suggested", text: true, value: c => (c.suggested ? 1 : 0), cell: c => (c.suggested ? "yes" : "no")},
+      {label: "explanation", text: true, value: c => c.explanation, cell: c => el("span", {class: "explanation", text: c.explanation || ""})},
+    ], ranking));
+    if (data.model_lines) {
+      section.appendChild(el("h3", {text: "Add the suggestion"}));
+      section.appendChild(el("p", {class: "intro", text: "In the model file, the effects line becomes:"}));
+      section.appendChild(el("pre", {id: "model-lines", text: data.model_lines.effects_line}));
+      section.appendChild(el("p", {class: "intro", text: "or refit from the command line:"}));
+      section.appendChild(el("pre", {text: data.model_lines.fit_command}));
+    }
+    if (diagnosis.skipped && diagnosis.skipped.length) {
+      section.appendChild(el("h3", {text: "Not tried"}));
+      section.appendChild(el("ul", {}, diagnosis.skipped.map(text => el("li", {text}))));
+    }
+  }
+
+  overviewSection();
+  historySection();
+  seriesSection();
+  residualSection();
+  diagnosisSection();
+  document.getElementById("loading").remove();
+  window.arcplanReport.ready = true;
+})();

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# The HTML reports in a real browser: builds a small thesis campaign (3 planners, 3 runs), a plain
+# OMPL database (no arcplan columns) and a model session (simulated log with a hidden load-friction
+# effect), writes their reports with arcplan and checks each in headless Chromium
+# (report/web/browser_test.js). Expected counts come from what this script asked for.
+# Usage: browser_reports.sh ARCPLAN_EXECUTABLE SOURCE_DIR
+set -euo pipefail
+arcplan="$1"
+source_dir="$2"
+web="$source_dir/report/web"
+if [ ! -d "$web/node_modules/puppeteer-core" ]; then
+  echo "browser_reports: $web/node_modules/puppeteer-core missing: run scripts/setup (npm ci in report/web)" >&2
+  exit 1
+fi
+work="$(mktemp -d "${TMPDIR:-/tmp}/arcplan-report-test.XXXXXX")"
+[ -n "${ARCPLAN_KEEP_TEST_FILES:-}" ] || trap 'rm -rf "$work"' EXIT
+browser_test() { node "$web/browser_test.js" "$@"; }
+
+echo "== campaign: thesis suite, 3 planners x 2 problems x 3 runs, report through bench --html"
+"$arcplan" bench --suite thesis --planners arc-h0.50r,RRTConnect,PRM --runs 3 --time 0.3 -j 1 --no-plots --quiet \
+  --out "$work/campaign" --html "$work/campaign/report.html" > "$work/bench.out"
+grep -q "^report: $work/campaign/report.html" "$work/bench.out"
+size=$(stat -c %s "$work/campaign/report.html")
+echo "campaign report: $size bytes"
+[ "$size" -lt 5000000 ]
+browser_test --report "$work/campaign/report.html" --kind campaign --planners 3 --speed-problems 2 --arm
+
+echo "== plain OMPL database: no arcplan columns, no path data"
+mkdir -p "$work/plain"
+sqlite3 "$work/plain/benchmark.db" <<'SQL'
+CREATE TABLE experiments (id INTEGER PRIMARY KEY, name VARCHAR(512), totaltime REAL, timelimit REAL, version VARCHAR(128));
+CREATE TABLE plannerConfigs (id INTEGER PRIMARY KEY, name VARCHAR(512), settings TEXT);
+CREATE TABLE runs (id INTEGER PRIMARY KEY, experimentid INTEGER, plannerid INTEGER, time REAL, memory REAL, solved BOOLEAN,
+                   solution_length REAL);
+INSERT INTO experiments VALUES (1, 'kitchen', 10, 1, 'OMPL 1.5.2');
+INSERT INTO plannerConfigs VALUES (1, 'geometric_RRT', ''), (2, 'geometric_PRM', '');
+INSERT INTO runs VALUES (1, 1, 1, 0.5, 10, 1, 3.0), (2, 1, 1, 1.0, 11, 0, NULL), (3, 1, 2, 0.2, 12, 1, 2.5);
+SQL
+"$arcplan" report "$work/plain" > "$work/plain.out"
+grep -q "report note: .*no arcplan columns" "$work/plain.out"
+grep -q "report note: No path data" "$work/plain.out"
+browser_test --report "$work/plain/report.html" --kind campaign --planners 2 --speed-problems 0
+
+echo "== model session: simulated logs with a hidden load-friction effect"
+cat > "$work/base.yaml" <<'YAML'
+kind: joint_current
+load_torque: target_moment
+effects: [drive_gain, offset, coulomb, viscous]
+YAML
+sed 's/viscous]/viscous, load_friction]/' "$work/base.yaml" > "$work/truth.yaml"
+"$arcplan" model simulate --model "$work/truth.yaml" --data "$work/fit.csv" --validate "$work/val.csv" \
+  --duration 12 --rate 200 --seed 4 > /dev/null
+"$arcplan" model compare --model "$work/base.yaml" --data "$work/fit.csv" --validate "$work/val.csv" --out "$work/session" > /dev/null
+"$arcplan" model diagnose --model "$work/base.yaml" --data "$work/fit.csv" --validate "$work/val.csv" --out "$work/session" \
+  --json "$work/diagnose.json" --html "$work/session/report.html" > /dev/null
+candidates=$(python3 -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["ranking"]))' "$work/diagnose.json")
+browser_test --report "$work/session/report.html" --kind model --channels 6 --history-traces 2 \
+  --diagnosis-rows "$candidates" --model-line load_friction

@@ -1,0 +1,113 @@
+// The 3D view's data: base64 encoding, link meshes, link-pose frames along a trajectory.
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "arcplan/report/robot_animation.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/mesh.h"
+#include "base64.h"
+#include "support/error_message.h"
+
+namespace {
+
+using arcplan::report::linkPoseFrames;
+using arcplan::report::robotMeshesJson;
+using arcplan::report::detail::base64;
+
+// RFC 4648 §10 test vectors, decoded by a table lookup written here.
+std::vector<unsigned char> decode(const std::string& text) {
+  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> bytes;
+  unsigned buffer = 0;
+  int bits = 0;
+  for (const char c : text) {
+    if (c == '=') break;
+    buffer = (buffer << 6) | static_cast<unsigned>(alphabet.find(c));
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      bytes.push_back(static_cast<unsigned char>((buffer >> bits) & 0xFF));
+    }
+  }
+  return bytes;
+}
+
+template <typename T>
+std::vector<T> decodeArray(const std::string& text) {
+  const auto bytes = decode(text);
+  std::vector<T> values(bytes.size() / sizeof(T));
+  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
+  return values;
+}
+
+TEST(Base64, MatchesTheRfcVectors) {
+  const auto encode = [](const std::string& text) {
+    return base64(reinterpret_cast<const unsigned char*>(text.data()), text.size());
+  };
+  EXPECT_EQ(encode(""), "");
+  EXPECT_EQ(encode("f"), "Zg==");
+  EXPECT_EQ(encode("fo"), "Zm8=");
+  EXPECT_EQ(encode("foo"), "Zm9v");
+  EXPECT_EQ(encode("foob"), "Zm9vYg==");
+  EXPECT_EQ(encode("fooba"), "Zm9vYmE=");
+  EXPECT_EQ(encode("foobar"), "Zm9vYmFy");
+}
+
+TEST(RobotMeshes, EveryMeshedLinkWithItsStlTriangles) {
+  const auto& robot = arcplan::robot::ur10e();
+  const auto meshes = robotMeshesJson(robot);
+  // data/ur10e/meshes holds seven STL files, one per link from base_link_inertia to wrist_3_link.
+  ASSERT_EQ(meshes.size(), 7u);
+  for (const auto& mesh : meshes) {
+    const auto& link = robot.links()[static_cast<std::size_t>(robot.linkIndex(mesh["link"]))];
+    ASSERT_EQ(link.collisions.size(), 1u) << mesh["link"];
+    const auto stl = arcplan::robot::loadMesh(link.collisions.front().meshFile, link.collisions.front().meshScale);
+    const auto positions = decodeArray<float>(mesh["positions"]);
+    const auto indices = decodeArray<std::uint32_t>(mesh["indices"]);
+    EXPECT_EQ(positions.size(), 3 * stl.vertices.size());
+    EXPECT_EQ(indices.size(), 3 * stl.triangles.size());
+    EXPECT_EQ(mesh["triangles"], stl.triangles.size());
+    for (const auto index : indices) ASSERT_LT(index, stl.vertices.size());
+    // The link frame is where the STL is (the UR10e URDF has identity collision origins).
+    EXPECT_NEAR(positions[0], stl.vertices[0].x(), 1e-6);
+    EXPECT_NEAR(positions[2], stl.vertices[0].z(), 1e-6);
+  }
+}
+
+TEST(LinkPoseFrames, SamplesTheMotionAtTheRate) {
+  const auto& robot = arcplan::robot::ur10e();
+  // Joint 0 turns from 0 to 1 rad in 2 s, the other joints hold a bent-arm pose.
+  arcplan::robot::Vector6 start, end;
+  start << 0.0, -1.5, 1.5, -1.5, -1.57, 0.0;
+  end = start;
+  end[0] = 1.0;
+  const auto frames = linkPoseFrames(robot, {0.0, 2.0}, {start, end}, 25.0);
+  EXPECT_EQ(frames["frames"], 51);  // 0, 0.04, ..., 2.0 s
+  EXPECT_DOUBLE_EQ(frames["duration_s"], 2.0);
+  const auto poses = decodeArray<float>(frames["poses"]);
+  ASSERT_EQ(poses.size(), 51u * 7u * 7u);
+  // Frame 25 is t = 1 s, q0 = 0.5 rad: the wrist_3 link origin is the start pose's rotated by 0.5
+  // rad about the base z axis (joint 0 turns the whole arm about it).
+  arcplan::robot::KinematicsData data(robot);
+  arcplan::robot::forwardKinematics(robot, start, data);
+  const Eigen::Vector3d atStart = data.linkPoses[static_cast<std::size_t>(robot.linkIndex("wrist_3_link"))].translation();
+  const Eigen::Vector3d expected = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) * atStart;
+  const std::size_t wrist3 = 6;  // the seventh meshed link
+  const std::size_t at = (25 * 7 + wrist3) * 7;
+  EXPECT_NEAR(poses[at], expected.x(), 1e-5);
+  EXPECT_NEAR(poses[at + 1], expected.y(), 1e-5);
+  EXPECT_NEAR(poses[at + 2], expected.z(), 1e-5);
+  // Quaternions are unit length.
+  EXPECT_NEAR(std::hypot(std::hypot(poses[at + 3], poses[at + 4]), std::hypot(poses[at + 5], poses[at + 6])), 1.0, 1e-5);
+}
+
+TEST(LinkPoseFrames, RejectsMismatchedInput) {
+  const auto& robot = arcplan::robot::ur10e();
+  EXPECT_NE(arcplan::testing::errorMessageOf([&] { linkPoseFrames(robot, {0.0, 1.0}, {arcplan::robot::Vector6::Zero()}, 25.0); })
+                .find("2 times for 1 joint vectors"),
+            std::string::npos);
+}
+
+}  // namespace
