@@ -1,4 +1,4 @@
-// arcplan model compare|diagnose|fit|simulate|history — the model-vs-measurement loop (DESIGN.md §8–9).
+// arcplan model compare|diagnose|fit|simulate|history — the model-vs-measurement loop (docs/model.md).
 #include <iostream>
 #include <memory>
 
@@ -16,8 +16,9 @@ namespace arcplan::apps {
 namespace {
 
 struct ModelOptions {
-  std::string model, data, validate, columns, rows, validateRows, out, json;
+  std::string model, data, validate, columns, rows, validateRows, out, json, html;
   bool keepParameters = false;
+  bool noDiscovery = false;
   std::vector<std::string> add;
   std::string save;
   int folds = 5;
@@ -29,6 +30,22 @@ struct ModelOptions {
   int harmonics = 5;
 };
 
+void addKeepParameters(CLI::App& command, ModelOptions& o, const std::string& what) {
+  command.add_flag("--keep-parameters", o.keepParameters,
+                   "use the parameters stored in the model file (a saved fit) instead of refitting; " + what);
+}
+
+// The report shows the session kept in --out, so --html needs it.
+void addHtmlOption(CLI::App& command, ModelOptions& o, CLI::Option* out) {
+  command.add_option("--html", o.html, "also write the session's self-contained HTML report (of --out DIR) to this file")
+      ->needs(out);
+}
+
+// The session report once the step's files are in --out (docs/report.md).
+void writeSessionReport(const ModelOptions& o) {
+  if (!o.html.empty()) writeHtmlReport(o.out, o.html);
+}
+
 void addDataOptions(CLI::App& command, ModelOptions& o) {
   command.add_option("--model", o.model, "model file (YAML: kind, load_torque, effects)")->required();
   command.add_option("--data", o.data, "measured log (RTDE CSV, headerless log with --columns, or force-transfer CSV)")
@@ -39,8 +56,9 @@ void addDataOptions(CLI::App& command, ModelOptions& o) {
                      "(1-based columns)");
   command.add_option("--rows", o.rows, "use only these 1-based file lines of --data, e.g. 355-5090");
   command.add_option("--validate-rows", o.validateRows, "use only these 1-based file lines of --validate");
-  command.add_option("--out", o.out, "directory for PNG plots, their data, and the session history (session.json)");
+  auto* out = command.add_option("--out", o.out, "directory for PNG plots, their data, and the session history (session.json)");
   command.add_option("--json", o.json, "write the result as JSON to this file ('-' for stdout)");
+  addHtmlOption(command, o, out);
 }
 
 model::DataFiles dataFiles(const ModelOptions& o) {
@@ -94,7 +112,9 @@ void runCompare(const ModelOptions& o) {
     reportPlot(outcome, directory);
     model::appendSessionStep(directory / "session.json",
                              {"compare", effectNames(spec), comparison.data, comparison.validation});
+    writeJson(directory / "compare.json", model::toJson(comparison, fitted, loaded.data));  // worst windows for the report
   }
+  writeSessionReport(o);
 }
 
 void runDiagnose(const ModelOptions& o) {
@@ -104,10 +124,13 @@ void runDiagnose(const ModelOptions& o) {
   model::DiagnoseOptions options;
   options.folds = o.folds;
   options.minimumReduction = o.minimumReduction;
+  options.keepParameters = o.keepParameters;
+  options.discover = !o.noDiscovery;
   const auto diagnosis = model::diagnose(spec, loaded.data, loaded.validationOrNull(), options);
   std::cout << model::formatDiagnosis(diagnosis);
   if (!o.json.empty()) writeJson(o.json, model::toJson(diagnosis));
   if (!o.out.empty()) reportPlot(model::plotDiagnosis(diagnosis, o.out), o.out);
+  writeSessionReport(o);
 }
 
 void runFit(const ModelOptions& o) {
@@ -116,7 +139,7 @@ void runFit(const ModelOptions& o) {
   for (const auto& text : o.add) additions.push_back(model::parseEffectArgument(text));
   const auto loaded = model::loadData(spec, dataFiles(o));
   printQuality(loaded);
-  const auto step = model::addEffectsAndFit(spec, additions, loaded.data, loaded.validationOrNull());
+  const auto step = model::addEffectsAndFit(spec, additions, loaded.data, loaded.validationOrNull(), o.keepParameters);
   std::cout << model::formatFitStep(step);
   if (!o.save.empty()) {
     model::saveModelFile(model::specWithParameters(step.after), o.save);
@@ -134,6 +157,7 @@ void runFit(const ModelOptions& o) {
     model::appendSessionStep(directory / "session.json",
                              {command, effectNames(step.after.spec), step.afterData, step.afterValidation});
   }
+  writeSessionReport(o);
 }
 
 void runHistory(const ModelOptions& o) {
@@ -147,6 +171,7 @@ void runHistory(const ModelOptions& o) {
   std::cout << model::formatHistory(history);
   if (!o.json.empty()) writeJson(o.json, model::toJson(history));
   if (!history.empty()) reportPlot(model::plotHistory(session, directory), directory);
+  writeSessionReport(o);
 }
 
 void runSimulate(const ModelOptions& o) {
@@ -200,18 +225,21 @@ void registerModelCommand(CLI::App& app) {
       "compare", "fit the model to --data and report RMSE, NRMSE, R² per channel (and on --validate), the worst time "
                  "windows and the residual by regime");
   addDataOptions(*compare, *o);
-  compare->add_flag("--keep-parameters", o->keepParameters,
-                    "use the parameters stored in the model file (a saved fit) instead of refitting");
+  addKeepParameters(*compare, *o, "compare them with the data as they are");
   compare->callback([o] { runCompare(*o); });
 
   auto* diagnose = modelCommand->add_subcommand(
-      "diagnose", "fit every catalogue effect missing from the model to the residual, score it on held-out data "
-                  "(--validate, else time-blocked cross-validation) and rank the physical explanations");
+      "diagnose", "fit every catalogue effect missing from the model, and terms from every joint's signals, to the "
+                  "residual, score them on held-out data (--validate, else time-blocked cross-validation) and rank "
+                  "the explanations");
   addDataOptions(*diagnose, *o);
   diagnose->add_option("--folds", o->folds, "cross-validation folds without --validate")->capture_default_str();
   diagnose->add_option("--min-reduction", o->minimumReduction,
                        "smallest fraction of a channel's held-out residual RMS an effect must remove")
       ->capture_default_str();
+  addKeepParameters(*diagnose, *o, "every candidate is fitted to what the kept model leaves");
+  diagnose->add_flag("--no-discovery", o->noDiscovery,
+                     "try only registered effects, not the library of terms from every joint's signals");
   diagnose->callback([o] { runDiagnose(*o); });
 
   auto* fit = modelCommand->add_subcommand(
@@ -219,12 +247,14 @@ void registerModelCommand(CLI::App& app) {
   addDataOptions(*fit, *o);
   fit->add_option("--add", o->add, "effect to add, optionally on some joints: load_friction:1,2 (repeatable)")->required();
   fit->add_option("--save", o->save, "write the refitted model (with parameters and standard errors) to this file");
+  addKeepParameters(*fit, *o, "only the added effects are fitted");
   fit->callback([o] { runFit(*o); });
 
   auto* history = modelCommand->add_subcommand(
       "history", "the error after every compare/fit step of a session (--out DIR) as a table and a falling-error plot");
-  history->add_option("--out", o->out, "session directory used with compare/fit --out")->required();
+  auto* historyOut = history->add_option("--out", o->out, "session directory used with compare/fit --out")->required();
   history->add_option("--json", o->json, "write the history as JSON to this file ('-' for stdout)");
+  addHtmlOption(*history, *o, historyOut);
   history->callback([o] { runHistory(*o); });
 
   auto* simulate = modelCommand->add_subcommand(

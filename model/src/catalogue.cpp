@@ -1,15 +1,16 @@
-// The effect catalogue of DESIGN.md §8. Each class is one physical term; the typical values are
-// what a UR10e shows (currents fitted on the real logs in shared/data/ur10e_real) and only serve
-// `arcplan model simulate` when a model file gives no parameters.
+// The effect catalogue (docs/model.md, "Effect catalogue"): the simple terms, one class each, and
+// the one ordered table of every built-in effect. The typical values are what a UR10e shows
+// (currents fitted on the real logs in shared/data/ur10e_real) and only serve `arcplan model
+// simulate` when a model file gives no parameters.
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <map>
 
 #include "arcplan/model/dataset.h"
 #include "arcplan/model/effect.h"
+#include "model_internal.h"
 
-namespace arcplan::model {
+namespace arcplan::model::detail {
 namespace {
 
 // Per-joint typical values for a UR10e (joints beyond the sixth reuse the last one).
@@ -22,9 +23,7 @@ const std::vector<double> kViscous{1.75, 1.63, 1.09, 0.33, 0.24, 0.29};        /
 const std::vector<double> kTorqueScale{10.0, 70.0, 30.0, 2.5, 0.5, 0.3};       // typical |τ| in N·m
 const std::vector<double> kRotorInertia{6.0, 6.0, 1.9, 0.6, 0.6, 0.6};         // kg·m² at the joint
 
-double sgn(const Dataset& data, double velocity) { return smoothSign(velocity, data.settings().velocitySmoothing); }
-
-bool isJointKind(ModelKind kind) { return kind == ModelKind::JointCurrent || kind == ModelKind::JointTracking; }
+double sgn(const Dataset& data, double velocity) { return smoothedDirection(data, velocity); }
 
 class RigidBody : public Effect {
 public:
@@ -217,141 +216,6 @@ public:
   }
 };
 
-class PositionRipple : public Effect {
-public:
-  using Effect::Effect;
-  std::string meaning() const override {
-    return "periodic in the joint angle: gear meshing and the wave generator of the Harmonic Drive";
-  }
-  std::string term() const override { return "sum_k a_k·cos(k·n·q) + b_k·sin(k·n·q), n cycles per revolution searched"; }
-  std::string residualPattern() const override { return "repeats periodically with the joint angle"; }
-  bool appliesTo(ModelKind kind) const override { return isJointKind(kind); }
-  std::vector<std::string> requiredSignals() const override { return {"q"}; }
-  std::vector<std::string> optionNames() const override { return {"harmonics"}; }
-  int harmonics() const { return std::max(1, static_cast<int>(option("harmonics").value_or(1.0))); }
-  std::vector<std::string> parameterNames() const override {
-    std::vector<std::string> names;
-    for (int k = 1; k <= harmonics(); ++k) {
-      names.push_back("a" + std::to_string(k));
-      names.push_back("b" + std::to_string(k));
-    }
-    return names;
-  }
-  std::optional<NonlinearParameter> nonlinearParameter() const override {
-    NonlinearParameter p{"cycles_per_revolution", "1/rev", {}, true};
-    for (int n = kMinCycles; n <= kMaxCycles; ++n) p.grid.push_back(n);
-    return p;
-  }
-  void regressor(const Dataset& data, int c, double cycles, Eigen::Ref<Eigen::MatrixXd> columns) const override {
-    const auto& q = data.signal("q", c);
-    for (int k = 1; k <= harmonics(); ++k) {
-      for (Eigen::Index i = 0; i < q.size(); ++i) {
-        const double phase = k * cycles * q[i];
-        columns(i, 2 * (k - 1)) = std::cos(phase);
-        columns(i, 2 * (k - 1) + 1) = std::sin(phase);
-      }
-    }
-  }
-
-  // All 500 frequencies at once: the sums Σ r·e^{inq} and Σ e^{imq} come from one complex
-  // recurrence per point, and the points are the residual binned finely in q (bins a 32nd of the
-  // shortest period, so the phase error stays below 0.1 rad) when that is fewer than the samples.
-  double searchNonlinear(const Dataset& data, int c, const Eigen::VectorXd& residual) const override {
-    if (const auto fixed = option("cycles_per_revolution")) return *fixed;
-    const auto& q = data.signal("q", c);
-    const double low = q.minCoeff(), high = q.maxCoeff();
-    const double width = 2.0 * M_PI / kMaxCycles / 32.0;
-    const auto binCount = static_cast<Eigen::Index>(std::floor((high - low) / width)) + 1;
-    std::vector<double> position, weight, sum;
-    if (binCount < q.size()) {
-      std::vector<double> qSum(binCount, 0.0), count(binCount, 0.0), rSum(binCount, 0.0);
-      for (Eigen::Index i = 0; i < q.size(); ++i) {
-        const auto b = std::min<Eigen::Index>(binCount - 1, static_cast<Eigen::Index>((q[i] - low) / width));
-        qSum[b] += q[i];
-        count[b] += 1.0;
-        rSum[b] += residual[i];
-      }
-      for (Eigen::Index b = 0; b < binCount; ++b) {
-        if (count[b] == 0.0) continue;
-        position.push_back(qSum[b] / count[b]);
-        weight.push_back(count[b]);
-        sum.push_back(rSum[b]);
-      }
-    } else {
-      position.assign(q.data(), q.data() + q.size());
-      weight.assign(q.size(), 1.0);
-      sum.assign(residual.data(), residual.data() + residual.size());
-    }
-    // moments[m] = Σ w·e^{imq} (m ≤ 2·max), projections[n] = Σ r·e^{inq} (n ≤ max)
-    std::vector<std::complex<double>> moments(2 * kMaxCycles + 1, 0.0), projections(kMaxCycles + 1, 0.0);
-    for (std::size_t i = 0; i < position.size(); ++i) {
-      const std::complex<double> step = std::polar(1.0, position[i]);
-      std::complex<double> power = 1.0;
-      for (int m = 1; m <= 2 * kMaxCycles; ++m) {
-        power *= step;
-        if (m % 64 == 0) power = std::polar(1.0, m * position[i]);  // stop rounding drift
-        moments[m] += weight[i] * power;
-        if (m <= kMaxCycles) projections[m] += sum[i] * power;
-      }
-    }
-    double total = 0.0;
-    for (double w : weight) total += w;
-    int best = kMinCycles;
-    double bestReduction = -1.0;
-    for (int n = kMinCycles; n <= kMaxCycles; ++n) {
-      // Gram of [cos nq, sin nq] from the double-angle moments.
-      const double cc = 0.5 * (total + moments[2 * n].real()), ss = 0.5 * (total - moments[2 * n].real());
-      const double cs = 0.5 * moments[2 * n].imag();
-      const double rc = projections[n].real(), rs = projections[n].imag();
-      const double det = cc * ss - cs * cs;
-      if (det <= 1e-9 * total * total) continue;
-      const double reduction = (ss * rc * rc - 2.0 * cs * rc * rs + cc * rs * rs) / det;
-      if (reduction > bestReduction) {
-        bestReduction = reduction;
-        best = n;
-      }
-    }
-    return best;
-  }
-  std::vector<double> typicalParameters(ModelKind kind, int c) const override {
-    std::vector<double> values(2 * harmonics(), 0.0);
-    values[0] = kind == ModelKind::JointTracking ? 2e-4 : 0.2 * typical(kCoulomb, c);
-    values[1] = kind == ModelKind::JointTracking ? 1e-4 : 0.1 * typical(kCoulomb, c);
-    return values;
-  }
-  double typicalNonlinear(int) const override { return 50.0; }
-
-private:
-  static constexpr int kMinCycles = 1;
-  static constexpr int kMaxCycles = 500;
-};
-
-class Payload : public Effect {
-public:
-  using Effect::Effect;
-  std::string meaning() const override { return "an unmodelled mass at the tool (gravity and inertia of a point mass)"; }
-  std::string term() const override { return "Y_payload(q,qd,qdd)·[m, m·cx, m·cy, m·cz]"; }
-  std::string residualPattern() const override {
-    return "follows the gravity and acceleration torque of a mass carried at the tool";
-  }
-  bool appliesTo(ModelKind kind) const override { return kind == ModelKind::JointCurrent; }
-  std::vector<std::string> requiredSignals() const override {
-    return {"payload_m", "payload_mx", "payload_my", "payload_mz"};
-  }
-  std::vector<std::string> parameterNames() const override { return {"m", "m_cx", "m_cy", "m_cz"}; }
-  void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
-    columns.col(0) = data.signal("payload_m", c);
-    columns.col(1) = data.signal("payload_mx", c);
-    columns.col(2) = data.signal("payload_my", c);
-    columns.col(3) = data.signal("payload_mz", c);
-  }
-  std::vector<double> typicalParameters(ModelKind, int c) const override {
-    // 3 kg, 5 cm out along the tool axis, seen through the drive gain.
-    const double gain = typical(kDriveGain, c);
-    return {3.0 * gain, 0.0, 0.0, 0.15 * gain};
-  }
-};
-
 class RotorInertia : public Effect {
 public:
   using Effect::Effect;
@@ -419,20 +283,31 @@ EffectFactory factory() {
 
 }  // namespace
 
-void addCatalogueEffects(std::map<std::string, EffectFactory>& factories) {
-  factories["rigid_body"] = factory<RigidBody>();
-  factories["drive_gain"] = factory<DriveGain>();
-  factories["offset"] = factory<Offset>();
-  factories["coulomb"] = factory<Coulomb>();
-  factories["viscous"] = factory<Viscous>();
-  factories["stribeck"] = factory<Stribeck>();
-  factories["load_friction"] = factory<LoadFriction>();
-  factories["direction_asymmetry"] = factory<DirectionAsymmetry>();
-  factories["temperature_friction"] = factory<TemperatureFriction>();
-  factories["position_ripple"] = factory<PositionRipple>();
-  factories["payload"] = factory<Payload>();
-  factories["rotor_inertia"] = factory<RotorInertia>();
-  factories["tracking_delay"] = factory<TrackingDelay>();
+double typicalDriveGain(int channel) { return typical(kDriveGain, channel); }
+double typicalCoulomb(int channel) { return typical(kCoulomb, channel); }
+double typicalViscous(int channel) { return typical(kViscous, channel); }
+double smoothedDirection(const Dataset& data, double velocity) {
+  return smoothSign(velocity, data.settings().velocitySmoothing);
 }
 
-}  // namespace arcplan::model
+const std::vector<CatalogueEntry>& catalogueTable() {
+  static const std::vector<CatalogueEntry> table{
+      {"rigid_body", factory<RigidBody>()},
+      {"drive_gain", factory<DriveGain>()},
+      {"offset", factory<Offset>()},
+      {"coulomb", factory<Coulomb>()},
+      {"viscous", factory<Viscous>()},
+      {"stribeck", factory<Stribeck>()},
+      {"load_friction", factory<LoadFriction>()},
+      {"direction_asymmetry", factory<DirectionAsymmetry>()},
+      {"temperature_friction", factory<TemperatureFriction>()},
+      {"dahl_friction", dahlFrictionFactory()},
+      {"position_ripple", positionRippleFactory()},
+      {"payload", payloadFactory()},
+      {"rotor_inertia", factory<RotorInertia>()},
+      {"tracking_delay", factory<TrackingDelay>()},
+  };
+  return table;
+}
+
+}  // namespace arcplan::model::detail

@@ -6,8 +6,12 @@
 #include <functional>
 #include <numeric>
 
+#include "arcplan/model/term_library.h"
+
 namespace arcplan::model {
 namespace {
+
+constexpr std::size_t kReportedCorrelations = 50;  // the strongest; the library has ~270 terms per channel
 
 double standardDeviation(const Eigen::VectorXd& values) {
   if (values.size() == 0) return 0.0;
@@ -223,31 +227,17 @@ std::vector<ChannelRegimes> residualRegimes(const Dataset& data, const std::vect
 
 std::vector<ResidualCorrelation> residualCorrelations(const Dataset& data, const std::vector<Eigen::VectorXd>& residuals,
                                                       double minimum) {
+  // Every joint's signals and their transforms (term_library.h), not only the channel's own.
   std::vector<ResidualCorrelation> result;
   for (int c = 0; c < data.channelCount(); ++c) {
-    std::vector<std::pair<std::string, Eigen::VectorXd>> candidates;
-    auto add = [&](const std::string& signal, const std::string& label, auto&& transform) {
-      if (!data.hasSignal(signal)) return;
-      candidates.emplace_back(label, data.signal(signal, c).unaryExpr(transform));
-    };
-    const auto identity = [](double x) { return x; };
-    const auto magnitude = [](double x) { return std::abs(x); };
-    add("qd", "qd", identity);
-    add("qd", "|qd|", magnitude);
-    add("qd", "sgn(qd)", [](double x) { return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0); });
-    add("qdd", "qdd", identity);
-    add("tau", "tau", identity);
-    add("tau", "|tau|", magnitude);
-    add("q", "q", identity);
-    add("temperature", "temperature", identity);
-    if (data.timeOrdered()) add("time", "time", identity);
-    for (const auto& [label, values] : candidates) {
-      const double r = pearson(residuals[c], values);
-      if (std::abs(r) >= minimum) result.push_back({data.channelName(c), label, r});
+    for (const auto& term : candidateTerms(data, c)) {
+      const double r = pearson(residuals[c], evaluateTerm(term, data, c));
+      if (std::abs(r) >= minimum) result.push_back({data.channelName(c), term.expression, r});
     }
   }
-  std::sort(result.begin(), result.end(),
-            [](const auto& a, const auto& b) { return std::abs(a.correlation) > std::abs(b.correlation); });
+  std::stable_sort(result.begin(), result.end(),
+                   [](const auto& a, const auto& b) { return std::abs(a.correlation) > std::abs(b.correlation); });
+  if (result.size() > kReportedCorrelations) result.resize(kReportedCorrelations);
   return result;
 }
 

@@ -2,127 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "arcplan/common/error.h"
 #include "arcplan/model/fitting.h"
 #include "arcplan/model/least_squares.h"
+#include "arcplan/model/term_library.h"
+#include "model_internal.h"
 
 namespace arcplan::model {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string percent(double fraction) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.1f%%", 100.0 * fraction);
-  return buffer;
-}
-
-std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.4g", value);
-  return buffer;
-}
+// A discovered term must leave at most this share of a catalogue effect's held-out residual RMS
+// to be ranked above it (see diagnose.h).
+constexpr double kDiscoveryMargin = 0.99;
 
 double spread(const Eigen::VectorXd& values) {
   const double s = std::sqrt((values.array() - values.mean()).square().mean());
   return s > 1e-12 ? s : 1.0;
-}
-
-// Held-out sums of squares of one channel, for the base design alone and with extra columns.
-class HeldOutScorer {
-public:
-  HeldOutScorer(const Dataset& data, const Dataset* validation, int channel, const Eigen::MatrixXd& baseTrain,
-                const Eigen::MatrixXd* baseValidation, int folds)
-      : validation_(validation), baseColumns_(baseTrain.cols()) {
-    targetTrain_ = data.measured(channel) - data.basePrediction(channel);
-    baseTrain_ = baseTrain;
-    if (validation) {
-      targetValidation_ = validation->measured(channel) - validation->basePrediction(channel);
-      baseValidation_ = *baseValidation;
-    } else {
-      const Eigen::Index n = targetTrain_.size();
-      fold_.resize(n);
-      for (Eigen::Index i = 0; i < n; ++i) {
-        fold_[i] = data.timeOrdered() ? static_cast<int>(i * folds / n) : static_cast<int>(i % folds);
-      }
-      folds_ = folds;
-    }
-  }
-
-  Eigen::Index heldOutSamples() const { return validation_ ? targetValidation_.size() : targetTrain_.size(); }
-
-  // Held-out RSS and the rank of the fit with `extraTrain` / `extraValidation` appended.
-  std::pair<double, int> score(const Eigen::MatrixXd& extraTrain, const Eigen::MatrixXd* extraValidation,
-                               Eigen::VectorXd* heldOutResidual = nullptr) const {
-    Eigen::MatrixXd train(baseTrain_.rows(), baseColumns_ + extraTrain.cols());
-    train << baseTrain_, extraTrain;
-    if (validation_) {
-      const LinearSolution solution = solveLeastSquares(NormalEquations::of(train, targetTrain_));
-      Eigen::MatrixXd held(baseValidation_.rows(), train.cols());
-      held << baseValidation_, *extraValidation;
-      const Eigen::VectorXd residual = targetValidation_ - held * solution.coefficients;
-      if (heldOutResidual) *heldOutResidual = residual;
-      return {residual.squaredNorm(), solution.rank};
-    }
-    // Cross-validation from per-fold normal equations.
-    std::vector<NormalEquations> perFold;
-    std::vector<std::vector<Eigen::Index>> members(static_cast<std::size_t>(folds_));
-    for (Eigen::Index i = 0; i < fold_.size(); ++i) members[fold_[i]].push_back(i);
-    NormalEquations total;
-    for (int f = 0; f < folds_; ++f) {
-      const auto& rows = members[f];
-      Eigen::MatrixXd x(static_cast<Eigen::Index>(rows.size()), train.cols());
-      Eigen::VectorXd y(static_cast<Eigen::Index>(rows.size()));
-      for (std::size_t r = 0; r < rows.size(); ++r) {
-        x.row(static_cast<Eigen::Index>(r)) = train.row(rows[r]);
-        y[static_cast<Eigen::Index>(r)] = targetTrain_[rows[r]];
-      }
-      perFold.push_back(NormalEquations::of(x, y));
-      total = f == 0 ? perFold.back() : total + perFold.back();
-    }
-    double squares = 0.0;
-    int rank = 0;
-    if (heldOutResidual) heldOutResidual->resize(targetTrain_.size());
-    for (int f = 0; f < folds_; ++f) {
-      const LinearSolution solution = solveLeastSquares(total - perFold[f]);
-      squares += perFold[f].residualSquares(solution.coefficients);
-      rank = std::max(rank, solution.rank);
-      if (heldOutResidual) {
-        for (auto i : members[f]) (*heldOutResidual)[i] = targetTrain_[i] - train.row(i).dot(solution.coefficients);
-      }
-    }
-    return {squares, rank};
-  }
-
-private:
-  const Dataset* validation_;
-  Eigen::Index baseColumns_;
-  Eigen::VectorXd targetTrain_, targetValidation_;
-  Eigen::MatrixXd baseTrain_, baseValidation_;
-  Eigen::VectorXi fold_;
-  int folds_ = 0;
-};
-
-std::string explain(const Effect& effect, const EffectCandidate& candidate, const Dataset& data) {
-  std::string text = "The residual on " + describeChannels(data, candidate.joints) + " " + effect.residualPattern() +
-                     ": " + effect.meaning() + ". Adding " + candidate.effect + " removes " +
-                     percent(candidate.heldoutReduction) + " of the held-out residual (";
-  for (std::size_t k = 0; k < candidate.joints.size(); ++k) {
-    const int c = candidate.joints[k];
-    text += (k ? ", " : "") + data.channelName(c) + " -" + percent(candidate.channelReduction[c]);
-  }
-  text += ")";
-  if (!candidate.nonlinearName.empty()) {
-    text += "; " + candidate.nonlinearName + " =";
-    for (std::size_t k = 0; k < candidate.joints.size(); ++k) {
-      text += (k ? ", " : " ") + number(candidate.nonlinear[candidate.joints[k]]);
-    }
-    text += " " + candidate.nonlinearUnit;
-  }
-  return text + ".";
 }
 
 ErrorSummary summaryFromSquares(const Dataset& heldData, const std::vector<double>& squares) {
@@ -142,6 +40,98 @@ ErrorSummary summaryFromSquares(const Dataset& heldData, const std::vector<doubl
   }
   summary.overallNrmse = std::sqrt(total / std::max(1, heldData.channelCount()));
   return summary;
+}
+
+// The model as it is on every channel: its columns (or, kept fixed, its prediction) and the
+// held-out error.
+detail::HeldOutBaseline makeBaseline(const FittedModel& model, bool kept, const Dataset& data, const Dataset* validation,
+                                     int folds) {
+  detail::HeldOutBaseline baseline;
+  for (int c = 0; c < data.channelCount(); ++c) {
+    Eigen::MatrixXd train, held;
+    Eigen::VectorXd targetTrain = data.measured(c) - data.basePrediction(c), targetHeld;
+    if (validation) targetHeld = validation->measured(c) - validation->basePrediction(c);
+    if (kept) {
+      targetTrain = data.measured(c) - predict(model, data, c);
+      train.resize(data.samples(c), 0);
+      if (validation) {
+        targetHeld = validation->measured(c) - predict(model, *validation, c);
+        held.resize(validation->samples(c), 0);
+      }
+    } else {
+      train = designMatrix(model.effects, data, c);
+      if (validation) held = designMatrix(model.effects, *validation, c);
+    }
+    baseline.trainBasis.push_back(orthonormalBasis(train));
+    baseline.trainResidual.push_back(data.measured(c) - predict(model, data, c));
+    baseline.scorers.emplace_back(data, validation, std::move(targetTrain), std::move(targetHeld), std::move(train),
+                                  std::move(held), folds);
+    Eigen::VectorXd residual;
+    const Eigen::MatrixXd none(data.samples(c), 0), noneHeld(validation ? validation->samples(c) : 0, 0);
+    const auto [squares, rank] = baseline.scorers.back().score(none, noneHeld, &residual);
+    baseline.squares.push_back(squares);
+    baseline.rank.push_back(rank);
+    baseline.heldOutResidual.push_back(std::move(residual));
+  }
+  return baseline;
+}
+
+// Columns of `effect` on one channel of a dataset.
+Eigen::MatrixXd columnsOf(const Effect& effect, const Dataset& data, int channel, double nonlinear) {
+  Eigen::MatrixXd columns(data.samples(channel), static_cast<Eigen::Index>(effect.parameterNames().size()));
+  effect.regressor(data, channel, nonlinear, columns);
+  return columns;
+}
+
+EffectCandidate scoreCatalogueEffect(const Effect& effect, const Dataset& data, const Dataset* validation,
+                                     const detail::HeldOutBaseline& baseline, double minimumReduction) {
+  const int channels = data.channelCount();
+  EffectCandidate candidate;
+  candidate.effect = effect.id();
+  candidate.entry.id = effect.id();
+  candidate.nonlinear.assign(static_cast<std::size_t>(channels), kNaN);
+  const auto nonlinear = effect.nonlinearParameter();
+  if (nonlinear) {
+    candidate.nonlinearName = nonlinear->name;
+    candidate.nonlinearUnit = nonlinear->unit;
+  }
+  std::vector<double> squares(static_cast<std::size_t>(channels));
+  std::vector<int> ranks(static_cast<std::size_t>(channels));
+  for (int c = 0; c < channels; ++c) {
+    const double value = nonlinear ? effect.searchNonlinear(data, c, baseline.trainResidual[c], baseline.trainBasis[c]) : 0.0;
+    if (nonlinear) candidate.nonlinear[c] = value;
+    const Eigen::MatrixXd train = columnsOf(effect, data, c, value);
+    const Eigen::MatrixXd held = validation ? columnsOf(effect, *validation, c, value) : Eigen::MatrixXd();
+    std::tie(squares[c], ranks[c]) = baseline.scorers[c].score(train, held);
+  }
+  detail::judgeCandidate(candidate, squares, ranks, nonlinear.has_value(), baseline, minimumReduction);
+  return candidate;
+}
+
+// The suggested catalogue effects together: the share of the held-out residual they remove.
+double catalogueTogether(const std::vector<EffectCandidate>& ranking, const Dataset& data, const Dataset* validation,
+                         const detail::HeldOutBaseline& baseline) {
+  double with = 0.0;
+  for (int c = 0; c < data.channelCount(); ++c) {
+    Eigen::MatrixXd train(data.samples(c), 0), held(validation ? validation->samples(c) : 0, 0);
+    for (const auto& candidate : ranking) {
+      if (candidate.discovered || std::find(candidate.joints.begin(), candidate.joints.end(), c) == candidate.joints.end()) {
+        continue;
+      }
+      const auto effect = createEffect(candidate.entry);
+      const Eigen::MatrixXd extra = columnsOf(*effect, data, c, candidate.nonlinear[c]);
+      train.conservativeResize(Eigen::NoChange, train.cols() + extra.cols());
+      train.rightCols(extra.cols()) = extra;
+      if (validation) {
+        const Eigen::MatrixXd extraHeld = columnsOf(*effect, *validation, c, candidate.nonlinear[c]);
+        held.conservativeResize(Eigen::NoChange, held.cols() + extraHeld.cols());
+        held.rightCols(extraHeld.cols()) = extraHeld;
+      }
+    }
+    with += train.cols() > 0 ? baseline.scorers[c].score(train, held).first : baseline.squares[c];
+  }
+  const double total = baseline.total();
+  return total > 0.0 ? 1.0 - std::sqrt(with / total) : 0.0;
 }
 
 }  // namespace
@@ -179,37 +169,18 @@ Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* va
     throw Error(validation->source() + ": mismatched joint count: " + std::to_string(validation->channelCount()) +
                 " channels, the data has " + std::to_string(data.channelCount()));
   }
-  const FittedModel base = fitModel(spec, data);
-  const int channels = data.channelCount();
+  const FittedModel base = options.keepParameters ? modelFromParameters(spec, data, false) : fitModel(spec, data);
   const int folds = std::max(2, options.folds);
   Diagnosis diagnosis;
   diagnosis.heldout = validation ? "validation data (" + validation->source() + ")"
                                  : std::to_string(folds) + "-fold " +
                                        (data.timeOrdered() ? "time-blocked" : "interleaved") + " cross-validation";
+  if (options.keepParameters) diagnosis.heldout += ", parameters of " + spec.source.string() + " kept fixed";
   const Dataset& heldData = validation ? *validation : data;
+  const auto baseline = makeBaseline(base, options.keepParameters, data, validation, folds);
+  diagnosis.heldoutBase = summaryFromSquares(heldData, baseline.squares);
 
-  // Per channel: base designs, the training residual, and the held-out base error.
-  std::vector<HeldOutScorer> scorers;
-  std::vector<Eigen::VectorXd> trainResidual(static_cast<std::size_t>(channels));
-  std::vector<double> baseSquares(static_cast<std::size_t>(channels));
-  std::vector<int> baseRank(static_cast<std::size_t>(channels));
-  std::vector<Eigen::VectorXd> heldResidual(static_cast<std::size_t>(channels));
-  for (int c = 0; c < channels; ++c) {
-    const Eigen::MatrixXd train = designMatrix(base.effects, data, c);
-    Eigen::MatrixXd held;
-    if (validation) held = designMatrix(base.effects, *validation, c);
-    scorers.emplace_back(data, validation, c, train, validation ? &held : nullptr, folds);
-    trainResidual[c] = data.measured(c) - predict(base, data, c);
-    const Eigen::MatrixXd noTrain(train.rows(), 0), noHeld(held.rows(), 0);
-    const auto [squares, rank] = scorers.back().score(noTrain, validation ? &noHeld : nullptr, &heldResidual[c]);
-    baseSquares[c] = squares;
-    baseRank[c] = rank;
-  }
-  diagnosis.heldoutBase = summaryFromSquares(heldData, baseSquares);
-  double baseTotal = 0.0;
-  for (int c = 0; c < channels; ++c) baseTotal += baseSquares[c];
-
-  std::vector<std::string> ids = options.candidates.empty() ? registeredEffects() : options.candidates;
+  const std::vector<std::string> ids = options.candidates.empty() ? registeredEffects() : options.candidates;
   for (const auto& id : ids) {
     if (spec.hasEffect(id)) continue;
     EffectSpec effectSpec;
@@ -224,85 +195,53 @@ Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* va
       diagnosis.skipped.push_back(id + ": needs signal '" + missing + "', which the data does not provide");
       continue;
     }
-    EffectCandidate candidate;
-    candidate.effect = id;
-    candidate.channelReduction.assign(static_cast<std::size_t>(channels), 0.0);
-    candidate.nonlinear.assign(static_cast<std::size_t>(channels), kNaN);
-    const auto nonlinear = effect->nonlinearParameter();
-    if (nonlinear) {
-      candidate.nonlinearName = nonlinear->name;
-      candidate.nonlinearUnit = nonlinear->unit;
+    auto candidate = scoreCatalogueEffect(*effect, data, validation, baseline, options.minimumReduction);
+    // One physical payload for the arm: fitted jointly on the channels it helps, reported in kg.
+    if (candidate.suggested && effect->sharedAcrossChannels() && spec.hasEffect("drive_gain")) {
+      const FittedModel with = options.keepParameters ? fitAdditions(base, {candidate.entry}, data)
+                                                      : fitModel([&] {
+                                                          ModelSpec extended = spec;
+                                                          extended.effects.push_back(candidate.entry);
+                                                          return extended;
+                                                        }(), data);
+      const auto& fit = with.effects.back();
+      candidate.quantities = fit.effect->physicalQuantities(fit.shared, fit.sharedCovariance);
     }
-    const auto parameters = static_cast<Eigen::Index>(effect->parameterNames().size());
-    std::vector<double> candidateSquares(static_cast<std::size_t>(channels));
-    for (int c = 0; c < channels; ++c) {
-      const double value = nonlinear ? effect->searchNonlinear(data, c, trainResidual[c]) : 0.0;
-      candidate.nonlinear[c] = nonlinear ? value : kNaN;
-      Eigen::MatrixXd extraTrain(data.samples(c), parameters), extraHeld;
-      effect->regressor(data, c, value, extraTrain);
-      if (validation) {
-        extraHeld.resize(validation->samples(c), parameters);
-        effect->regressor(*validation, c, value, extraHeld);
-      }
-      const auto [squares, rank] = scorers[c].score(extraTrain, validation ? &extraHeld : nullptr);
-      candidateSquares[c] = squares;
-      const int added = rank - baseRank[c] + (nonlinear && rank > baseRank[c] ? 1 : 0);
-      const auto n = static_cast<double>(scorers[c].heldOutSamples());
-      const double ratio = std::max(squares, 1e-300) / std::max(baseSquares[c], 1e-300);
-      const double criterion = n * std::log(ratio) + added * std::log(n);
-      candidate.channelReduction[c] = 1.0 - std::sqrt(ratio);
-      if (added > 0 && criterion < 0.0 && candidate.channelReduction[c] >= options.minimumReduction) {
-        candidate.joints.push_back(c);
-        candidate.score += criterion;
-      }
-    }
-    candidate.suggested = !candidate.joints.empty();
-    // Suggested: the effect on its significant channels only; otherwise what it would do everywhere.
-    double withEffect = 0.0;
-    for (int c = 0; c < channels; ++c) {
-      const bool used = !candidate.suggested ||
-                        std::find(candidate.joints.begin(), candidate.joints.end(), c) != candidate.joints.end();
-      withEffect += used ? candidateSquares[c] : baseSquares[c];
-    }
-    candidate.heldoutReduction = baseTotal > 0.0 ? 1.0 - std::sqrt(withEffect / baseTotal) : 0.0;
-    if (candidate.suggested) candidate.explanation = explain(*effect, candidate, data);
+    if (candidate.suggested) candidate.explanation = detail::explainCandidate(*effect, candidate, data);
     diagnosis.ranking.push_back(std::move(candidate));
   }
+  if (options.discover) {
+    for (auto& candidate : detail::discoverTerms(data, validation, baseline, options)) {
+      diagnosis.ranking.push_back(std::move(candidate));
+    }
+  }
   // Reductions equal to 0.1 percentage point are a tie; the information criterion (fewer
-  // parameters for the same gain) decides it.
-  std::stable_sort(diagnosis.ranking.begin(), diagnosis.ranking.end(), [](const auto& a, const auto& b) {
+  // parameters for the same gain) decides it. Discovered terms count with their margin.
+  auto key = [](const EffectCandidate& c) {
+    const double reduction = c.discovered ? 1.0 - (1.0 - c.heldoutReduction) / kDiscoveryMargin : c.heldoutReduction;
+    return std::floor(1000.0 * reduction);
+  };
+  std::stable_sort(diagnosis.ranking.begin(), diagnosis.ranking.end(), [&](const auto& a, const auto& b) {
     if (a.suggested != b.suggested) return a.suggested;
-    const double reductionA = std::floor(1000.0 * a.heldoutReduction), reductionB = std::floor(1000.0 * b.heldoutReduction);
-    if (reductionA != reductionB) return reductionA > reductionB;
+    if (key(a) != key(b)) return key(a) > key(b);
     return a.score < b.score;
   });
 
-  diagnosis.residualFollows = residualCorrelations(heldData, heldResidual);
-  if (!diagnosis.ranking.empty() && diagnosis.ranking.front().suggested) {
-    diagnosis.summary = diagnosis.ranking.front().explanation;
-    for (std::size_t k = 1; k < diagnosis.ranking.size() && k < 3 && diagnosis.ranking[k].suggested; ++k) {
-      diagnosis.summary += "\nNext: " + diagnosis.ranking[k].explanation;
+  if (data.timeOrdered()) {
+    double noise = 0.0;
+    for (int c = 0; c < heldData.channelCount(); ++c) {
+      diagnosis.noiseFloor.push_back(detail::noiseFloor(baseline.heldOutResidual[c]));
+      noise += std::pow(diagnosis.noiseFloor.back(), 2) * static_cast<double>(baseline.heldOutResidual[c].size());
     }
+    const double total = baseline.total();
+    diagnosis.explainable = total > 0.0 ? std::max(0.0, 1.0 - std::sqrt(noise / total)) : 0.0;
   } else {
-    diagnosis.summary = "No effect lowers the held-out error significantly (each must remove at least " +
-                        percent(options.minimumReduction) + " of a channel's held-out residual and pass the "
-                        "information criterion)";
-    if (!diagnosis.ranking.empty()) {
-      diagnosis.summary += "; the closest, " + diagnosis.ranking.front().effect + ", would change it by " +
-                           percent(-diagnosis.ranking.front().heldoutReduction);
-    }
-    diagnosis.summary += ".";
-    if (diagnosis.residualFollows.empty()) {
-      diagnosis.summary += " The held-out residual correlates with none of the signals (|r| < 0.1): it looks like noise.";
-    } else {
-      diagnosis.summary += " The held-out residual still follows:";
-      for (std::size_t k = 0; k < diagnosis.residualFollows.size() && k < 5; ++k) {
-        const auto& follow = diagnosis.residualFollows[k];
-        diagnosis.summary += (k ? ", " : " ") + follow.signal + " on " + follow.channel + " (r = " + number(follow.correlation) + ")";
-      }
-      diagnosis.summary += ".";
-    }
+    diagnosis.noiseFloor.assign(static_cast<std::size_t>(heldData.channelCount()), kNaN);
+    diagnosis.explainable = kNaN;
   }
+  diagnosis.catalogueExplains = catalogueTogether(diagnosis.ranking, data, validation, baseline);
+  diagnosis.residualFollows = residualCorrelations(heldData, baseline.heldOutResidual);
+  diagnosis.summary = detail::diagnosisSummary(diagnosis, options.minimumReduction);
   return diagnosis;
 }
 

@@ -9,17 +9,16 @@
 
 #include "arcplan/common/error.h"
 #include "arcplan/model/dataset.h"
+#include "model_internal.h"
 
 namespace arcplan::model {
-
-// Defined in catalogue.cpp and expression_effect.cpp.
-void addCatalogueEffects(std::map<std::string, EffectFactory>& factories);
-std::unique_ptr<Effect> makeExpressionEffect(const EffectSpec& spec);
 
 namespace {
 
 struct Registry {
-  Registry() { addCatalogueEffects(factories); }
+  Registry() {
+    for (const auto& entry : detail::catalogueTable()) factories[entry.id] = entry.factory;
+  }
   std::mutex mutex;
   std::map<std::string, EffectFactory> factories;
 };
@@ -29,8 +28,10 @@ Registry& registry() {
   return instance;
 }
 
-// Residual sum of squares left after fitting `columns` to `residual` alone.
-double remainingSquares(const Eigen::MatrixXd& columns, const Eigen::VectorXd& residual) {
+// Residual sum of squares left after fitting `columns`, beyond the span of `basis`, to `residual`
+// (orthogonal to that span).
+double remainingSquares(Eigen::MatrixXd columns, const Eigen::VectorXd& residual, const Eigen::MatrixXd& basis) {
+  if (basis.cols() > 0 && basis.rows() == columns.rows()) columns -= basis * (basis.transpose() * columns);
   const Eigen::MatrixXd gram = columns.transpose() * columns;
   const Eigen::VectorXd moment = columns.transpose() * residual;
   const Eigen::LDLT<Eigen::MatrixXd> solver(gram + 1e-12 * gram.trace() * Eigen::MatrixXd::Identity(gram.rows(), gram.cols()));
@@ -47,7 +48,8 @@ std::optional<double> Effect::option(const std::string& name) const {
   return it->second;
 }
 
-double Effect::searchNonlinear(const Dataset& data, int channel, const Eigen::VectorXd& residual) const {
+double Effect::searchNonlinear(const Dataset& data, int channel, const Eigen::VectorXd& residual,
+                               const Eigen::MatrixXd& basis) const {
   const auto parameter = nonlinearParameter();
   if (!parameter) return 0.0;
   if (const auto fixed = option(parameter->name)) return *fixed;
@@ -55,7 +57,7 @@ double Effect::searchNonlinear(const Dataset& data, int channel, const Eigen::Ve
   Eigen::MatrixXd columns(data.samples(channel), static_cast<Eigen::Index>(parameterNames().size()));
   auto cost = [&](double value) {
     regressor(data, channel, value, columns);
-    return remainingSquares(columns, residual);
+    return remainingSquares(columns, residual, basis);
   };
   std::size_t best = 0;
   double bestCost = std::numeric_limits<double>::infinity();
@@ -89,6 +91,10 @@ double Effect::searchNonlinear(const Dataset& data, int channel, const Eigen::Ve
   }
   const double refined = 0.5 * (low + high);
   return cost(refined) <= bestCost ? refined : grid[best];
+}
+
+std::vector<PhysicalQuantity> Effect::physicalQuantities(const Eigen::VectorXd&, const Eigen::MatrixXd&) const {
+  return {};
 }
 
 std::vector<double> Effect::typicalParameters(ModelKind, int) const {
@@ -125,10 +131,11 @@ std::vector<std::string> registeredEffects() {
 }
 
 const std::vector<std::string>& catalogueEffects() {
-  static const std::vector<std::string> ids{
-      "rigid_body",           "drive_gain",      "offset",  "coulomb",       "viscous",        "stribeck",
-      "load_friction",        "direction_asymmetry", "temperature_friction", "position_ripple", "payload",
-      "rotor_inertia",        "tracking_delay"};
+  static const std::vector<std::string> ids = [] {
+    std::vector<std::string> list;
+    for (const auto& entry : detail::catalogueTable()) list.push_back(entry.id);
+    return list;
+  }();
   return ids;
 }
 
@@ -137,7 +144,7 @@ std::unique_ptr<Effect> createEffect(const EffectSpec& spec) {
     if (isRegisteredEffect(spec.id)) {
       throw Error("effect '" + spec.id + "': an expression effect cannot reuse the name of a registered effect");
     }
-    return makeExpressionEffect(spec);
+    return detail::makeExpressionEffect(spec);
   }
   EffectFactory factory;
   {

@@ -1,5 +1,5 @@
-// A user effect written in the model file: each expression is one regressor column, evaluated by
-// muparser over the dataset's signals. Variables: the channel's own signals by name (q, qd, qdd,
+// A user effect written in the model file (or proposed by the diagnosis' discovery): each
+// expression is one regressor column, evaluated by muparser over the dataset's signals. Variables: the channel's own signals by name (q, qd, qdd,
 // tau, temperature, time, ...), every joint's signal as name_j (q_0, tau_3, ...), and sgn(x, w)
 // for the smoothed sign.
 #include <cmath>
@@ -10,6 +10,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/model/dataset.h"
 #include "arcplan/model/effect.h"
+#include "model_internal.h"
 
 namespace arcplan::model {
 namespace {
@@ -84,8 +85,9 @@ public:
           }
           std::string available;
           for (const auto& n : data.signalNames()) available += (available.empty() ? "" : ", ") + n;
-          throw Error("effect '" + id() + "': expression '" + spec().expressions[i] + "' uses unknown column '" + name +
-                      "' (available: " + available + ", or name_J for joint J)");
+          throw Error(data.source() + ": effect '" + id() + "': expression '" + spec().expressions[i] +
+                      "' needs signal '" + name + "', which this log does not provide (available: " + available +
+                      ", or name_J for joint J)");
         }
         parser.Eval(columns.col(static_cast<Eigen::Index>(i)).data(), samples);
       } catch (const mu::Parser::exception_type& e) {
@@ -103,6 +105,6 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Effect> makeExpressionEffect(const EffectSpec& spec) { return std::make_unique<ExpressionEffect>(spec); }
+std::unique_ptr<Effect> detail::makeExpressionEffect(const EffectSpec& spec) { return std::make_unique<ExpressionEffect>(spec); }
 
 }  // namespace arcplan::model

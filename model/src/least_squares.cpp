@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <Eigen/Cholesky>
+#include <Eigen/QR>
 
 namespace arcplan::model {
 
@@ -108,6 +109,12 @@ LinearSolution solveLeastSquares(const NormalEquations& e) {
     }
   }
   return solution;
+}
+
+Eigen::MatrixXd orthonormalBasis(const Eigen::MatrixXd& design) {
+  if (design.cols() == 0 || design.rows() == 0) return Eigen::MatrixXd(design.rows(), 0);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(design);
+  return qr.householderQ() * Eigen::MatrixXd::Identity(design.rows(), qr.rank());
 }
 
 }  // namespace arcplan::model

@@ -18,6 +18,9 @@ namespace {
 
 constexpr double kMaxJoint = 1000.0;  // far beyond any arm; keeps indices in int range
 
+// "coulomb:1,2" as data, without resolving the id.
+EffectSpec effectFromText(const std::string& text);
+
 std::string at(const std::filesystem::path& source, const YAML::Node& node) {
   std::string text = source.empty() ? std::string("model") : source.string();
   if (node.Mark().line >= 0) text += ":" + std::to_string(node.Mark().line + 1);
@@ -74,7 +77,7 @@ EffectSpec parseEffect(const YAML::Node& node, const std::filesystem::path& sour
   EffectSpec spec;
   if (node.IsScalar()) {
     try {
-      spec = parseEffectArgument(node.as<std::string>());
+      spec = effectFromText(node.as<std::string>());
     } catch (const Error& e) {
       throw Error(at(source, node) + ": " + where + ": " + e.what());
     }
@@ -109,24 +112,29 @@ EffectSpec parseEffect(const YAML::Node& node, const std::filesystem::path& sour
       spec.options[key] = number(entry.second, source, field);
     }
   }
-  try {
-    const auto effect = createEffect(spec);  // validates the id and the options
-    for (const auto* values : {&spec.parameters, &spec.standardErrors}) {
-      for (const auto& [name, list] : *values) {
-        const auto names = effect->parameterNames();
-        const auto nonlinear = effect->nonlinearParameter();
-        if (std::find(names.begin(), names.end(), name) == names.end() && !(nonlinear && nonlinear->name == name)) {
-          std::string known;
-          for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
-          if (nonlinear) known += ", " + nonlinear->name;
-          throw Error("unknown parameter '" + name + "' (parameters: " + known + ")");
-        }
+  return spec;
+}
+
+// The one place a parsed effect entry is checked: its id (or expression) resolves to an effect,
+// its options and stored parameters are the effect's own, it applies to the kind and is new.
+void validateEffect(const EffectSpec& spec, const ModelSpec& model) {
+  const auto effect = createEffect(spec);
+  const auto names = effect->parameterNames();
+  const auto nonlinear = effect->nonlinearParameter();
+  for (const auto* values : {&spec.parameters, &spec.standardErrors}) {
+    for (const auto& [name, list] : *values) {
+      if (std::find(names.begin(), names.end(), name) == names.end() && !(nonlinear && nonlinear->name == name)) {
+        std::string known;
+        for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+        if (nonlinear) known += ", " + nonlinear->name;
+        throw Error("unknown parameter '" + name + "' (parameters: " + known + ")");
       }
     }
-  } catch (const Error& e) {
-    throw Error(at(source, node) + ": " + where + ": " + e.what());
   }
-  return spec;
+  if (!effect->appliesTo(model.kind)) {
+    throw Error("effect '" + spec.id + "' does not apply to kind " + toString(model.kind));
+  }
+  if (model.hasEffect(spec.id)) throw Error("effect '" + spec.id + "' is listed twice");
 }
 
 ModelKind parseKind(const YAML::Node& node, const std::filesystem::path& source) {
@@ -176,6 +184,14 @@ bool ModelSpec::hasEffect(const std::string& id) const {
 }
 
 EffectSpec parseEffectArgument(const std::string& text) {
+  EffectSpec spec = effectFromText(text);
+  createEffect(spec);  // throws for an unknown id
+  return spec;
+}
+
+namespace {
+
+EffectSpec effectFromText(const std::string& text) {
   EffectSpec spec;
   const auto colon = text.find(':');
   spec.id = std::string(trim(text.substr(0, colon)));
@@ -188,9 +204,10 @@ EffectSpec parseEffectArgument(const std::string& text) {
       spec.joints.push_back(static_cast<int>(value));
     }
   }
-  createEffect(spec);  // throws for an unknown id
   return spec;
 }
+
+}  // namespace
 
 ModelSpec parseModelYaml(const std::string& yaml, const std::filesystem::path& source) {
   YAML::Node root;
@@ -243,13 +260,10 @@ ModelSpec parseModelYaml(const std::string& yaml, const std::filesystem::path& s
     if (!effects.IsSequence()) throw Error(at(source, effects) + ": effects: expected a list");
     for (std::size_t i = 0; i < effects.size(); ++i) {
       auto effect = parseEffect(effects[i], source, i);
-      const auto instance = createEffect(effect);
-      if (!instance->appliesTo(spec.kind)) {
-        throw Error(at(source, effects[i]) + ": effects[" + std::to_string(i) + "]: effect '" + effect.id +
-                    "' does not apply to kind " + toString(spec.kind));
-      }
-      if (spec.hasEffect(effect.id)) {
-        throw Error(at(source, effects[i]) + ": effects[" + std::to_string(i) + "]: effect '" + effect.id + "' is listed twice");
+      try {
+        validateEffect(effect, spec);
+      } catch (const Error& e) {
+        throw Error(at(source, effects[i]) + ": effects[" + std::to_string(i) + "]: " + e.what());
       }
       spec.effects.push_back(std::move(effect));
     }

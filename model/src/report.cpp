@@ -23,6 +23,22 @@ nlohmann::json rmseOnly(const ErrorSummary& summary) {
   return {{"overall_nrmse", summary.overallNrmse}, {"channels", channels}};
 }
 
+// One value, or a vector for a vector quantity (the centre of mass).
+nlohmann::json quantityJson(const PhysicalQuantity& quantity) {
+  if (quantity.values.size() == 1) return {{"value", quantity.values[0]}, {"standard_error", quantity.standardErrors[0]}};
+  return {{"value", quantity.values}, {"standard_error", quantity.standardErrors}};
+}
+
+std::string quantityText(const PhysicalQuantity& quantity) {
+  std::string values, errors;
+  for (std::size_t i = 0; i < quantity.values.size(); ++i) {
+    values += (i ? ", " : "") + format("%.5g", quantity.values[i]);
+    errors += (i ? ", " : "") + format("%.2g", quantity.standardErrors[i]);
+  }
+  return quantity.values.size() == 1 ? quantity.name + " = " + values + " ± " + errors
+                                     : quantity.name + " = (" + values + ") ± (" + errors + ")";
+}
+
 ErrorSummary summaryFromJson(const nlohmann::json& json) {
   ErrorSummary summary;
   summary.overallNrmse = json.at("overall_nrmse").get<double>();
@@ -62,6 +78,9 @@ nlohmann::json parametersJson(const FittedModel& model) {
                             {"identifiable", !std::isnan(error)}};
       }
       if (const auto nonlinear = fit.effect->nonlinearParameter()) effect[nonlinear->name] = fit.nonlinear[c];
+      for (const auto& quantity : fit.effect->physicalQuantities(fit.shared, fit.sharedCovariance)) {
+        effect[quantity.name] = quantityJson(quantity);
+      }
       channel[fit.effect->id()] = effect;
     }
     result[model.channelNames[c]] = channel;
@@ -114,6 +133,7 @@ nlohmann::json toJson(const Diagnosis& diagnosis) {
   nlohmann::json ranking = nlohmann::json::array();
   for (const auto& c : diagnosis.ranking) {
     nlohmann::json entry{{"effect", c.effect},
+                         {"discovered", c.discovered},
                          {"joints", c.joints},
                          {"heldout_reduction", c.heldoutReduction},
                          {"score", c.score},
@@ -125,14 +145,22 @@ nlohmann::json toJson(const Diagnosis& diagnosis) {
       for (double v : c.nonlinear) values.push_back(std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v));
       entry[c.nonlinearName] = values;
     }
+    if (c.discovered) entry["model_entry"] = c.modelEntry;
+    for (const auto& quantity : c.quantities) entry[quantity.name] = quantityJson(quantity);
     ranking.push_back(entry);
   }
   nlohmann::json follows = nlohmann::json::array();
   for (const auto& f : diagnosis.residualFollows) {
     follows.push_back({{"channel", f.channel}, {"signal", f.signal}, {"correlation", f.correlation}});
   }
+  auto number = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
+  nlohmann::json noise = nlohmann::json::array();
+  for (double v : diagnosis.noiseFloor) noise.push_back(number(v));
   return {{"heldout", diagnosis.heldout},
           {"heldout_base", toJson(diagnosis.heldoutBase)},
+          {"noise_floor", noise},
+          {"explainable", number(diagnosis.explainable)},
+          {"catalogue_explains", diagnosis.catalogueExplains},
           {"ranking", ranking},
           {"skipped", diagnosis.skipped},
           {"residual_follows", follows},
@@ -211,6 +239,9 @@ std::string formatParameters(const FittedModel& model) {
       if (nonlinear) text << nonlinear->name << " = " << format("%.5g", fit.nonlinear[c]) << " " << nonlinear->unit;
       text << "\n";
     }
+    for (const auto& quantity : fit.effect->physicalQuantities(fit.shared, fit.sharedCovariance)) {
+      text << "  " << padded(fit.effect->id(), 22) << padded("(all joints)", 26) << quantityText(quantity) << "\n";
+    }
   }
   return text.str();
 }
@@ -258,6 +289,9 @@ std::string formatDiagnosis(const Diagnosis& diagnosis) {
     text << padded(c.suggested ? std::to_string(k + 1) : "-", 6) << padded(c.effect, 22)
          << padded(format("%+.1f%%", -100.0 * c.heldoutReduction), 10) << padded(format("%.4g", c.score), 12)
          << (c.suggested ? joints : std::string("(not significant)")) << "\n";
+  }
+  for (const auto& c : diagnosis.ranking) {
+    if (c.discovered) text << "  " << c.effect << " (a term outside the catalogue): " << c.modelEntry << "\n";
   }
   for (const auto& s : diagnosis.skipped) text << "  not tested: " << s << "\n";
   text << "\n" << diagnosis.summary << "\n";

@@ -31,7 +31,7 @@ std::string describeEffect(const EffectSpec& effect) {
 }
 
 FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& additions, const Dataset& data,
-                         const Dataset* validation) {
+                         const Dataset* validation, bool keepParameters) {
   if (additions.empty()) throw Error("fit: nothing to add (use --add EFFECT[:j0,j1..])");
   ModelSpec extended = spec;
   FitStep step;
@@ -46,8 +46,13 @@ FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& a
     extended.effects.push_back(addition);
     step.added.push_back(describeEffect(addition));
   }
-  step.before = fitModel(spec, data);
-  step.after = fitModel(extended, data);
+  if (keepParameters) {
+    step.before = modelFromParameters(spec, data, false);
+    step.after = fitAdditions(step.before, additions, data);
+  } else {
+    step.before = fitModel(spec, data);
+    step.after = fitModel(extended, data);
+  }
   step.beforeData = errorSummary(data, predictAll(step.before, data));
   step.afterData = errorSummary(data, predictAll(step.after, data));
   if (validation) {

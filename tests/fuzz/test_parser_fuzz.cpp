@@ -51,7 +51,10 @@ std::vector<std::string> seedsFor(const std::string& target) {
   if (target == "model") {
     return {"kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n",
             "kind: gearbox_ftd\neffects: [load_friction]\n",
-            "kind: joint_current\nload_torque: rigid_body\neffects:\n  - drive_gain\n  - {id: viscous, joints: [0, 1]}\n"};
+            "kind: joint_current\nload_torque: rigid_body\neffects:\n  - drive_gain\n  - {id: viscous, joints: [0, 1]}\n",
+            // A discovered term as the diagnosis prints it, a payload in kg, friction with memory.
+            "kind: joint_current\neffects:\n  - drive_gain\n  - {id: found_qd_abs_qd, expression: \"qd*abs(qd)\", joints: [0, 2]}\n"
+            "  - {id: payload, mass_kg: 2.5, center_of_mass_z: 0.08}\n  - {id: dahl_friction, dahl_rate: 30}\n"};
   }
   // Not generated.yaml: every valid variant of it would generate its 50 problems (seconds each).
   if (target == "suite") return {readFile(kSuites / "thesis.yaml")};

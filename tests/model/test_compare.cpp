@@ -119,7 +119,7 @@ TEST(Compare, ResidualCorrelationsNameTheSignalTheResidualFollows) {
   const auto correlations = residualCorrelations(data, residuals);
   ASSERT_FALSE(correlations.empty());
   EXPECT_EQ(correlations.front().channel, "actual_current_4");
-  EXPECT_EQ(correlations.front().signal, "|qd|");
+  EXPECT_EQ(correlations.front().signal, "abs(qd)");
   EXPECT_NEAR(correlations.front().correlation, 1.0, 1e-9);
 }
 

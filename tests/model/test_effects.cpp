@@ -260,7 +260,8 @@ TEST(UserEffects, RegisteredClassAndExpressionAreFittedLikeCatalogueEffects) {
     const auto bad = currentModel("[{id: broken, expression: \"qd*torque\"}]");
     fitModel(bad, makeJointDataset(motion.log, bad));
   });
-  EXPECT_NE(unknown.find("unknown column 'torque'"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("synthetic: effect 'broken': expression 'qd*torque' needs signal 'torque'"), std::string::npos)
+      << unknown;
   EXPECT_NE(errorMessageOf([] { currentModel("[{id: bad, expression: \"qd*(\"}]"); }).find("expression"), std::string::npos);
 }
 

@@ -1,5 +1,5 @@
 // `arcplan model ...` end to end: simulate logs, compare, diagnose, fit --add --save, history,
-// the JSON contract of DESIGN.md §9, and clear errors without half-written output on bad input.
+// the JSON contract (docs/model.md), and clear errors without half-written output on bad input.
 #include <cmath>
 #include <fstream>
 
@@ -255,6 +255,36 @@ TEST_F(ModelCommandErrors, MismatchedJointCount) {
   write(dir / "ragged.csv", "timestamp,actual_q_0,actual_q_1,actual_current_0\n0,1,2,3\n");
   expectFailure({"compare", "--model", (dir / "base.yaml").string(), "--data", (dir / "ragged.csv").string()},
                 "mismatched joint count");
+}
+
+TEST_F(ModelCommandErrors, ExpressionThatDoesNotParseNamesTheFileAndTheEntry) {
+  write(dir / "bad_expression.yaml",
+        "kind: joint_current\nload_torque: target_moment\neffects:\n  - drive_gain\n  - {id: drag, expression: \"qd*(abs(qd)\"}\n");
+  expectFailure({"fit", "--model", (dir / "bad_expression.yaml").string(), "--data", (dir / "fit.csv").string(), "--add",
+                 "offset"},
+                "bad_expression.yaml:5: effects[1]: effect 'drag': expression 'qd*(abs(qd)'");
+}
+
+TEST_F(ModelCommandErrors, KeptModelWithoutFittedParametersNamesTheFileAndTheParameter) {
+  for (const auto* command : {"diagnose", "fit", "compare"}) {
+    std::vector<std::string> arguments{command, "--model", (dir / "base.yaml").string(), "--data", (dir / "fit.csv").string(),
+                                       "--keep-parameters"};
+    if (std::string(command) == "fit") arguments.insert(arguments.end(), {"--add", "stribeck"});
+    expectFailure(arguments, "base.yaml: effects[0] (drive_gain): parameters.per_torque: missing");
+  }
+}
+
+TEST_F(ModelCommandErrors, LogMissingASignalATermNeedsNamesTheLogAndTheSignal) {
+  auto log = arcplan::model::readLog(dir / "fit.csv");
+  log.vectors.erase("joint_temperatures");
+  arcplan::model::writeLog(log, dir / "no_temperature.csv");
+  write(dir / "warm.yaml",
+        "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, {id: warm, expression: \"temperature*qd\"}]\n");
+  expectFailure({"compare", "--model", (dir / "warm.yaml").string(), "--data", (dir / "no_temperature.csv").string()},
+                "no_temperature.csv: effect 'warm': expression 'temperature*qd' needs signal 'temperature'");
+  expectFailure({"fit", "--model", (dir / "base.yaml").string(), "--data", (dir / "no_temperature.csv").string(), "--add",
+                 "temperature_friction"},
+                "no_temperature.csv: signal 'temperature' is not available");
 }
 
 TEST_F(ModelCommandErrors, SimulateWritesNothingWhenItFails) {

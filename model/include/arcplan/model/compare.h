@@ -57,7 +57,7 @@ struct ChannelRegimes {
 // Pearson correlation of a channel's residual with one signal (or a function of it).
 struct ResidualCorrelation {
   std::string channel;
-  std::string signal;  // "qd", "|qd|", "sgn(qd)", "tau", "|tau|", "qdd", "q", "temperature", "time"
+  std::string signal;  // a term of term_library.h as an expression: "abs(qd)", "qd_1", "qd_0*qd_2"
   double correlation = 0.0;
 };
 
@@ -67,7 +67,7 @@ struct Comparison {
   std::string failuresOn;  // "validation" or "data": where windows and regimes were computed
   std::vector<WorstWindow> worstWindows;
   std::vector<ChannelRegimes> regimes;
-  std::vector<ResidualCorrelation> strongestCorrelations;  // |r| >= 0.1, strongest first
+  std::vector<ResidualCorrelation> strongestCorrelations;  // |r| >= 0.1, the 50 strongest first
 };
 
 std::vector<WorstWindow> worstWindows(const Dataset& data, const std::vector<Eigen::VectorXd>& residuals,

@@ -10,12 +10,26 @@
 // that channel's held-out residual RMS. Effects are ranked by the fraction of the held-out
 // residual RMS they remove on their kept channels, pooled over all channels in the channels' own
 // unit (A, rad or N·m: one kind has one unit). An effect with no kept channel is not suggested.
+//
+// Discovery beyond the catalogue (joint logs): every term of the library in term_library.h is
+// screened on the training residual (the share of it the term explains beyond the model's own
+// columns), the best few per channel are scored on held-out data by the same rule, and each
+// becomes a candidate that applies the one term to the channels where it passes. A discovered
+// term ranks above a catalogue effect only when it leaves at least 1 % less held-out residual RMS
+// (a catalogue effect names the physics; a new term must explain clearly more to come first: on
+// a 20 s log at 250 Hz, 1 % of RMS is a held-out ΔIC of about -100 in the new term's favour).
+// How much could be explained at all: the noise floor of each channel's held-out residual from
+// its second differences (white noise), compared with the catalogue's suggestions together.
+//
+// With `keepParameters` the model's stored parameters stay fixed (a model fitted on another log):
+// every candidate is fitted and scored on what that model leaves.
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "arcplan/model/compare.h"
 #include "arcplan/model/dataset.h"
+#include "arcplan/model/effect.h"
 #include "arcplan/model/model_spec.h"
 
 namespace arcplan::model {
@@ -24,10 +38,16 @@ struct DiagnoseOptions {
   int folds = 5;                   // cross-validation folds when there is no validation data
   double minimumReduction = 0.01;  // per channel, fraction of the held-out residual RMS
   std::vector<std::string> candidates;  // empty: every registered effect not in the model
+  bool discover = true;                 // also search the term library (joint logs)
+  int screenedPerChannel = 6;           // library terms per channel scored on held-out data
+  bool keepParameters = false;          // the model's stored parameters stay fixed
 };
 
 struct EffectCandidate {
-  std::string effect;
+  std::string effect;                 // catalogue id, or the id of a discovered term
+  bool discovered = false;            // a library term, not a registered effect
+  EffectSpec entry;                   // what to add: id, joints and (discovered) the expression
+  std::string modelEntry;             // the same as a model-file line: {id: ..., expression: "...", joints: [...]}
   std::vector<int> joints;            // channels where it helps significantly
   double heldoutReduction = 0.0;      // fraction (0–1) of the held-out residual RMS removed
   double score = 0.0;                 // Σ ΔIC over its channels (negative: better)
@@ -35,6 +55,7 @@ struct EffectCandidate {
   std::vector<double> channelReduction;  // per channel, fraction of that channel's held-out RMS
   std::vector<double> nonlinear;         // searched value per channel (NaN if none)
   std::string nonlinearName, nonlinearUnit;
+  std::vector<PhysicalQuantity> quantities;  // shared effects (payload): fitted jointly, physical units
   std::string explanation;
 };
 
@@ -44,6 +65,9 @@ struct Diagnosis {
   std::vector<EffectCandidate> ranking;  // suggested first (best first), then the rest
   std::vector<std::string> skipped;      // "temperature_friction: the log has no joint_temperatures"
   std::vector<ResidualCorrelation> residualFollows;  // what the held-out residual still correlates with
+  std::vector<double> noiseFloor;  // per channel, of the held-out residual (NaN without time)
+  double explainable = 0.0;        // fraction of the held-out residual RMS above the noise floor
+  double catalogueExplains = 0.0;  // fraction the suggested catalogue effects remove together
   std::string summary;  // the top suggestions in words, or why nothing is suggested
 };
 

@@ -31,6 +31,14 @@ struct NonlinearParameter {
   bool integer = false;      // integer-valued (no refinement between grid points)
 };
 
+// A parameter of the arm in physical units (a payload's mass in kg), from an effect fitted jointly
+// across channels, with its standard errors.
+struct PhysicalQuantity {
+  std::string name;  // "mass_kg", "center_of_mass_m"
+  std::string meaning;
+  std::vector<double> values, standardErrors;
+};
+
 class Effect {
 public:
   explicit Effect(EffectSpec spec) : spec_(std::move(spec)) {}
@@ -57,10 +65,23 @@ public:
   // the nonlinear parameter (ignored by linear effects).
   virtual void regressor(const Dataset& data, int channel, double nonlinear, Eigen::Ref<Eigen::MatrixXd> columns) const = 0;
 
-  // Chooses the nonlinear parameter that best explains `residual` (samples of `channel`), on its
-  // own: the default tries every grid value, fits the columns by least squares and refines around
-  // the best with a golden-section search. Effects with a faster exact search override it.
-  virtual double searchNonlinear(const Dataset& data, int channel, const Eigen::VectorXd& residual) const;
+  // Chooses the nonlinear parameter that best explains `residual` (samples of `channel`): the
+  // default tries every grid value, fits the columns by least squares and refines around the best
+  // with a golden-section search. `basis` (orthonormal columns, possibly none) spans the model's
+  // other columns, which `residual` is already orthogonal to: the effect's columns are measured
+  // by what they add beyond them (variable projection), so a term the others partly explain is
+  // not misplaced. Effects with a faster exact search override it.
+  virtual double searchNonlinear(const Dataset& data, int channel, const Eigen::VectorXd& residual,
+                                 const Eigen::MatrixXd& basis = Eigen::MatrixXd()) const;
+
+  // Effects whose parameters are physical quantities of the whole arm (a payload) have ONE set of
+  // parameters for all channels, fitted jointly: channel c's prediction is gain_c·columns_c·θ, with
+  // gain_c the channel's drive gain (current per N·m) from the same fit. Per-channel values stored
+  // for such an effect are gain_c·θ.
+  virtual bool sharedAcrossChannels() const { return false; }
+  // θ and its covariance in physical units (for reports); empty for ordinary effects.
+  virtual std::vector<PhysicalQuantity> physicalQuantities(const Eigen::VectorXd& shared,
+                                                           const Eigen::MatrixXd& covariance) const;
 
   // Typical parameter values on a UR10e, used by `arcplan model simulate` when the model file gives
   // none (per channel, in the units of the channel's prediction).
@@ -81,7 +102,7 @@ using EffectFactory = std::function<std::unique_ptr<Effect>(const EffectSpec&)>;
 void registerEffect(const std::string& id, EffectFactory factory);
 bool isRegisteredEffect(const std::string& id);
 std::vector<std::string> registeredEffects();
-// The catalogue of DESIGN.md §8, in its order.
+// The built-in catalogue (docs/model.md, "Effect catalogue"), in its order.
 const std::vector<std::string>& catalogueEffects();
 
 // The effect for a spec: a registered id, or a user expression effect when spec.expressions is

@@ -1,7 +1,12 @@
 #pragma once
 // Fitting a model's effects to a dataset, channel by channel: nonlinear parameters searched on the
 // residual of the other effects, then every linear parameter by one least-squares solve with
-// standard errors. A FittedModel predicts any dataset of the same kind.
+// standard errors. Effects with physical parameters of the whole arm (a payload: one mass and
+// centre of mass) are fitted jointly across channels by alternating least squares: the
+// per-channel effects on what the shared term leaves, the shared parameters on all channels
+// stacked (each seen through its channel's fitted drive gain, each channel weighted by the inverse
+// of its residual RMS), until the shared parameters settle. A FittedModel predicts any dataset of
+// the same kind.
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +25,10 @@ struct EffectFit {
   std::vector<double> nonlinear;                // per channel; NaN for linear effects / not applied
   std::vector<Eigen::VectorXd> values;          // per channel, one entry per parameterNames()
   std::vector<Eigen::VectorXd> standardErrors;  // NaN: not identifiable on that channel (collinear)
+  // Effects shared across channels: the one parameter vector θ (physical units) and its
+  // covariance; values[c] = drive gain of c · θ. Empty otherwise, and for parameters read from a file.
+  Eigen::VectorXd shared;
+  Eigen::MatrixXd sharedCovariance;
 };
 
 struct FittedModel {
@@ -40,9 +49,14 @@ Eigen::MatrixXd designMatrix(const std::vector<EffectFit>& effects, const Datase
 
 FittedModel fitModel(const ModelSpec& spec, const Dataset& data);
 
+// `kept` (a model with its parameters, e.g. read with modelFromParameters) stays fixed; only the
+// additions are fitted to what it leaves of `data` (`--keep-parameters` of fit). Shared effects
+// among the additions use the kept drive gains.
+FittedModel fitAdditions(const FittedModel& kept, const std::vector<EffectSpec>& additions, const Dataset& data);
+
 // The model with the parameters stored in the spec (a saved fit, or the truth of a simulation).
 // With `typicalWhenMissing`, effects without stored values take their typical UR10e values;
-// otherwise a missing value is an error.
+// otherwise a missing value is an error that names the model file, the effect and the parameter.
 FittedModel modelFromParameters(const ModelSpec& spec, const Dataset& data, bool typicalWhenMissing);
 
 // base + Σ effects, for one channel / all channels.

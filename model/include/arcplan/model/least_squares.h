@@ -40,4 +40,7 @@ struct LinearSolution {
 // (σ² = RSS / (n - rank)); autocorrelated residuals make them optimistic.
 LinearSolution solveLeastSquares(const NormalEquations& equations);
 
+// Orthonormal columns spanning the columns of `design` (rank-revealing QR; none for an empty design).
+Eigen::MatrixXd orthonormalBasis(const Eigen::MatrixXd& design);
+
 }  // namespace arcplan::model

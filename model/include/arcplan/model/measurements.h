@@ -49,7 +49,7 @@ struct Log {
   const Eigen::MatrixXd& vector(const std::string& signal) const;
 };
 
-// The RTDE joint signals arcplan understands (DESIGN.md §7), and its scalar ones. Other header
+// The RTDE joint signals arcplan understands (docs/model.md, "Inputs"), and its scalar ones. Other header
 // columns (TCP pose, robot mode, ...) are skipped.
 const std::vector<std::string>& knownVectorSignals();
 const std::vector<std::string>& knownScalarSignals();

@@ -1,5 +1,5 @@
 #pragma once
-// Machine-readable (JSON, the contract of DESIGN.md §9) and human-readable (text tables) forms of
+// Machine-readable (JSON, described in docs/model.md) and human-readable (text tables) forms of
 // the model loop's results.
 #include <string>
 #include <vector>
@@ -15,7 +15,8 @@ namespace arcplan::model {
 
 // {channels: {name: {rmse, nrmse, r2}}, overall_nrmse}
 nlohmann::json toJson(const ErrorSummary& summary);
-// channel -> effect -> {parameter: {value, standard_error}, nonlinear parameter: value}
+// channel -> effect -> {parameter: {value, standard_error}, nonlinear parameter: value}; effects
+// fitted jointly across channels add their physical quantities (payload: mass_kg, center_of_mass_m).
 nlohmann::json parametersJson(const FittedModel& model);
 // compare: channels, overall_nrmse, validation, worst_windows, regimes, residual_follows, parameters
 nlohmann::json toJson(const Comparison& comparison, const FittedModel& model, const Dataset& data);

@@ -1,5 +1,5 @@
 #pragma once
-// The steps of the model loop as the command line runs them (DESIGN.md §9), reusable from C++:
+// The steps of the model loop as the command line runs them (docs/model.md), reusable from C++:
 // load the data a model needs, add effects and refit with before/after errors, and keep a session
 // history of the error after every step.
 #include <filesystem>
@@ -38,9 +38,10 @@ struct FitStep {
 };
 
 // Adds the effects to the model (each must be new and apply to its kind), refits on `data`, and
-// reports the errors before and after on both datasets.
+// reports the errors before and after on both datasets. With `keepParameters` the model's stored
+// parameters stay fixed (before = the model as saved) and only the additions are fitted.
 FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& additions, const Dataset& data,
-                         const Dataset* validation);
+                         const Dataset* validation, bool keepParameters = false);
 
 std::string describeEffect(const EffectSpec& effect);  // "coulomb", "load_friction:1,2"
 

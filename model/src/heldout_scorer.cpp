@@ -1,0 +1,125 @@
+// Held-out scoring shared by the diagnosis of catalogue effects and the discovery of new terms.
+#include <algorithm>
+#include <cmath>
+
+#include "arcplan/model/least_squares.h"
+#include "model_internal.h"
+
+namespace arcplan::model::detail {
+
+HeldOutScorer::HeldOutScorer(const Dataset& data, const Dataset* validation, Eigen::VectorXd targetTrain,
+                             Eigen::VectorXd targetValidation, Eigen::MatrixXd baseTrain, Eigen::MatrixXd baseValidation,
+                             int folds)
+    : validation_(validation != nullptr),
+      targetTrain_(std::move(targetTrain)),
+      targetValidation_(std::move(targetValidation)),
+      baseTrain_(std::move(baseTrain)),
+      baseValidation_(std::move(baseValidation)) {
+  if (validation_) return;
+  // Contiguous blocks keep neighbouring (correlated) samples of a log in one fold; data without
+  // time is interleaved.
+  const Eigen::Index n = targetTrain_.size();
+  members_.resize(static_cast<std::size_t>(folds));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto fold = data.timeOrdered() ? static_cast<std::size_t>(i * folds / n) : static_cast<std::size_t>(i % folds);
+    members_[fold].push_back(i);
+  }
+}
+
+Eigen::Index HeldOutScorer::heldOutSamples() const {
+  return validation_ ? targetValidation_.size() : targetTrain_.size();
+}
+
+std::pair<double, int> HeldOutScorer::score(const Eigen::MatrixXd& extraTrain, const Eigen::MatrixXd& extraValidation,
+                                            Eigen::VectorXd* heldOutResidual) const {
+  Eigen::MatrixXd train(baseTrain_.rows(), baseTrain_.cols() + extraTrain.cols());
+  train << baseTrain_, extraTrain;
+  if (validation_) {
+    const LinearSolution solution = solveLeastSquares(NormalEquations::of(train, targetTrain_));
+    Eigen::MatrixXd held(baseValidation_.rows(), train.cols());
+    held << baseValidation_, extraValidation;
+    Eigen::VectorXd residual = targetValidation_;
+    if (held.cols() > 0) residual -= held * solution.coefficients;
+    const double squares = residual.squaredNorm();
+    if (heldOutResidual) *heldOutResidual = std::move(residual);
+    return {squares, solution.rank};
+  }
+  // Cross-validation from per-fold normal equations: each fold is fitted on the total minus itself.
+  std::vector<NormalEquations> perFold;
+  NormalEquations total;
+  for (std::size_t f = 0; f < members_.size(); ++f) {
+    const auto& rows = members_[f];
+    Eigen::MatrixXd x(static_cast<Eigen::Index>(rows.size()), train.cols());
+    Eigen::VectorXd y(static_cast<Eigen::Index>(rows.size()));
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      x.row(static_cast<Eigen::Index>(r)) = train.row(rows[r]);
+      y[static_cast<Eigen::Index>(r)] = targetTrain_[rows[r]];
+    }
+    perFold.push_back(NormalEquations::of(x, y));
+    total = f == 0 ? perFold.back() : total + perFold.back();
+  }
+  double squares = 0.0;
+  int rank = 0;
+  if (heldOutResidual) heldOutResidual->resize(targetTrain_.size());
+  for (std::size_t f = 0; f < members_.size(); ++f) {
+    const LinearSolution solution = solveLeastSquares(total - perFold[f]);
+    squares += perFold[f].residualSquares(solution.coefficients);
+    rank = std::max(rank, solution.rank);
+    if (heldOutResidual) {
+      for (auto i : members_[f]) {
+        (*heldOutResidual)[i] = targetTrain_[i] - (train.cols() > 0 ? train.row(i).dot(solution.coefficients) : 0.0);
+      }
+    }
+  }
+  return {squares, rank};
+}
+
+double informationCriterion(double squaresWith, double squaresWithout, int addedParameters, double samples) {
+  const double ratio = std::max(squaresWith, 1e-300) / std::max(squaresWithout, 1e-300);
+  return samples * std::log(ratio) + addedParameters * std::log(samples);
+}
+
+double HeldOutBaseline::total() const {
+  double sum = 0.0;
+  for (double s : squares) sum += s;
+  return sum;
+}
+
+void judgeCandidate(EffectCandidate& candidate, const std::vector<double>& squares, const std::vector<int>& ranks,
+                    bool searched, const HeldOutBaseline& baseline, double minimumReduction) {
+  const auto channels = squares.size();
+  candidate.channelReduction.assign(channels, 0.0);
+  candidate.joints.clear();
+  candidate.score = 0.0;
+  for (std::size_t c = 0; c < channels; ++c) {
+    const int added = ranks[c] - baseline.rank[c] + (searched && ranks[c] > baseline.rank[c] ? 1 : 0);
+    const auto n = static_cast<double>(baseline.scorers[c].heldOutSamples());
+    const double criterion = informationCriterion(squares[c], baseline.squares[c], added, n);
+    candidate.channelReduction[c] = 1.0 - std::sqrt(std::max(squares[c], 0.0) / std::max(baseline.squares[c], 1e-300));
+    if (added > 0 && criterion < 0.0 && candidate.channelReduction[c] >= minimumReduction) {
+      candidate.joints.push_back(static_cast<int>(c));
+      candidate.score += criterion;
+    }
+  }
+  candidate.suggested = !candidate.joints.empty();
+  candidate.entry.joints = candidate.joints;
+  // Suggested: the effect on its significant channels only; otherwise what it would do everywhere.
+  double with = 0.0;
+  for (std::size_t c = 0; c < channels; ++c) {
+    const bool used = !candidate.suggested ||
+                      std::find(candidate.joints.begin(), candidate.joints.end(), static_cast<int>(c)) != candidate.joints.end();
+    with += used ? squares[c] : baseline.squares[c];
+  }
+  const double total = baseline.total();
+  candidate.heldoutReduction = total > 0.0 ? 1.0 - std::sqrt(with / total) : 0.0;
+}
+
+double noiseFloor(const Eigen::VectorXd& residual) {
+  const Eigen::Index n = residual.size();
+  if (n < 3) return 0.0;
+  const Eigen::ArrayXd second = residual.segment(2, n - 2).array() - 2.0 * residual.segment(1, n - 2).array() +
+                                residual.head(n - 2).array();
+  return std::sqrt(second.square().mean() / 6.0);
+}
+
+}  // namespace arcplan::model::detail

@@ -1,0 +1,147 @@
+// Effects with physical parameters of the arm and effects with memory: the payload as ONE mass and
+// centre of mass fitted jointly across joints (simulated with a known payload), the "what changed"
+// workflow with a kept model, and Dahl friction against a numerical integration of its equation.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "arcplan/model/diagnose.h"
+#include "arcplan/model/fitting.h"
+#include "arcplan/model/workflow.h"
+#include "model/model_test_support.h"
+#include "support/error_message.h"
+
+namespace {
+
+using namespace arcplan::model;
+
+const std::string kHeader = "kind: joint_current\nload_torque: target_moment\n";
+const std::string kBase = "drive_gain, offset, coulomb, viscous";
+const std::string kPayload =
+    "{id: payload, mass_kg: 2.5, center_of_mass_x: 0.03, center_of_mass_y: -0.02, center_of_mass_z: 0.08}";
+const Eigen::Vector3d kCenter(0.03, -0.02, 0.08);
+constexpr double kMass = 2.5, kNoise = 0.05;
+
+ModelSpec model(const std::string& effects) { return parseModelYaml(kHeader + "effects: [" + effects + "]\n", "m.yaml"); }
+
+double quantity(const std::vector<PhysicalQuantity>& quantities, const std::string& name, std::size_t i = 0) {
+  for (const auto& q : quantities) {
+    if (q.name == name) return q.values.at(i);
+  }
+  ADD_FAILURE() << "no quantity " << name;
+  return std::nan("");
+}
+
+TEST(Payload, OneMassAndCentreOfMassAreFittedAcrossJoints) {
+  const auto [data, validation] = arcplan::testing::simulatePair(model(kBase + ", " + kPayload), model(kBase), kNoise);
+  const FittedModel fitted = fitModel(model(kBase + ", payload"), data);
+  const auto& fit = fitted.effects.back();
+  const auto quantities = fit.effect->physicalQuantities(fit.shared, fit.sharedCovariance);
+  const double mass = quantity(quantities, "mass_kg");
+  EXPECT_NEAR(mass, kMass, 0.05 * kMass);
+  const Eigen::Vector3d center(quantity(quantities, "center_of_mass_m", 0), quantity(quantities, "center_of_mass_m", 1),
+                               quantity(quantities, "center_of_mass_m", 2));
+  EXPECT_LT((center - kCenter).norm(), 0.01) << center.transpose();
+  // Standard errors exist and the truth lies within a few of them.
+  for (const auto& q : quantities) {
+    for (std::size_t i = 0; i < q.values.size(); ++i) {
+      EXPECT_GT(q.standardErrors[i], 0.0) << q.name;
+      EXPECT_LT(q.standardErrors[i], q.name == "mass_kg" ? 0.02 * kMass : 0.005) << q.name;
+      RecordProperty(q.name + "_" + std::to_string(i), std::to_string(q.values[i]) + " +- " + std::to_string(q.standardErrors[i]));
+    }
+  }
+  // Every joint sees the same mass through its own drive gain.
+  const auto& gains = fitted.effects.front();
+  for (int c = 0; c < 6; ++c) EXPECT_NEAR(fit.values[c][0], gains.values[c][0] * mass, 1e-9) << c;
+  const ErrorSummary held = errorSummary(validation, predictAll(fitted, validation));
+  for (const auto& channel : held.channels) EXPECT_LE(channel.rmse, 1.3 * kNoise) << channel.channel;
+}
+
+TEST(Payload, NeedsTheDriveGainToBeOneMass) {
+  const auto [data, validation] = arcplan::testing::simulatePair(model(kBase), model("offset, payload"), kNoise);
+  const std::string message = arcplan::testing::errorMessageOf([&] { fitModel(model("offset, payload"), data); });
+  EXPECT_NE(message.find("add drive_gain"), std::string::npos) << message;
+}
+
+TEST(KeptModel, WhatChangedIsThePayloadInKilograms) {
+  // Fitted on a log without payload, then a 2.5 kg tool is mounted.
+  const auto unloaded = arcplan::testing::simulatePair(model(kBase), model(kBase), kNoise, 41);
+  const ModelSpec saved = specWithParameters(fitModel(model(kBase), unloaded.data));
+  const auto loaded = arcplan::testing::simulatePair(model(kBase + ", " + kPayload), model(kBase), kNoise, 51);
+
+  DiagnoseOptions keep;
+  keep.keepParameters = true;
+  const Diagnosis diagnosis = diagnose(saved, loaded.data, &loaded.validation, keep);
+  ASSERT_FALSE(diagnosis.ranking.empty());
+  const auto& top = diagnosis.ranking.front();
+  EXPECT_EQ(top.effect, "payload") << diagnosis.summary;
+  EXPECT_NEAR(quantity(top.quantities, "mass_kg"), kMass, 0.05 * kMass) << diagnosis.summary;
+  EXPECT_NE(top.explanation.find("kg"), std::string::npos) << top.explanation;
+
+  EffectSpec payload;
+  payload.id = "payload";
+  payload.joints = top.joints;
+  const FitStep step = addEffectsAndFit(saved, {payload}, loaded.data, &loaded.validation, true);
+  for (std::size_t e = 0; e + 1 < step.after.effects.size(); ++e) {
+    for (int c = 0; c < 6; ++c) {
+      EXPECT_EQ(step.after.effects[e].values[c], step.before.effects[e].values[c]) << "kept effect " << e;
+    }
+  }
+  ASSERT_TRUE(step.afterValidation);
+  EXPECT_LT(step.afterValidation->overallNrmse, 0.5 * step.beforeValidation->overallNrmse);
+  for (int j : top.joints) {
+    EXPECT_LT(step.afterValidation->channels[j].rmse, step.beforeValidation->channels[j].rmse) << j;
+    // Joints 0–3 reach the noise. The wrists' drive gains come from the unloaded log, where their
+    // own load torque is tiny (wrist 3 carries 0.0003 kg·m² of link), so the kept gains are too
+    // uncertain to put the payload's torque there in amps exactly.
+    if (j <= 3) EXPECT_LE(step.afterValidation->channels[j].rmse, 1.3 * kNoise) << j;
+  }
+  const auto& gains = saved.effects[0];
+  for (int j = 0; j < 6; ++j) {
+    RecordProperty("kept_gain_" + std::to_string(j), std::to_string(gains.parameters.at("per_torque")[j]) + " +- " +
+                                                        std::to_string(gains.standardErrors.at("per_torque")[j]));
+  }
+}
+
+TEST(KeptModel, WithoutFittedParametersIsAnErrorNamingTheFileAndField) {
+  const auto [data, validation] = arcplan::testing::simulatePair(model(kBase), model(kBase), kNoise);
+  DiagnoseOptions keep;
+  keep.keepParameters = true;
+  const std::string message = arcplan::testing::errorMessageOf([&] { diagnose(model(kBase), data, &validation, keep); });
+  EXPECT_NE(message.find("m.yaml: effects[0] (drive_gain): parameters.per_torque: missing"), std::string::npos) << message;
+}
+
+// Dahl: dz/dq = ρ·(1 - z·sgn(dq)), integrated here with classical Runge–Kutta in small steps of q.
+TEST(DahlFriction, StateFollowsTheDahlEquationAndHoldsAtRest) {
+  auto motion = arcplan::testing::makeMotionLog(600, 100.0);
+  Eigen::MatrixXd& q = motion.log.vectors["actual_q"];
+  for (int k = 0; k < 600; ++k) {
+    const double t = k / 100.0;  // up 0.2 rad, back 0.05 rad, then rest
+    q(k, 0) = t < 2.0 ? 0.1 * t : (t < 3.0 ? 0.2 - 0.05 * (t - 2.0) : 0.15);
+  }
+  const Dataset data = makeJointDataset(motion.log, model(""));
+  const double rate = 40.0;
+  EffectSpec spec;
+  spec.id = "dahl_friction";
+  const auto effect = createEffect(spec);
+  Eigen::MatrixXd column(600, 1);
+  effect->regressor(data, 0, rate, column);
+  double z = 0.0;
+  for (int k = 1; k < 600; ++k) {
+    const double dq = q(k, 0) - q(k - 1, 0), direction = dq > 0 ? 1.0 : (dq < 0 ? -1.0 : 0.0);
+    const int steps = 200;
+    const double h = std::abs(dq) / steps;
+    // Along the path length u = |q - q_k|: dz/du = s·ρ·(1 - z·s), s the direction of the step.
+    auto slope = [&](double value) { return direction * rate * (1.0 - value * direction); };
+    for (int s = 0; s < steps && direction != 0.0; ++s) {
+      const double k1 = slope(z), k2 = slope(z + 0.5 * h * k1), k3 = slope(z + 0.5 * h * k2), k4 = slope(z + h * k3);
+      z += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    ASSERT_NEAR(column(k, 0), z, 1e-9) << "sample " << k;
+  }
+  EXPECT_GT(column(199, 0), 0.99);                 // saturated while moving up
+  EXPECT_LT(column(299, 0), -0.6);                 // reversed: -1 + 2·exp(-40·0.05) = -0.73
+  EXPECT_EQ(column(599, 0), column(320, 0));       // at rest it keeps the value it stopped with
+}
+
+}  // namespace
