@@ -63,7 +63,10 @@ TEST_P(OutsideTheCatalogue, DiscoveryProposesTheTermAndItReachesTheNoise) {
 
   const FitStep step = addEffectsAndFit(base, {pasted.effects.back()}, data, &validation);
   ASSERT_TRUE(step.afterValidation);
+  RecordProperty("first", top.effect + " " + std::to_string(top.heldoutReduction));
   for (int j : hidden.joints) {
+    RecordProperty("joint_" + std::to_string(j), std::to_string(step.beforeValidation->channels[j].rmse) + " -> " +
+                                                     std::to_string(step.afterValidation->channels[j].rmse));
     EXPECT_LE(step.afterValidation->channels[j].rmse, 1.3 * kNoise) << "joint " << j;
     EXPECT_LT(step.afterValidation->channels[j].rmse, step.beforeValidation->channels[j].rmse) << "joint " << j;
   }
