@@ -15,6 +15,7 @@
 #include "arcplan/common/error.h"
 #include "cli_support.h"
 #include "commands.h"
+#include "exit_codes.h"
 
 namespace arcplan::apps {
 namespace {
@@ -31,6 +32,7 @@ struct BenchOptions {
   bool noPlots = false;
   bool quiet = false;
   std::string json;
+  std::string html;
 };
 
 struct RankOptions {
@@ -39,6 +41,7 @@ struct RankOptions {
   std::string out;
   bool noPlots = false;
   std::string json;
+  std::string html;
 };
 
 void printNotes(const std::vector<std::string>& notes) {
@@ -55,22 +58,28 @@ void runBench(const BenchOptions& options) {
   auto suite = benchmarks::loadSuite(benchmarks::findSuite(options.suite));
   if (!options.planners.empty()) benchmarks::selectPlanners(suite, options.planners);
   if (options.runs) {
-    if (*options.runs < 1) throw Error("--runs must be at least 1");
+    if (*options.runs < 1) throw UsageError("--runs must be at least 1");
     suite.runs = *options.runs;
   }
   if (options.time) {
-    if (!(*options.time > 0.0) || !std::isfinite(*options.time)) throw Error("--time must be a positive number of seconds");
+    if (!(*options.time > 0.0) || !std::isfinite(*options.time)) {
+      throw UsageError("--time must be a positive number of seconds");
+    }
     suite.timeLimit = *options.time;
   }
   if (options.vMax) {
-    if (!(*options.vMax > 0.0) || !std::isfinite(*options.vMax)) throw Error("--vmax must be a positive TCP speed in m/s");
+    if (!(*options.vMax > 0.0) || !std::isfinite(*options.vMax)) throw UsageError("--vmax must be a positive TCP speed in m/s");
     suite.vMax = *options.vMax;
   }
-  if (options.workers < 1) throw Error("--workers must be at least 1");
+  if (options.workers < 1) throw UsageError("--workers must be at least 1");
 
   benchmarks::CampaignOptions campaign;
   campaign.outDirectory = options.out.empty() ? std::filesystem::path("results") / suite.name : std::filesystem::path(options.out);
-  campaign.shard = benchmarks::parseShard(options.shard);
+  try {
+    campaign.shard = benchmarks::parseShard(options.shard);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
   campaign.workers = options.workers;
   campaign.plots = !options.noPlots;
   campaign.showProgress = !options.quiet;
@@ -104,11 +113,14 @@ void runBench(const BenchOptions& options) {
     std::cerr << "bench: interrupted — " << result.jobsDoneInCampaign << " of " << result.jobsInCampaign
               << " jobs are complete and their logs are kept in " << (campaign.outDirectory / "logs").string()
               << "; run the same command again to resume\n";
-    throw CLI::RuntimeError(130);
+    throw CLI::RuntimeError(toInt(ExitCode::Interrupted));
   }
   if (result.ranking) {
     std::cout << "\n" << benchmarks::rankingTerminalTable(*result.ranking);
     printOutputs(campaign.outDirectory, campaign.outDirectory / "benchmark.db");
+    if (!options.html.empty()) writeHtmlReport(campaign.outDirectory, options.html);
+  } else if (!options.html.empty()) {
+    std::cerr << "bench: note: --html: the report is written once every job of the campaign is done\n";
   }
 }
 
@@ -139,6 +151,7 @@ void runRank(const RankOptions& options) {
   if (!options.json.empty()) writeJson(options.json, benchmarks::rankingJson(ranking));
   std::cout << benchmarks::rankingTerminalTable(ranking);
   printOutputs(report.outDirectory, database);
+  if (!options.html.empty()) writeHtmlReport(database, options.html);
 }
 
 }  // namespace
@@ -170,6 +183,7 @@ void registerBenchCommand(CLI::App& app) {
   command->add_flag("--no-plots", options->noPlots, "do not draw the PNG plots");
   command->add_flag("--quiet", options->quiet, "no progress output");
   command->add_option("--json", options->json, "write the campaign summary and ranking as JSON ('-' for stdout)");
+  command->add_option("--html", options->html, "also write the campaign's self-contained HTML report to this file (docs/report.md)");
 
   auto rankOptions = std::make_shared<RankOptions>();
   CLI::App* rank = command->add_subcommand(
@@ -184,6 +198,7 @@ void registerBenchCommand(CLI::App& app) {
   rank->add_option("--out", rankOptions->out, "folder for ranking.{md,json,csv} and plots/ (default: the database's)");
   rank->add_flag("--no-plots", rankOptions->noPlots, "do not draw the PNG plots");
   rank->add_option("--json", rankOptions->json, "write the ranking as JSON ('-' for stdout)");
+  rank->add_option("--html", rankOptions->html, "also write the self-contained HTML report of the database to this file");
   rank->callback([rankOptions] { runRank(*rankOptions); });
 
   command->require_subcommand(0, 1);

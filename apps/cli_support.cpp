@@ -1,8 +1,10 @@
 #include "cli_support.h"
 
+#include <cmath>
 #include <iostream>
 
 #include "arcplan/common/atomic_file.h"
+#include "arcplan/common/text_formatting.h"
 #include "arcplan/common/text_parsing.h"
 
 namespace arcplan::apps {
@@ -17,7 +19,17 @@ void writeJson(const std::filesystem::path& file, const nlohmann::json& document
 }
 
 std::vector<double> parseVector(const std::string& text, const std::string& option, std::size_t count) {
-  return parseNumberList(text, option, count);
+  try {
+    return parseNumberList(text, option, count);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
+void requirePositive(double value, const std::string& option, const std::string& unit) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw UsageError(option + " must be a positive number (" + unit + "), got " + formatNumber(value, 6));
+  }
 }
 
 }  // namespace arcplan::apps

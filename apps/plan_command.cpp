@@ -14,7 +14,9 @@
 #include <optional>
 #include <sstream>
 
+#include "arcplan/benchmarks/solution_policy.h"
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/joint_states.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
 #include "arcplan/planners/arc_planner.h"
@@ -70,18 +72,6 @@ std::string omplReason(const ompl::base::PlannerStatus& status, const ompl::geom
       reason << "planner status: " << status.asString();
   }
   return reason.str();
-}
-
-trajectory::JointPath jointPathOf(const ompl::geometric::PathGeometric& path) {
-  trajectory::JointPath joints;
-  for (std::size_t i = 0; i < path.getStateCount(); ++i) {
-    robot::Vector6 q;
-    for (int j = 0; j < 6; ++j) {
-      q[j] = *path.getSpaceInformation()->getStateSpace()->getValueAddressAtIndex(path.getState(i), j);
-    }
-    joints.push_back(q);
-  }
-  return joints;
 }
 
 nlohmann::json arcDetails(const planners::ArcPlannerResult& result) {
@@ -154,7 +144,7 @@ void runPlan(const PlanOptions& options) {
   const auto* arc = dynamic_cast<const planners::ArcPlanner*>(planner.get());
 
   // The arc path is already the TCP path; sampling planners' paths get OMPL's shortcutting.
-  if (havePath && arc == nullptr) setup.simplifySolution();
+  if (havePath && benchmarks::simplifiesSolution(plannerName)) setup.simplifySolution();
 
   nlohmann::json document = {{"scene", scene->name},
                              {"query", problem.queryName},
@@ -173,7 +163,7 @@ void runPlan(const PlanOptions& options) {
 
   trajectory::JointPath path;
   if (havePath) {
-    path = jointPathOf(setup.getSolutionPath());
+    path = collision::waypointsOf(setup.getSolutionPath());
     const collision::CollisionModel& model = *problem.collisionModel;
     collision::CollisionData data(model);
     const trajectory::ClearanceFunction clearance = [&](const robot::Vector6& q) {

@@ -3,6 +3,8 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/common/error.h"
@@ -50,7 +52,7 @@ Eigen::VectorXd parseJoints(const robot::RobotModel& model, const std::string& j
   for (int j = 0; j < model.dof(); ++j) {
     const auto& limits = model.joints()[j].limits;
     if (q[j] < limits.lower || q[j] > limits.upper) {
-      throw Error("--joints: joint " + std::to_string(j) + " (" + model.joints()[j].name + ") = " + std::to_string(q[j]) +
+      throw UsageError("--joints: joint " + std::to_string(j) + " (" + model.joints()[j].name + ") = " + std::to_string(q[j]) +
                   " is outside its limits [" + std::to_string(limits.lower) + ", " + std::to_string(limits.upper) + "]");
     }
   }
@@ -166,19 +168,29 @@ nlohmann::json checkConfiguration(const collision::CollisionModel& model, const 
 }
 
 void runCollisionCheck(const CheckOptions& options) {
-  if (options.joints.empty() == options.query.empty()) throw Error("give exactly one of --joints or --query");
+  if (options.joints.empty() == options.query.empty()) throw UsageError("give exactly one of --joints or --query");
   const collision::Scene scene = collision::loadScene(resolveDataPath(options.scene));
   const auto model = collision::makeCollisionModel(scene);
+  // Every input is checked (and every endpoint solved) before the first line is printed.
+  std::vector<std::pair<std::string, Eigen::VectorXd>> configurations;  // (query end or "", joints)
+  const collision::Query* query = nullptr;
+  if (!options.joints.empty()) {
+    configurations.emplace_back("", parseJoints(model->robot(), options.joints));
+  } else {
+    query = &scene.query(options.query);
+    for (const auto& [end, endpoint] : {std::make_pair("start", &query->start), std::make_pair("goal", &query->goal)}) {
+      configurations.emplace_back(end, endpointJoints(scene, *query, end, *endpoint, model->robot()));
+    }
+  }
   std::cout << "scene " << scene.name << " (" << scene.sourceFile.string() << "), " << model->robot().name() << "\n";
   nlohmann::json result{{"scene", scene.name}};
-  if (!options.joints.empty()) {
-    result.update(checkConfiguration(*model, parseJoints(model->robot(), options.joints)));
+  if (query == nullptr) {
+    result.update(checkConfiguration(*model, configurations.front().second));
   } else {
-    const auto& query = scene.query(options.query);
-    result["query"] = query.name;
-    for (const auto& [end, endpoint] : {std::make_pair("start", &query.start), std::make_pair("goal", &query.goal)}) {
-      std::cout << "query " << query.name << " " << end << "\n";
-      result[end] = checkConfiguration(*model, endpointJoints(scene, query, end, *endpoint, model->robot()));
+    result["query"] = query->name;
+    for (const auto& [end, q] : configurations) {
+      std::cout << "query " << query->name << " " << end << "\n";
+      result[end] = checkConfiguration(*model, q);
     }
     result["valid"] = result["start"]["valid"].get<bool>() && result["goal"]["valid"].get<bool>();
   }

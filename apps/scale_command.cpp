@@ -1,18 +1,18 @@
 // arcplan scale — PCHIP time scaling of a joint path under a TCP speed limit (thesis §4.3), with the
-// DESIGN.md §6 metrics, the dense timed trajectory and a speed-profile plot.
+// metrics of docs/metrics.md, the dense timed trajectory and a speed-profile plot.
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <unistd.h>
 
 #include "arcplan/collision/scene.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/plotting.h"
 #include "arcplan/common/resources.h"
+#include "arcplan/common/text_formatting.h"
 #include "arcplan/robot/robot_model.h"
 #include "arcplan/trajectory/joint_path.h"
 #include "arcplan/trajectory/metrics.h"
@@ -34,14 +34,6 @@ struct ScaleOptions {
   std::string trajectoryCsv;
   std::string plot;
 };
-
-void requirePositive(double value, const char* option, const char* unit) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    std::ostringstream message;
-    message << option << " must be a positive number (" << unit << "), got " << value;
-    throw Error(message.str());
-  }
-}
 
 robot::RobotModel loadRobot(const ScaleOptions& options) {
   std::filesystem::path urdf = options.urdf;
@@ -66,30 +58,21 @@ void printMetrics(const trajectory::TrajectoryMetrics& metrics, const trajectory
             << " % of its limit\n";
 }
 
+// A plot that was asked for and cannot be drawn fails the command (arcplan::Error), before any
+// other output file exists. The script reads the samples from a temporary CSV.
 void plotTrajectory(const trajectory::TimedTrajectory& trajectory, const ScaleOptions& options) {
-  // The script reads the samples from a CSV: the requested one, or a temporary copy.
-  std::filesystem::path csv = options.trajectoryCsv;
-  const bool temporary = csv.empty();
-  if (temporary) {
-    csv = std::filesystem::temp_directory_path() / ("arcplan_scale_" + std::to_string(::getpid()) + ".csv");
-    trajectory::writeTimedTrajectoryCsv(csv, trajectory);
-  }
-  std::ostringstream limit;
-  limit << trajectory.tcpSpeedLimit;
-  std::vector<std::string> arguments{csv.string(), options.plot, "--vmax", limit.str(),
+  const std::filesystem::path csv =
+      std::filesystem::temp_directory_path() / ("arcplan_scale_" + std::to_string(::getpid()) + ".csv");
+  trajectory::writeTimedTrajectoryCsv(csv, trajectory);
+  std::vector<std::string> arguments{csv.string(), options.plot, "--vmax", formatNumber(trajectory.tcpSpeedLimit, 6),
                                      "--title", std::filesystem::path(options.pathCsv).filename().string()};
   for (int j = 0; j < 6; ++j) {
-    std::ostringstream jointLimit;
-    jointLimit << std::setprecision(10) << trajectory.jointSpeedLimits[j];
-    arguments.insert(arguments.end(), {"--joint-limit", jointLimit.str()});
+    arguments.insert(arguments.end(), {"--joint-limit", formatNumber(trajectory.jointSpeedLimits[j], 10)});
   }
   const PlotOutcome outcome = runPlotScript("plot_trajectory.py", arguments);
-  if (temporary) std::filesystem::remove(csv);
-  if (!outcome.ok) {
-    std::cerr << "arcplan: warning: " << outcome.message << "\n";
-  } else {
-    std::cout << "plot                " << options.plot << "\n";
-  }
+  std::error_code ignored;
+  std::filesystem::remove(csv, ignored);
+  if (!outcome.ok) throw Error("--plot " + options.plot + ": " + outcome.message);
 }
 
 void runScale(const ScaleOptions& options) {
@@ -97,7 +80,7 @@ void runScale(const ScaleOptions& options) {
   requirePositive(options.riseTime, "--rise", "s");
   if (options.maxTcpAcceleration) requirePositive(*options.maxTcpAcceleration, "--max-acc", "m/s²");
   if (!options.plot.empty() && std::filesystem::path(options.plot).extension() != ".png") {
-    throw Error("--plot: expected a .png file name, got " + options.plot);
+    throw UsageError("--plot: expected a .png file name, got " + options.plot);
   }
 
   const robot::RobotModel model = loadRobot(options);
@@ -109,6 +92,7 @@ void runScale(const ScaleOptions& options) {
   const trajectory::TimedTrajectory timed = trajectory::scaleToTcpSpeed(model, path, scaling);
   const trajectory::TrajectoryMetrics metrics = trajectory::computeMetrics(path, timed);
 
+  if (!options.plot.empty()) plotTrajectory(timed, options);
   printMetrics(metrics, timed, path.size());
   if (!options.json.empty()) {
     nlohmann::json document = trajectory::toJson(metrics);
@@ -120,7 +104,7 @@ void runScale(const ScaleOptions& options) {
     writeJson(options.json, document);
   }
   if (!options.trajectoryCsv.empty()) trajectory::writeTimedTrajectoryCsv(options.trajectoryCsv, timed);
-  if (!options.plot.empty()) plotTrajectory(timed, options);
+  if (!options.plot.empty()) std::cout << "plot                " << options.plot << "\n";
 }
 
 }  // namespace
@@ -142,7 +126,7 @@ void registerScaleCommand(CLI::App& app) {
   scale->add_option_function<double>(
       "--max-acc", [options](double value) { options->maxTcpAcceleration = value; },
       "TCP acceleration limit [m/s²] for the ramps, instead of --rise");
-  scale->add_option("--json", options->json, "write the metrics (DESIGN §6 keys) as JSON to this file ('-' for stdout)");
+  scale->add_option("--json", options->json, "write the metrics (docs/metrics.md keys) as JSON to this file ('-' for stdout)");
   scale->add_option("--traj-csv", options->trajectoryCsv,
                     "write the timed trajectory: t, q0..5, qd0..5, qdd0..5, tcp_speed, tcp_x/y/z every <= 2 ms");
   scale->add_option("--plot", options->plot, "PNG of the TCP speed profile, joint positions and velocities");

@@ -17,13 +17,18 @@
 
 #include "arcplan/benchmarks/campaign.h"
 #include "arcplan/benchmarks/interrupt.h"
+#include "arcplan/benchmarks/solution_policy.h"
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/joint_states.h"
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/error.h"
+#include "arcplan/common/text_formatting.h"
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/planning_problem.h"
+#include "arcplan/trajectory/metric_descriptors.h"
 #include "arcplan/trajectory/metrics.h"
 #include "arcplan/trajectory/time_scaling.h"
+#include "run_properties.h"
 
 namespace arcplan::benchmarks::detail {
 namespace {
@@ -36,11 +41,8 @@ constexpr double kClearanceSpacing = 0.005;
 // Samples kept of the median run for the speed-profile and 3D plots.
 constexpr std::size_t kProfileSamples = 600;
 
-std::string number(double value) {
-  std::ostringstream text;
-  text << std::setprecision(10) << value;
-  return text.str();
-}
+// Run properties and experiment parameters are text in the log; 10 significant digits.
+std::string number(double value) { return formatNumber(value, 10); }
 
 std::string versionText(int major, int minor, int patch) {
   return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(patch);
@@ -91,17 +93,6 @@ void reseedQuietly(std::uint32_t seed) {
   ompl::msg::setLogLevel(level);
 }
 
-trajectory::JointPath jointPathOf(const ompl::geometric::PathGeometric& path) {
-  trajectory::JointPath joints;
-  const auto& space = *path.getSpaceInformation()->getStateSpace();
-  for (std::size_t i = 0; i < path.getStateCount(); ++i) {
-    robot::Vector6 q;
-    for (unsigned j = 0; j < 6; ++j) q[j] = *space.getValueAddressAtIndex(path.getState(i), j);
-    joints.push_back(q);
-  }
-  return joints;
-}
-
 // Smallest robot–obstacle distance over the executed motion, sampled every kClearanceSpacing of TCP travel.
 double minClearanceAlong(const trajectory::TimedTrajectory& trajectory, const collision::CollisionModel& model,
                          collision::CollisionData& data) {
@@ -114,6 +105,16 @@ double minClearanceAlong(const trajectory::TimedTrajectory& trajectory, const co
     checkedAt = trajectory.tcpPosition[i];
   }
   return minimum;
+}
+
+// The trajectory metrics as run properties, under their names from the metric table; a metric
+// that was not measured (no obstacle to measure the clearance to) is left out.
+void recordMetrics(const trajectory::TrajectoryMetrics& metrics, ompl::tools::Benchmark::RunProperties& run) {
+  for (const auto& metric : trajectory::metricDescriptors()) {
+    if (metric.member == nullptr || metric.omplProperty.empty()) continue;  // the planner's or OMPL's own
+    const double value = metrics.*metric.member;
+    if (std::isfinite(value)) run[metric.omplProperty] = number(value);
+  }
 }
 
 struct RecordedRun {
@@ -224,12 +225,11 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   const ob::PlannerPtr planner = planners::makePlanner(plannerName, setup.getSpaceInformation(),
                                                        planning.plannerContext(), parameterList(configuration));
   planner->setName(configuration.label);
-  const bool arcPlanner = planners::isArcPlanner(plannerName);
 
   CampaignBenchmark benchmark(setup, experimentName(suite, problem));
   benchmark.addExperimentParameter("suite", "TEXT", suite.name);
   benchmark.addExperimentParameter("problem", "TEXT", problem.name);
-  benchmark.addExperimentParameter("problem kind", "TEXT", problem.kind);
+  benchmark.addExperimentParameter(kProblemKindParameter.name, kProblemKindParameter.type, problem.kind);
   benchmark.addExperimentParameter("problem origin", "TEXT", problem.origin);
   benchmark.addExperimentParameter("query name", "TEXT", problem.query);
   benchmark.addExperimentParameter("vmax", "REAL", number(suite.vMax));
@@ -261,21 +261,18 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   });
   benchmark.setPostRunEvent([&](const ob::PlannerPtr&, ompl::tools::Benchmark::RunProperties& run) {
     run["run seed INTEGER"] = std::to_string(currentSeed);
-    if (run.count("solve time REAL") == 0) run["solve time REAL"] = run["time REAL"];  // OMPL planners
+    // The arc planner reports its own solve time; OMPL planners' is OMPL's "time".
+    const std::string& solveTime = trajectory::metricDescriptor("solve_time_s").omplProperty;
+    if (run.count(solveTime) == 0) run[solveTime] = run["time REAL"];
     bool success = false;
     if (setup.haveExactSolutionPath()) {
       try {
-        const auto path = jointPathOf(setup.getSolutionPath());
+        const trajectory::JointPath path = collision::waypointsOf(setup.getSolutionPath());
         const auto timed = trajectory::scaleToTcpSpeed(collisionModel.robot(), path, scaling);
-        const auto metrics = trajectory::computeMetrics(path, timed);
-        run["tcp path length REAL"] = number(metrics.tcpPathLength);
-        run["execution time REAL"] = number(metrics.executionTime);
-        run["mean tcp speed REAL"] = number(metrics.meanTcpSpeed);
-        run["peak tcp speed REAL"] = number(metrics.peakTcpSpeed);
-        run["time above limit REAL"] = number(metrics.timeAboveLimit);
-        run["max joint speed ratio REAL"] = number(metrics.maxJointSpeedRatio);
+        auto metrics = trajectory::computeMetrics(path, timed);
         const double clearance = minClearanceAlong(timed, collisionModel, collisionData);
-        if (std::isfinite(clearance)) run["min clearance REAL"] = number(clearance);
+        metrics.minClearance = clearance;
+        recordMetrics(metrics, run);
         if (!files.medianRun.empty()) recorded.push_back(recordProfile(currentRun, timed));
         success = true;
       } catch (const Error&) {
@@ -291,7 +288,7 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   ompl::tools::Benchmark::Request request(suite.timeLimit, 4096.0, suite.runs);
   request.displayProgress = false;
   request.saveConsoleOutput = false;
-  request.simplify = !arcPlanner;  // as `arcplan plan` does: the arc path must not be shortcut
+  request.simplify = simplifiesSolution(plannerName);  // as `arcplan plan` does
   benchmark.benchmark(request);
   benchmark.setRecordedSeed(seed);
 

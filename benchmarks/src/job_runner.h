@@ -1,6 +1,6 @@
 #pragma once
 // One campaign job: one planner configuration on one problem, `runs` runs through
-// ompl::tools::Benchmark, the DESIGN.md §6 metrics of every run stored as run properties, and the
+// ompl::tools::Benchmark, the metrics of every run (docs/metrics.md) stored as run properties, and the
 // OMPL log written atomically. Internal to arcplan::benchmarks (campaign.cpp drives it).
 #include <cstdint>
 #include <exception>

@@ -9,6 +9,7 @@
 #include <fcl/narrowphase/distance.h>
 
 #include "arcplan/common/error.h"
+#include "arcplan/common/text_formatting.h"
 #include "model_implementation.h"
 
 namespace arcplan::collision {
@@ -16,6 +17,7 @@ namespace {
 
 using detail::Implementation;
 using detail::Part;
+using detail::Workspace;
 
 // FCL compares surfaces; a part entirely inside the other has no intersecting surfaces, so one
 // point of each is tested against the other's solid as well.
@@ -28,12 +30,28 @@ bool oneInsideOther(const Part& a, const Eigen::Isometry3d& poseA, const Part& b
 
 namespace detail {
 
-void updateRobot(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
+const ModelImplementation& implementationOf(const CollisionModel& model) { return *model.implementation_; }
+Workspace& workspaceOf(CollisionData& data) { return *data.workspace_; }
+
+Workspace::Workspace(const CollisionModel& model)
+    : kinematics(model.robot()),
+      partPoses(implementationOf(model).robotParts.size()),
+      capsuleStarts(implementationOf(model).robotParts.size()),
+      capsuleEnds(implementationOf(model).robotParts.size()),
+      partStamps(implementationOf(model).robotParts.size(), 0),
+      linkCapsuleStarts(model.linkNames().size()),
+      linkCapsuleEnds(model.linkNames().size()),
+      motionPairs(implementationOf(model).groups.size()),
+      motionJoints(model.robot().dof()) {
+  distanceOrder.reserve(implementationOf(model).partPairs.size());
+}
+
+void updateRobot(const CollisionModel& model, Workspace& data, const robot::JointRef& q) {
   if (q.size() != model.robot().dof()) {
     throw Error("collision query: expected " + std::to_string(model.robot().dof()) + " joint values, got " +
                 std::to_string(q.size()));
   }
-  const Implementation& impl = model.implementation();
+  const Implementation& impl = detail::implementationOf(model);
   robot::forwardKinematics(model.robot(), q, data.kinematics);
   ++data.stamp;
   for (std::size_t b = 0; b < impl.linkCapsules.size(); ++b) {
@@ -43,7 +61,7 @@ void updateRobot(const CollisionModel& model, CollisionData& data, const robot::
   }
 }
 
-double linkGap(const Implementation& impl, const CollisionData& data, const Implementation::PairGroup& group) {
+double linkGap(const Implementation& impl, const Workspace& data, const Implementation::PairGroup& group) {
   const int a = group.firstBody;
   const double radius = impl.linkCapsules[a].radius;
   if (group.self) {
@@ -87,7 +105,7 @@ using detail::secondPose;
 using detail::updateRobot;
 
 // Whether the capsule around a whole link already clears the group's other body.
-bool linksApart(const Implementation& impl, const CollisionData& data, const Implementation::PairGroup& group) {
+bool linksApart(const Implementation& impl, const Workspace& data, const Implementation::PairGroup& group) {
   return detail::linkGap(impl, data, group) > 0.0;
 }
 
@@ -102,8 +120,8 @@ bool partsCollide(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, 
   return oneInsideOther(a, poseA, b, poseB);
 }
 
-bool groupCollides(const CollisionModel& model, CollisionData& data, const Implementation::PairGroup& group) {
-  const Implementation& impl = model.implementation();
+bool groupCollides(const CollisionModel& model, Workspace& data, const Implementation::PairGroup& group) {
+  const Implementation& impl = detail::implementationOf(model);
   const bool broadPhase = model.options().broadPhase;
   if (broadPhase && linksApart(impl, data, group)) return false;
   for (const auto& [i, j] : group.parts) {
@@ -139,7 +157,7 @@ const char* toString(BoundingVolume boundingVolume) {
 CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, const Scene& scene,
                                AllowedCollisionMatrix allowed, CollisionModelOptions options)
     : robot_(std::move(robot)), allowed_(std::move(allowed)), options_(options),
-      implementation_(std::make_unique<Implementation>()) {
+      implementation_(std::make_unique<detail::ModelImplementation>()) {
   if (!robot_) throw Error("collision model: no robot model");
   if (options_.distanceBoundingVolume == BoundingVolume::OBB) {
     throw Error("collision model: FCL 0.7 computes no mesh–mesh distance with OBB; use RSS, kIOS or OBBRSS");
@@ -268,22 +286,19 @@ std::shared_ptr<const CollisionModel> makeCollisionModel(const Scene& scene, Col
   return std::make_shared<const CollisionModel>(std::move(robot), scene, std::move(allowed), options);
 }
 
-CollisionData::CollisionData(const CollisionModel& model)
-    : kinematics(model.robot()),
-      partPoses(model.implementation().robotParts.size()),
-      capsuleStarts(model.implementation().robotParts.size()),
-      capsuleEnds(model.implementation().robotParts.size()),
-      partStamps(model.implementation().robotParts.size(), 0),
-      linkCapsuleStarts(model.linkNames().size()),
-      linkCapsuleEnds(model.linkNames().size()),
-      motionPairs(model.implementation().groups.size()),
-      motionJoints(model.robot().dof()) {
-  distanceOrder.reserve(model.implementation().partPairs.size());
+CollisionData::CollisionData(const CollisionModel& model) : workspace_(std::make_unique<detail::Workspace>(model)) {}
+CollisionData::~CollisionData() = default;
+
+std::string describeCollisions(const CollisionReport& report) {
+  std::vector<std::string> pairs;
+  for (const auto& [first, second] : report.collisions) pairs.push_back(first + "–" + second);
+  return joinText(pairs, ", ");
 }
 
-bool isCollisionFree(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
+bool isCollisionFree(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
+  Workspace& data = detail::workspaceOf(workspace);
   updateRobot(model, data, q);
-  const Implementation& impl = model.implementation();
+  const Implementation& impl = detail::implementationOf(model);
   for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
     for (const auto& group : *groups) {
       if (groupCollides(model, data, group)) return false;
@@ -292,9 +307,10 @@ bool isCollisionFree(const CollisionModel& model, CollisionData& data, const rob
   return true;
 }
 
-CollisionReport collide(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
+CollisionReport collide(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
+  Workspace& data = detail::workspaceOf(workspace);
   updateRobot(model, data, q);
-  const Implementation& impl = model.implementation();
+  const Implementation& impl = detail::implementationOf(model);
   CollisionReport report;
   for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
     for (const auto& group : *groups) {
@@ -305,9 +321,10 @@ CollisionReport collide(const CollisionModel& model, CollisionData& data, const 
   return report;
 }
 
-DistanceReport distance(const CollisionModel& model, CollisionData& data, const robot::JointRef& q) {
+DistanceReport distance(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
+  Workspace& data = detail::workspaceOf(workspace);
   updateRobot(model, data, q);
-  const Implementation& impl = model.implementation();
+  const Implementation& impl = detail::implementationOf(model);
   for (std::size_t i = 0; i < impl.robotParts.size(); ++i) ensurePart(impl, data, static_cast<int>(i));
   // Part pairs nearest first by the lower bound their bounding volumes give; a pair whose bound
   // is not below the best distance found so far cannot improve it.

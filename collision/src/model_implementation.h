@@ -1,7 +1,9 @@
 #pragma once
-// CollisionModel's internals, shared by the per-state queries (collision_model.cpp) and the
-// motion checks (motion_check.cpp): the parts, the non-allowed pair groups, the motion bounds, and
-// the building blocks of a query (forward kinematics, bounding-volume gaps, exact part distances).
+// CollisionModel's and CollisionData's internals, shared by the per-state queries
+// (collision_model.cpp) and the motion checks (motion_check.cpp): the parts, the non-allowed pair
+// groups, the motion bounds, the per-thread workspace, and the building blocks of a query (forward
+// kinematics, bounding-volume gaps, exact part distances).
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -10,11 +12,11 @@
 #include "arcplan/collision/collision_model.h"
 #include "parts.h"
 
-namespace arcplan::collision {
+namespace arcplan::collision::detail {
 
 // Robot parts move with their link; obstacle parts are fixed in base_link, so their bounding
 // volumes are precomputed in world coordinates.
-struct CollisionModel::Implementation {
+struct ModelImplementation {
   std::vector<detail::Part> robotParts;  // Part::body indexes linkNames()
   std::vector<int> robotPartLink;        // index into robot().links(), for forward kinematics
   // Per link with geometry (indexed like linkNames()): a capsule around all its parts, in the link
@@ -51,15 +53,37 @@ struct CollisionModel::Implementation {
   std::vector<PartPair> partPairs;
 };
 
-namespace detail {
+using Implementation = ModelImplementation;
 
-using Implementation = CollisionModel::Implementation;
+// What CollisionData holds: link poses, the world poses of the robot's parts and their bounding capsules.
+struct Workspace {
+  explicit Workspace(const CollisionModel& model);
+  robot::KinematicsData kinematics;
+  std::vector<Eigen::Isometry3d> partPoses;
+  std::vector<Eigen::Vector3d> capsuleStarts, capsuleEnds;  // per part
+  // Part poses and capsules are computed when a query first needs them: valid for the current
+  // configuration where partStamps[i] == stamp (incremented by every query).
+  std::vector<std::uint64_t> partStamps;
+  std::uint64_t stamp = 0;
+  std::vector<Eigen::Vector3d> linkCapsuleStarts, linkCapsuleEnds;  // per link with geometry
+  std::vector<std::pair<double, int>> distanceOrder;  // (lower bound, pair) for distance queries
+  // Motion checks (motion_check.h): per non-allowed body pair, how fast its distance can shrink
+  // along the motion [m per unit of the motion's fraction], the fractions before / after which it is
+  // proven apart, and where those certificates were measured.
+  struct MotionPair {
+    double rate = 0.0;
+    double certifiedFromStart = 0.0, certifiedFromEnd = 1.0;
+    double measuredFromStart = 0.0, measuredFromEnd = 1.0;
+  };
+  std::vector<MotionPair> motionPairs;
+  robot::JointVector motionJoints;  // the configuration on the motion being checked
+};
 
 // Forward kinematics and the link capsules; part poses are computed on first use (ensurePart), so
 // a state whose links are far from everything never transforms its parts.
-void updateRobot(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
+void updateRobot(const CollisionModel& model, Workspace& data, const robot::JointRef& q);
 
-inline void ensurePart(const Implementation& impl, CollisionData& data, int i) {
+inline void ensurePart(const Implementation& impl, Workspace& data, int i) {
   if (data.partStamps[i] == data.stamp) return;
   const Part& part = impl.robotParts[i];
   data.partPoses[i] = data.kinematics.linkPoses[impl.robotPartLink[i]] * part.offset;
@@ -82,7 +106,7 @@ inline double obstacleGap(const Implementation& impl, const Eigen::Vector3d& sta
 
 // Lower bound of the distance between robot part i and part j (robot part if `self`, else obstacle
 // part) from their bounding volumes; <= 0 when the volumes overlap.
-inline double boundGap(const Implementation& impl, CollisionData& data, int i, int j, bool self) {
+inline double boundGap(const Implementation& impl, Workspace& data, int i, int j, bool self) {
   ensurePart(impl, data, i);
   const double radius = impl.robotParts[i].capsule.radius;
   if (!self) return obstacleGap(impl, data.capsuleStarts[i], data.capsuleEnds[i], radius, j);
@@ -93,7 +117,7 @@ inline double boundGap(const Implementation& impl, CollisionData& data, int i, i
 
 // Lower bound of the distance between the group's two bodies from the capsule around its link
 // (and the obstacle parts' bounds); <= 0 when they overlap.
-double linkGap(const Implementation& impl, const CollisionData& data, const Implementation::PairGroup& group);
+double linkGap(const Implementation& impl, const Workspace& data, const Implementation::PairGroup& group);
 
 // Distance between two parts (0 when they touch or one is inside the other).
 double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
@@ -103,7 +127,7 @@ inline const Part& secondPart(const Implementation& impl, const Implementation::
   return group.self ? impl.robotParts[j] : impl.obstacleParts[j];
 }
 
-inline const Eigen::Isometry3d& secondPose(const Implementation& impl, const CollisionData& data,
+inline const Eigen::Isometry3d& secondPose(const Implementation& impl, const Workspace& data,
                                            const Implementation::PairGroup& group, int j) {
   return group.self ? data.partPoses[j] : impl.obstacleParts[j].offset;
 }
@@ -111,5 +135,4 @@ inline const Eigen::Isometry3d& secondPose(const Implementation& impl, const Col
 // Fills impl.jointReach, impl.movedBy and every group's relativeReach (motion_check.cpp).
 void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl);
 
-}  // namespace detail
-}  // namespace arcplan::collision
+}  // namespace arcplan::collision::detail

@@ -8,6 +8,7 @@
 
 #include "arcplan/common/error.h"
 #include "model_implementation.h"
+#include "motion_bounds.h"
 
 namespace arcplan::collision {
 namespace {
@@ -99,9 +100,9 @@ struct PairMeasurement {
 // UR10e the capsules are tight enough that exact distances for larger bounds cost more (2.5 µs per
 // GJK call) than the steps they save: below 2 cm they made the long motions of
 // perf/perf_collision.cpp 2–2.4x slower.
-PairMeasurement measurePair(const CollisionModel& model, CollisionData& data, const Implementation::PairGroup& group,
+PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data, const Implementation::PairGroup& group,
                             double wanted, double minimumClearance) {
-  const Implementation& impl = model.implementation();
+  const Implementation& impl = detail::implementationOf(model);
   double gap = detail::linkGap(impl, data, group);
   if (gap >= wanted) return {gap, false};
   double partGap = kInfinity;
@@ -132,14 +133,14 @@ PairMeasurement measurePair(const CollisionModel& model, CollisionData& data, co
 // s + g/rate)); it is done when the two overlap. The front on each side is the smallest
 // certificate of the pairs not done, and the pairs whose certificate ends there (or soon after)
 // are measured there.
-bool certifiedMotionFree(const CollisionModel& model, CollisionData& data, const robot::JointRef& qa,
+bool certifiedMotionFree(const CollisionModel& model, detail::Workspace& data, const robot::JointRef& qa,
                          const robot::JointRef& qb, double* lastValidFraction, double minimumClearance) {
-  const Implementation& impl = model.implementation();
+  const Implementation& impl = detail::implementationOf(model);
   auto& pairs = data.motionPairs;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     pairs[k] = {impl.groups[k]->relativeReach.dot((qb - qa).cwiseAbs()), 0.0, 1.0, 0.0, 1.0};
   }
-  const auto done = [](const CollisionData::MotionPair& pair) {
+  const auto done = [](const detail::Workspace::MotionPair& pair) {
     return pair.certifiedFromStart > pair.certifiedFromEnd;
   };
   const bool bothEnds = lastValidFraction == nullptr;
@@ -190,8 +191,9 @@ bool discreteMotionFree(const CollisionModel& model, CollisionData& data, const 
   const int segments = discreteSegmentCount(qa, qb, maxJointStep);
   const auto freeAt = [&](int k) {
     if (k == segments) return isCollisionFree(model, data, qb);
-    data.motionJoints = qa + (static_cast<double>(k) / segments) * (qb - qa);
-    return isCollisionFree(model, data, data.motionJoints);
+    robot::JointVector& q = detail::workspaceOf(data).motionJoints;
+    q = qa + (static_cast<double>(k) / segments) * (qb - qa);
+    return isCollisionFree(model, data, q);
   };
   if (lastValidFraction != nullptr) {
     for (int k = 1; k <= segments; ++k) {
@@ -298,24 +300,24 @@ bool isMotionCollisionFree(const CollisionModel& model, CollisionData& data, con
   if (options.method == MotionCheck::Discrete) {
     return discreteMotionFree(model, data, qa, qb, lastValidFraction, options.maxJointStep);
   }
-  return certifiedMotionFree(model, data, qa, qb, lastValidFraction, options.minimumClearance);
+  return certifiedMotionFree(model, detail::workspaceOf(data), qa, qb, lastValidFraction, options.minimumClearance);
 }
 
 PathCertifier::PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance)
     : model_(model), data_(data), minimumClearance_(minimumClearance) {
   validate(MotionCheckOptions{MotionCheck::Certified, 0.01, minimumClearance});
-  budget_.resize(model.implementation().groups.size());
+  budget_.resize(detail::implementationOf(model).groups.size());
   used_.resize(budget_.size());
   bound_.resize(budget_.size());
 }
 
 bool PathCertifier::anchorAll(const robot::JointRef& q) {
-  const Implementation& impl = model_.implementation();
-  detail::updateRobot(model_, data_, q);
+  const Implementation& impl = detail::implementationOf(model_);
+  detail::updateRobot(model_, detail::workspaceOf(data_), q);
   ++measurements_;
   for (std::size_t k = 0; k < budget_.size(); ++k) {
     // The capsule bounds are taken as soon as they reach a few centimetres: enough for several waypoints.
-    const PairMeasurement measured = measurePair(model_, data_, *impl.groups[k], 0.05, minimumClearance_);
+    const PairMeasurement measured = measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], 0.05, minimumClearance_);
     if (measured.tooClose) return false;
     budget_[k] = measured.gap;
     used_[k] = 0.0;
@@ -331,7 +333,7 @@ bool PathCertifier::start(const robot::JointRef& q) {
 
 bool PathCertifier::extend(const robot::JointRef& q) {
   checkJoints(model_, last_, q);
-  const Implementation& impl = model_.implementation();
+  const Implementation& impl = detail::implementationOf(model_);
   step_ = (q - last_).cwiseAbs();
   bool remeasured = false;
   for (std::size_t k = 0; k < budget_.size(); ++k) {
@@ -340,19 +342,19 @@ bool PathCertifier::extend(const robot::JointRef& q) {
     // This pair's clearance at its anchor does not cover the motion: measure it again at the
     // motion's start (one forward kinematics for every pair that needs it).
     if (!remeasured) {
-      detail::updateRobot(model_, data_, last_);
+      detail::updateRobot(model_, detail::workspaceOf(data_), last_);
       ++measurements_;
       remeasured = true;
     }
     const PairMeasurement measured =
-        measurePair(model_, data_, *impl.groups[k], std::max(bound_[k], minimumClearance_), minimumClearance_);
+        measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], std::max(bound_[k], minimumClearance_), minimumClearance_);
     if (measured.tooClose) return false;
     budget_[k] = measured.gap;
     used_[k] = 0.0;
     if (bound_[k] >= budget_[k]) {
       // Not even this one motion: advance along it conservatively, then start afresh at its end.
       ++measurements_;
-      if (!certifiedMotionFree(model_, data_, last_, q, nullptr, minimumClearance_)) return false;
+      if (!certifiedMotionFree(model_, detail::workspaceOf(data_), last_, q, nullptr, minimumClearance_)) return false;
       return anchorAll(q);
     }
   }
@@ -369,7 +371,7 @@ int discreteSegmentCount(const robot::JointRef& qa, const robot::JointRef& qb, d
 double motionBound(const CollisionModel& model, int body, const robot::JointRef& qa, const robot::JointRef& qb) {
   checkJoints(model, qa, qb);
   checkBody(model, body);
-  return model.implementation().jointReach.row(body).transpose().dot((qb - qa).cwiseAbs());
+  return detail::implementationOf(model).jointReach.row(body).transpose().dot((qb - qa).cwiseAbs());
 }
 
 double relativeMotionBound(const CollisionModel& model, int body, int otherBody, const robot::JointRef& qa,
@@ -377,7 +379,7 @@ double relativeMotionBound(const CollisionModel& model, int body, int otherBody,
   checkJoints(model, qa, qb);
   checkBody(model, body);
   checkBody(model, otherBody);
-  return relativeReach(model.implementation(), body, otherBody).dot((qb - qa).cwiseAbs());
+  return relativeReach(detail::implementationOf(model), body, otherBody).dot((qb - qa).cwiseAbs());
 }
 
 }  // namespace arcplan::collision

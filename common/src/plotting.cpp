@@ -2,11 +2,23 @@
 
 #include <cstdlib>
 #include <mutex>
+#include <string_view>
 
 #include "arcplan/common/process.h"
 #include "arcplan/common/resources.h"
+#include "arcplan/common/text_parsing.h"
 
 namespace arcplan {
+namespace {
+
+// The last non-blank line of a program's output: Python's exception message ends its traceback.
+std::string_view lastLine(std::string_view output) {
+  output = trim(output);
+  const auto newline = output.find_last_of('\n');
+  return newline == std::string_view::npos ? output : trim(output.substr(newline + 1));
+}
+
+}  // namespace
 
 std::optional<std::string> findMatplotlibPython() {
   static std::once_flag once;
@@ -36,8 +48,13 @@ PlotOutcome runPlotScript(const std::string& script, const std::vector<std::stri
   const auto path = plotScriptDirectory() / script;
   std::vector<std::string> argv{*python, path.string()};
   argv.insert(argv.end(), arguments.begin(), arguments.end());
-  const int status = runProcess(argv).exitCode;
-  if (status != 0) return {false, "plot script " + path.string() + " failed (exit " + std::to_string(status) + ")"};
+  // Captured, so that a failing script costs the user one line (its error) instead of a traceback.
+  const ProcessResult result = runProcess(argv, ProcessOutput::Capture);
+  if (result.exitCode != 0) {
+    const std::string_view reason = lastLine(result.output);
+    return {false, script + " failed (exit " + std::to_string(result.exitCode) + ")" +
+                       (reason.empty() ? std::string() : ": " + std::string(reason))};
+  }
   return {true, {}};
 }
 

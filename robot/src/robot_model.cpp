@@ -12,6 +12,7 @@
 
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
+#include "arcplan/common/text_formatting.h"
 #include "arcplan/robot/package_path.h"
 #include "arcplan/robot/pose.h"
 
@@ -102,29 +103,11 @@ std::string knownLinks(const urdf::ModelInterface& urdf) {
   std::vector<std::string> names;
   for (const auto& [name, link] : urdf.links_) names.push_back(name);
   std::sort(names.begin(), names.end());
-  std::string text;
-  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
+  return joinText(names, ", ");
 }
 
-}  // namespace
-
-int RobotModel::linkIndex(const std::string& linkName) const {
-  for (std::size_t i = 0; i < links_.size(); ++i) {
-    if (links_[i].name == linkName) return static_cast<int>(i);
-  }
-  std::string names;
-  for (const auto& link : links_) names += (names.empty() ? "" : ", ") + link.name;
-  throw Error("unknown link '" + linkName + "' in robot '" + name_ + "' (links: " + names + ")");
-}
-
-bool RobotModel::hasLink(const std::string& linkName) const {
-  return std::any_of(links_.begin(), links_.end(), [&](const Link& l) { return l.name == linkName; });
-}
-
-RobotModel parseRobotModel(const std::string& urdfXml, const std::filesystem::path& sourceFile,
-                           const ChainSelection& chain) {
-  // Syntax first, with TinyXML (urdfdom's own XML parser) so the message has a line and column.
+// Syntax first, with TinyXML (urdfdom's own XML parser), so that the message has a line and column.
+void checkXmlSyntax(const std::string& urdfXml, const std::filesystem::path& sourceFile) {
   TiXmlDocument document;
   document.Parse(urdfXml.c_str());
   if (document.Error()) {
@@ -133,99 +116,141 @@ RobotModel parseRobotModel(const std::string& urdfXml, const std::filesystem::pa
             << ": malformed XML: " << document.ErrorDesc();
     throw Error(message.str());
   }
+}
 
-  urdf::ModelInterfaceSharedPtr urdf;
-  {
-    std::lock_guard<std::mutex> lock(consoleBridgeMutex);
-    CollectingOutputHandler handler;
-    console_bridge::useOutputHandler(&handler);
-    urdf = urdf::parseURDF(urdfXml);
-    console_bridge::restorePreviousOutputHandler();
-    if (!urdf) {
-      std::string details;
-      for (const auto& m : handler.messages) details += (details.empty() ? "" : "; ") + m;
-      throw Error(where(sourceFile) + ": invalid URDF: " + (details.empty() ? "urdfdom rejected it" : details));
-    }
+// urdfdom reports why it rejects a description through console_bridge; those messages go into ours.
+urdf::ModelInterfaceSharedPtr parseUrdf(const std::string& urdfXml, const std::filesystem::path& sourceFile) {
+  std::lock_guard<std::mutex> lock(consoleBridgeMutex);
+  CollectingOutputHandler handler;
+  console_bridge::useOutputHandler(&handler);
+  urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(urdfXml);
+  console_bridge::restorePreviousOutputHandler();
+  if (!urdf) {
+    const std::string details = joinText(handler.messages, "; ");
+    throw Error(where(sourceFile) + ": invalid URDF: " + (details.empty() ? "urdfdom rejected it" : details));
   }
+  return urdf;
+}
 
-  const auto base = urdf->getLink(chain.baseLink);
-  if (!base) throw Error(where(sourceFile) + ": base link '" + chain.baseLink + "' not found (links: " + knownLinks(*urdf) + ")");
-  const auto tip = urdf->getLink(chain.tipLink);
-  if (!tip) throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' not found (links: " + knownLinks(*urdf) + ")");
-
-  // The moving chain: walk up from the tip to the base. urdfdom accepts links whose joints form a
-  // loop away from the root (found by fuzzing), so the walk is bounded by the number of links.
-  std::vector<urdf::LinkConstSharedPtr> chainLinks;
+// The moving chain, base first: a walk up from the tip to the base. urdfdom accepts links whose
+// joints form a loop away from the root (found by fuzzing), so the walk is bounded by the link count.
+std::vector<urdf::LinkConstSharedPtr> chainLinks(const urdf::ModelInterface& urdf, const ChainSelection& chain,
+                                                 const std::filesystem::path& sourceFile) {
+  const auto base = urdf.getLink(chain.baseLink);
+  if (!base) throw Error(where(sourceFile) + ": base link '" + chain.baseLink + "' not found (links: " + knownLinks(urdf) + ")");
+  const auto tip = urdf.getLink(chain.tipLink);
+  if (!tip) throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' not found (links: " + knownLinks(urdf) + ")");
+  std::vector<urdf::LinkConstSharedPtr> links;
   for (urdf::LinkConstSharedPtr link = tip; link; link = link->getParent()) {
-    if (chainLinks.size() > urdf->links_.size()) {
+    if (links.size() > urdf.links_.size()) {
       throw Error(where(sourceFile) + ": the joints above tip link '" + chain.tipLink + "' form a loop");
     }
-    chainLinks.push_back(link);
+    links.push_back(link);
     if (link->name == chain.baseLink) break;
   }
-  if (chainLinks.back()->name != chain.baseLink) {
+  if (links.back()->name != chain.baseLink) {
     throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' is not below base link '" + chain.baseLink + "'");
   }
-  std::reverse(chainLinks.begin(), chainLinks.end());
+  std::reverse(links.begin(), links.end());
+  return links;
+}
+
+// A revolute joint's limits; continuous joints (and revolute ones without limits) get ±2π.
+JointLimits limitsOf(const urdf::Joint& joint, const std::filesystem::path& sourceFile) {
+  JointLimits limits;
+  if (joint.type == urdf::Joint::CONTINUOUS || !joint.limits) {
+    limits.lower = -2.0 * M_PI;
+    limits.upper = 2.0 * M_PI;
+  } else {
+    limits.lower = joint.limits->lower;
+    limits.upper = joint.limits->upper;
+  }
+  if (joint.limits) {
+    limits.velocity = joint.limits->velocity;
+    limits.effort = joint.limits->effort;
+  }
+  if (limits.lower > limits.upper) {
+    throw Error(where(sourceFile) + ": joint '" + joint.name + "' has lower limit above upper limit");
+  }
+  return limits;
+}
+
+// Links and joints in the order RobotModel keeps them: every link after its parent.
+struct ChainBuilder {
+  std::filesystem::path sourceFile;
+  std::vector<Link> links;
+  std::vector<Joint> joints;
+  std::map<std::string, int> indexOf;
+
+  void add(const urdf::Link& source, int parent) {
+    Link link = convertLink(source, sourceFile);
+    link.parent = parent;
+    if (parent >= 0) attach(link, *source.parent_joint);
+    indexOf[source.name] = static_cast<int>(links.size());
+    links.push_back(std::move(link));
+  }
+
+  // The joint that moves `link` relative to its parent: revolute and continuous joints are the
+  // robot's joints, fixed joints only place the link.
+  void attach(Link& link, const urdf::Joint& joint) {
+    link.originInParent = toIsometry(joint.parent_to_joint_origin_transform);
+    if (joint.type == urdf::Joint::FIXED) return;
+    if (joint.type != urdf::Joint::REVOLUTE && joint.type != urdf::Joint::CONTINUOUS) {
+      throw Error(where(sourceFile) + ": joint '" + joint.name +
+                  "' on the chain is neither revolute, continuous nor fixed (arcplan supports serial revolute arms)");
+    }
+    link.axis = Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z);
+    if (link.axis.norm() < 1e-12) throw Error(where(sourceFile) + ": joint '" + joint.name + "' has a zero axis");
+    link.axis.normalize();
+    link.joint = static_cast<int>(joints.size());
+    joints.push_back({joint.name, static_cast<int>(links.size()), limitsOf(joint, sourceFile)});
+  }
+
+  // Links rigidly attached to the chain (through fixed joints only) move with it: added
+  // breadth-first so parents come before children.
+  void addFixedChildren(const urdf::ModelInterface& urdf) {
+    for (std::size_t next = 0; next < links.size(); ++next) {
+      for (const auto& child : urdf.getLink(links[next].name)->child_links) {
+        if (indexOf.count(child->name) != 0) continue;
+        if (child->parent_joint && child->parent_joint->type == urdf::Joint::FIXED) add(*child, static_cast<int>(next));
+      }
+    }
+  }
+};
+
+}  // namespace
+
+int RobotModel::linkIndex(const std::string& linkName) const {
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    if (links_[i].name == linkName) return static_cast<int>(i);
+  }
+  std::vector<std::string> names;
+  for (const auto& link : links_) names.push_back(link.name);
+  throw Error("unknown link '" + linkName + "' in robot '" + name_ + "' (links: " + joinText(names, ", ") + ")");
+}
+
+bool RobotModel::hasLink(const std::string& linkName) const {
+  return std::any_of(links_.begin(), links_.end(), [&](const Link& l) { return l.name == linkName; });
+}
+
+RobotModel parseRobotModel(const std::string& urdfXml, const std::filesystem::path& sourceFile,
+                           const ChainSelection& chain) {
+  checkXmlSyntax(urdfXml, sourceFile);
+  const urdf::ModelInterfaceSharedPtr urdf = parseUrdf(urdfXml, sourceFile);
+  const auto chainSources = chainLinks(*urdf, chain, sourceFile);
+
+  ChainBuilder builder{sourceFile, {}, {}, {}};
+  for (std::size_t i = 0; i < chainSources.size(); ++i) {
+    builder.add(*chainSources[i], i == 0 ? -1 : builder.indexOf.at(chainSources[i - 1]->name));
+  }
+  builder.addFixedChildren(*urdf);
 
   RobotModel model;
   model.name_ = urdf->getName();
   model.sourceFile_ = sourceFile;
-  std::map<std::string, int> indexOf;
-
-  auto addLink = [&](const urdf::Link& source, int parent) {
-    Link link = convertLink(source, sourceFile);
-    link.parent = parent;
-    if (parent >= 0) {
-      const auto& joint = *source.parent_joint;
-      link.originInParent = toIsometry(joint.parent_to_joint_origin_transform);
-      if (joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::CONTINUOUS) {
-        link.axis = Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z);
-        if (link.axis.norm() < 1e-12) throw Error(where(sourceFile) + ": joint '" + joint.name + "' has a zero axis");
-        link.axis.normalize();
-        Joint moving;
-        moving.name = joint.name;
-        moving.link = static_cast<int>(model.links_.size());
-        if (joint.type == urdf::Joint::CONTINUOUS || !joint.limits) {
-          moving.limits.lower = -2.0 * M_PI;
-          moving.limits.upper = 2.0 * M_PI;
-        } else {
-          moving.limits.lower = joint.limits->lower;
-          moving.limits.upper = joint.limits->upper;
-        }
-        if (joint.limits) {
-          moving.limits.velocity = joint.limits->velocity;
-          moving.limits.effort = joint.limits->effort;
-        }
-        if (moving.limits.lower > moving.limits.upper) {
-          throw Error(where(sourceFile) + ": joint '" + joint.name + "' has lower limit above upper limit");
-        }
-        link.joint = static_cast<int>(model.joints_.size());
-        model.joints_.push_back(moving);
-      } else if (joint.type != urdf::Joint::FIXED) {
-        throw Error(where(sourceFile) + ": joint '" + joint.name +
-                    "' on the chain is neither revolute, continuous nor fixed (arcplan supports serial revolute arms)");
-      }
-    }
-    indexOf[source.name] = static_cast<int>(model.links_.size());
-    model.links_.push_back(std::move(link));
-  };
-
-  for (std::size_t i = 0; i < chainLinks.size(); ++i) {
-    addLink(*chainLinks[i], i == 0 ? -1 : indexOf.at(chainLinks[i - 1]->name));
-  }
-  // Links rigidly attached to the chain (through fixed joints only) move with it: add them too,
-  // breadth-first so parents come before children.
-  for (std::size_t next = 0; next < model.links_.size(); ++next) {
-    const auto source = urdf->getLink(model.links_[next].name);
-    for (const auto& child : source->child_links) {
-      if (indexOf.count(child->name) != 0) continue;
-      if (child->parent_joint && child->parent_joint->type == urdf::Joint::FIXED) {
-        addLink(*child, static_cast<int>(next));
-      }
-    }
-  }
-  model.tipLink_ = indexOf.at(chain.tipLink);
+  model.links_ = std::move(builder.links);
+  model.joints_ = std::move(builder.joints);
+  model.tipLink_ = builder.indexOf.at(chain.tipLink);
   return model;
 }
 

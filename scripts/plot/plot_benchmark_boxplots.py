@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Box plots of the DESIGN.md §6 metrics per planner from an OMPL benchmark database.
+"""Box plots of the trajectory metrics (docs/metrics.md) per planner from an OMPL benchmark database.
 
 Reads the SQLite file ompl_benchmark_statistics builds (runs, experiments, plannerConfigs) and draws one
 figure with a panel per metric and a box per planner, over the successful runs (exact solution with
@@ -7,6 +7,10 @@ metrics). Tick labels show successes/runs, so a planner that rarely succeeds is 
 
     plot_benchmark_boxplots.py --db benchmark.db --out boxplots_all.png [--problem thesis/obstacle]
                                [--order arc-auto,RRTConnect,...] [--title TEXT]
+                               --metric "execution time (s)" execution_time [--metric LABEL COLUMNS]...
+
+The metrics come from the caller (arcplan passes its metric table, trajectory/metric_descriptors.h): one
+panel per --metric, with its label and its database columns (comma-separated; the first non-NULL wins).
 """
 import argparse
 import sqlite3
@@ -18,20 +22,6 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from plot_benchmark_data import planner_order  # noqa: E402
-
-# (label, SQL expression over the runs table; columns that may be absent are handled below)
-METRICS = [
-    ("execution time (s)", ["execution_time"]),
-    ("TCP path length (m)", ["tcp_path_length"]),
-    ("solve time (s)", ["solve_time"]),
-    ("joint path length (rad)", ["simplified_solution_length", "solution_length"]),
-    ("mean TCP speed (m/s)", ["mean_tcp_speed"]),
-    ("peak TCP speed (m/s)", ["peak_tcp_speed"]),
-    ("time above limit (s)", ["time_above_limit"]),
-    ("min clearance (m)", ["min_clearance"]),
-    ("max joint speed ratio", ["max_joint_speed_ratio"]),
-]
-
 
 def strip_prefix(name):
     for prefix in ("geometric_", "control_"):
@@ -47,7 +37,10 @@ def main():
     parser.add_argument("--problem", help="experiment name; all problems pooled when absent")
     parser.add_argument("--order", default="", help="comma-separated planner order (e.g. the ranking)")
     parser.add_argument("--title", default="")
+    parser.add_argument("--metric", nargs=2, action="append", required=True, metavar=("LABEL", "COLUMNS"),
+                        help="a panel: its label and database columns (comma-separated, first non-NULL wins)")
     args = parser.parse_args()
+    metrics = [(label, columns.split(",")) for label, columns in args.metric]
 
     connection = sqlite3.connect(args.db)
     columns = {row[1] for row in connection.execute("PRAGMA table_info(runs)")}
@@ -55,7 +48,7 @@ def main():
         print("plot_benchmark_boxplots: no run in %s has metrics (nothing solved)" % args.db, file=sys.stderr)
         return 1
     expressions = []
-    for _, candidates in METRICS:
+    for _, candidates in metrics:
         present = [c for c in candidates if c in columns]
         expressions.append("NULL" if not present else present[0] if len(present) == 1
                            else "COALESCE(%s)" % ", ".join(present))
@@ -71,7 +64,7 @@ def main():
     for row in connection.execute(query, parameters):
         planner = strip_prefix(row[0])
         runs[planner] = runs.get(planner, 0) + 1
-        values.setdefault(planner, [[] for _ in METRICS])
+        values.setdefault(planner, [[] for _ in metrics])
         if row[1] == 1 and row[2] is not None:
             successes[planner] = successes.get(planner, 0) + 1
             for i, value in enumerate(row[3:]):
@@ -85,9 +78,9 @@ def main():
     labels = ["%s\n%d/%d" % (p, successes.get(p, 0), runs[p]) for p in order]
 
     columns_per_row = 3
-    rows = (len(METRICS) + columns_per_row - 1) // columns_per_row
+    rows = (len(metrics) + columns_per_row - 1) // columns_per_row
     figure, axes = plt.subplots(rows, columns_per_row, figsize=(6.0 * columns_per_row, 4.2 * rows), squeeze=False)
-    for index, (label, _) in enumerate(METRICS):
+    for index, (label, _) in enumerate(metrics):
         axis = axes[index // columns_per_row][index % columns_per_row]
         data = [values[p][index] for p in order]
         positions = [i + 1 for i, d in enumerate(data) if d]
@@ -98,7 +91,7 @@ def main():
         axis.set_xlim(0.5, len(order) + 0.5)
         axis.set_title(label, fontsize=10)
         axis.grid(axis="y", color="lightgrey", linewidth=0.5)
-    for index in range(len(METRICS), rows * columns_per_row):
+    for index in range(len(metrics), rows * columns_per_row):
         axes[index // columns_per_row][index % columns_per_row].axis("off")
     title = args.title or ("problem " + args.problem if args.problem else "all problems")
     figure.suptitle(title + " — successful runs (labels: successes/runs)", fontsize=12)

@@ -138,7 +138,7 @@ TEST(BenchCommand, DatabaseIsBuiltByOmplBenchmarkStatisticsFromTheLogs) {
   }
   EXPECT_EQ(perProblem["thesis/straight"], 5);
   EXPECT_EQ(perProblem["thesis/obstacle"], 5);
-  // The DESIGN.md §6 metrics are run properties, hence columns of the runs table.
+  // The metrics of docs/metrics.md are run properties, hence columns of the runs table.
   const auto columns = columnsOf(db, "runs");
   for (const char* column : {"tcp_path_length", "execution_time", "solve_time", "mean_tcp_speed", "peak_tcp_speed",
                              "time_above_limit", "min_clearance", "max_joint_speed_ratio", "run_seed", "solution_length",
@@ -195,7 +195,7 @@ TEST(BenchCommand, ArcPlannerSolvesTheThesisCasesDeterministically) {
       EXPECT_LE(straight[4], other[4] + 1e-9) << key.second;
     }
   }
-  // Case (b): the densely sampled arc path converges to the analytic lengths of DESIGN.md §4 (a polyline
+  // Case (b): the densely sampled arc path converges to the analytic lengths of docs/planners.md (a polyline
   // through points of an arc is slightly shorter).
   for (const auto& [arc, analytic] : {std::pair{"geometric_arc-h1.00r", 0.9920}, {"geometric_arc-h0.50r", 0.8825}}) {
     const double length = stats.at({"thesis/obstacle", arc})[2];
@@ -398,24 +398,25 @@ TEST(BenchCommand, InterruptingTheParentStopsItsWorkerProcesses) {
 struct BadInput {
   std::vector<std::string> arguments;
   std::string expected;
+  int exitCode;  // docs/cli.md: 1 bad input, 2 a wrong command line
 };
 
 TEST(BenchCommand, BadInputIsRefusedBeforeAnythingIsWritten) {
   const auto dir = freshTempDirectory("bench_bad");
   const auto out = (dir / "out").string();
   const std::vector<BadInput> cases{
-      {{"bench", "--suite", "nowhere", "--out", out}, "built-in: generated, thesis"},
-      {{"bench", "--shard", "3/2", "--out", out}, "--shard: '3/2'"},
-      {{"bench", "--runs", "0", "--out", out}, "--runs must be at least 1"},
-      {{"bench", "--time", "0", "--out", out}, "--time must be a positive"},
-      {{"bench", "--vmax", "-1", "--out", out}, "--vmax must be a positive"},
-      {{"bench", "--workers", "0", "--out", out}, "--workers must be at least 1"},
-      {{"bench", "--planners", "RRTConnect,NoSuchPlanner", "--runs", "1", "--out", out}, "NoSuchPlanner"},
+      {{"bench", "--suite", "nowhere", "--out", out}, "built-in: generated, thesis", 1},
+      {{"bench", "--shard", "3/2", "--out", out}, "--shard: '3/2'", 2},
+      {{"bench", "--runs", "0", "--out", out}, "--runs must be at least 1", 2},
+      {{"bench", "--time", "0", "--out", out}, "--time must be a positive", 2},
+      {{"bench", "--vmax", "-1", "--out", out}, "--vmax must be a positive", 2},
+      {{"bench", "--workers", "0", "--out", out}, "--workers must be at least 1", 2},
+      {{"bench", "--planners", "RRTConnect,NoSuchPlanner", "--runs", "1", "--out", out}, "NoSuchPlanner", 1},
   };
   for (const auto& bad : cases) {
     SCOPED_TRACE(bad.arguments[1] + " " + bad.arguments[2]);
     const auto result = runArcplan(bad.arguments);
-    EXPECT_EQ(result.exitCode, 1) << result.err;
+    EXPECT_EQ(result.exitCode, bad.exitCode) << result.err;
     EXPECT_NE(result.err.find("arcplan: error: "), std::string::npos) << result.err;
     EXPECT_NE(result.err.find(bad.expected), std::string::npos) << result.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out"));

@@ -16,12 +16,14 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "arcplan/collision/joint_states.h"
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/mesh.h"
+#include "motion_bounds.h"  // collision/src: the bounds behind the certified check
 
 namespace {
 
@@ -413,9 +415,7 @@ TEST(CertifiedMotionCheck, RrtConnectPathsPassTheFineCheck) {
     const auto& path = setup.getSolutionPath();
     CollisionData data(*model);
     for (std::size_t k = 1; k < path.getStateCount(); ++k) {
-      const auto* a = path.getState(k - 1)->as<ob::RealVectorStateSpace::StateType>()->values;
-      const auto* b = path.getState(k)->as<ob::RealVectorStateSpace::StateType>()->values;
-      EXPECT_FALSE(firstCollision(*model, data, Eigen::Map<const VectorXd>(a, 6), Eigen::Map<const VectorXd>(b, 6)))
+      EXPECT_FALSE(firstCollision(*model, data, jointsOf(path.getState(k - 1), 6), jointsOf(path.getState(k), 6)))
           << name << " motion " << k;
     }
   }

@@ -55,6 +55,7 @@ TEST(RobotCheckCommand, QueryChecksStartAndGoal) {
 
 struct BadInput {
   std::string name, sceneText, extraArgument, expectedMessage;
+  int exitCode = 1;  // docs/cli.md: 1 for a scene arcplan cannot use, 2 for a wrong command line
 };
 
 TEST(RobotCheckCommand, BadInputGivesOneClearLineAndNoOutputFile) {
@@ -73,8 +74,8 @@ TEST(RobotCheckCommand, BadInputGivesOneClearLineAndNoOutputFile) {
        "mesh.file:"},
       {"link", header + "allowed_collisions:\n  - [table, wrist_7_link]\n", "", "unknown link or obstacle 'table'"},
       {"query", header, "--query=Z", "has no queries"},
-      {"joints", header, "--joints=1,2,3", "--joints"},
-      {"limits", header, "--joints=0,0,4,0,0,0", "outside its limits"},
+      {"joints", header, "--joints=1,2,3", "--joints", 2},
+      {"limits", header, "--joints=0,0,4,0,0,0", "outside its limits", 2},
   };
   for (const auto& bad : cases) {
     const auto dir = freshTempDirectory("check_bad_" + bad.name);
@@ -83,7 +84,8 @@ TEST(RobotCheckCommand, BadInputGivesOneClearLineAndNoOutputFile) {
     const auto jsonFile = dir / "out.json";
     const std::string selection = bad.extraArgument.empty() ? "--joints=" + kSolutionA : bad.extraArgument;
     const auto result = runArcplan({"robot", "check", "--scene", sceneFile.string(), selection, "--json", jsonFile.string()});
-    EXPECT_EQ(result.exitCode, 1) << bad.name << ": " << result.err;
+    EXPECT_EQ(result.exitCode, bad.exitCode) << bad.name << ": " << result.err;
+    EXPECT_EQ(result.out, "") << bad.name << ": nothing is printed before the inputs are checked";
     EXPECT_EQ(result.err.rfind("arcplan: error: ", 0), 0u) << bad.name << ": " << result.err;
     EXPECT_NE(result.err.find(bad.expectedMessage), std::string::npos) << bad.name << ": " << result.err;
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << bad.name << ": " << result.err;
@@ -107,7 +109,7 @@ TEST(RobotCheckCommand, UnknownSceneFileAndUnknownQuery) {
   EXPECT_EQ(query.exitCode, 1);
   EXPECT_NE(query.err.find("has no query 'B_to_A'; queries: A_to_B"), std::string::npos) << query.err;
   const auto both = runArcplan({"robot", "check", "--scene", thesisScene(), "--query", "A_to_B", "--joints=" + kSolutionA});
-  EXPECT_EQ(both.exitCode, 1);
+  EXPECT_EQ(both.exitCode, 2);
   EXPECT_NE(both.err.find("exactly one of --joints or --query"), std::string::npos) << both.err;
 }
 

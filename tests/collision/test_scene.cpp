@@ -1,4 +1,4 @@
-// Scene files (DESIGN.md §7): the thesis scenes as the issue states them, and every kind of bad
+// Scene files (docs/formats.md): the thesis scenes as the issue states them, and every kind of bad
 // input with a message that names the file, the line and the field.
 #include <cmath>
 #include <fstream>

@@ -37,6 +37,7 @@ struct BadInput {
   std::string name;  // of the test case
   std::vector<std::string> arguments;
   std::string expectedMessage;
+  int exitCode;  // docs/cli.md: 2 for a wrong command line, 1 for input arcplan cannot use
 };
 
 // Names the case in test listings (gtest would dump the struct's bytes).
@@ -50,7 +51,7 @@ TEST_P(RobotCommandBadInput, OneClearLineAndNonZeroExit) {
   arguments.push_back("--json");
   arguments.push_back((dir / "out.json").string());
   const auto result = runArcplan(arguments);
-  EXPECT_NE(result.exitCode, 0);
+  EXPECT_EQ(result.exitCode, GetParam().exitCode) << result.err;
   EXPECT_NE(result.err.find(GetParam().expectedMessage), std::string::npos) << result.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.json")) << "output written despite the error";
   EXPECT_TRUE(std::filesystem::is_empty(dir)) << "temporary file left behind";
@@ -59,17 +60,17 @@ TEST_P(RobotCommandBadInput, OneClearLineAndNonZeroExit) {
 INSTANTIATE_TEST_SUITE_P(
     Errors, RobotCommandBadInput,
     ::testing::Values(
-        BadInput{"FiveJoints", {"robot", "fk", "--joints", "0,0,0,0,0"}, "expected 6 comma-separated numbers, got 5"},
-        BadInput{"NotANumber", {"robot", "fk", "--joints", "0,0,zero,0,0,0"}, "'zero' is not a finite number"},
-        BadInput{"OutsideLimits", {"robot", "fk", "--joints", "0,0,4,0,0,0"}, "outside its limits"},
+        BadInput{"FiveJoints", {"robot", "fk", "--joints", "0,0,0,0,0"}, "expected 6 comma-separated numbers, got 5", 2},
+        BadInput{"NotANumber", {"robot", "fk", "--joints", "0,0,zero,0,0,0"}, "'zero' is not a finite number", 2},
+        BadInput{"OutsideLimits", {"robot", "fk", "--joints", "0,0,4,0,0,0"}, "outside its limits", 2},
         BadInput{"MissingUrdf",
                  {"robot", "fk", "--joints", "0,0,0,0,0,0", "--urdf", "/nonexistent/robot.urdf"},
-                 "/nonexistent/robot.urdf does not exist"},
-        BadInput{"UnknownTip", {"robot", "fk", "--joints", "0,0,0,0,0,0", "--tip", "gripper"}, "'gripper' not found"},
-        BadInput{"OutOfReach", {"robot", "ik", "--pose", "2.5,0,0.3,0,-3.14159,0"}, "out of reach"},
+                 "/nonexistent/robot.urdf does not exist", 1},
+        BadInput{"UnknownTip", {"robot", "fk", "--joints", "0,0,0,0,0,0", "--tip", "gripper"}, "'gripper' not found", 1},
+        BadInput{"OutOfReach", {"robot", "ik", "--pose", "2.5,0,0.3,0,-3.14159,0"}, "out of reach", 1},
         BadInput{"ShortSeed",
                  {"robot", "ik", "--pose", "0.4,-0.4,0.25,0,-3.14159,1.57", "--seed", "1,2"},
-                 "--seed: expected 6"}),
+                 "--seed: expected 6", 2}),
     [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
 
 TEST(RobotCommand, MalformedUrdfSaysWhere) {

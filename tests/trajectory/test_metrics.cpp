@@ -1,4 +1,4 @@
-// DESIGN.md §6 metrics on a hand-made trajectory whose values are worked out in the comments.
+// The metrics of docs/metrics.md on a hand-made trajectory whose values are worked out in the comments.
 #include <cmath>
 #include <set>
 

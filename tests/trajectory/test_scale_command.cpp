@@ -111,20 +111,20 @@ TEST(ScaleCommand, NonPositiveSpeedLimit) {
 TEST(ScaleCommand, NanInThePathFile) {
   const auto dir = arcplan::testing::freshTempDirectory("scale_nan");
   const auto file = writeText(dir / "bad.csv", "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.3,-2.4,-1.57,-1.1\n-1.1,nan,2.3,-2.4,-1.57,-1.1\n");
-  expectFailure({"scale", "--path-csv", file.string()}, dir, file.string() + ", line 3, column q1");
+  expectFailure({"scale", "--path-csv", file.string()}, dir, file.string() + ":3: column q1");
 }
 
 TEST(ScaleCommand, WrongColumnCount) {
   const auto dir = arcplan::testing::freshTempDirectory("scale_columns");
   const auto file = writeText(dir / "bad.csv", "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.3,-2.4,-1.57,-1.1\n-1.1,-1.5,2.3,-2.4,-1.57\n");
-  expectFailure({"scale", "--path-csv", file.string()}, dir, "line 3: expected 6 comma-separated joint angles");
+  expectFailure({"scale", "--path-csv", file.string()}, dir, ":3: expected 6 comma-separated joint angles");
 }
 
 TEST(ScaleCommand, PathLeavingTheJointLimits) {
   const auto dir = arcplan::testing::freshTempDirectory("scale_limits");
   const auto file = writeText(dir / "bad.csv", "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.3,-2.4,-1.57,-1.1\n-1.1,-1.5,3.3,-2.4,-1.57,-1.1\n");
   expectFailure({"scale", "--scene", kScene, "--path-csv", file.string()}, dir,
-                "line 3: q2 (elbow_joint) = 3.3 rad is outside its limits");
+                ":3: q2 (elbow_joint) = 3.3 rad is outside its limits");
 }
 
 TEST(ScaleCommand, MissingFilesAndBadOptions) {

@@ -15,6 +15,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "arcplan/collision/joint_states.h"
 #include "arcplan/common/text_parsing.h"
 #include "arcplan/planners/arc_path.h"
 #include "arcplan/planners/cartesian_to_joint.h"
@@ -29,7 +30,7 @@ namespace {
 struct ThesisCase {
   char name;
   double sagittaOverHalfChord;  // 0: no detour (case a)
-  double analyticLength;        // DESIGN.md §4 (Table 3.3 geometry), m
+  double analyticLength;        // the analytic arc length (Table 3.3 geometry, docs/planners.md), m
 };
 const ThesisCase kCases[] = {{'a', 0.0, 0.8331}, {'b', 1.00, 0.9920}, {'c', 0.75, 0.9321}, {'d', 0.50, 0.8825}};
 const double kSpeeds[] = {0.149, 0.200, 0.250};
@@ -111,7 +112,7 @@ std::string orderByTime(const std::map<char, double>& times) {
 
 TEST(ThesisCases, TcpPathLengthsMatchTheArcGeometry) {
   for (const auto& thesisCase : kCases) {
-    // The densified path's TCP chords converge to the analytic arc length (DESIGN §4).
+    // The densified path's TCP chords converge to the analytic arc length (docs/planners.md).
     EXPECT_NEAR(metricsOf(thesisCase.name, 0.25).tcpPathLength, thesisCase.analyticLength, 0.0005)
         << "case " << thesisCase.name;
   }
@@ -178,8 +179,7 @@ TEST(ThesisCases, SparseRrtConnectPathRespectsTheLimits) {
   og::SimpleSetup setup(space);
   const Eigen::Vector3d obstacle(0.4375, -0.1, 0.32875);
   setup.setStateValidityChecker([&](const ob::State* state) {
-    const auto* values = state->as<ob::RealVectorStateSpace::StateType>()->values;
-    const Eigen::Map<const robot::Vector6> q(values);
+    const robot::Vector6 q = collision::jointsOf(state, 6);
     return (robot::tipPose(model, q).translation() - obstacle).norm() > 0.15;
   });
   setup.getSpaceInformation()->setStateValidityCheckingResolution(0.002);
@@ -197,10 +197,7 @@ TEST(ThesisCases, SparseRrtConnectPathRespectsTheLimits) {
   setup.setPlanner(std::make_shared<og::RRTConnect>(setup.getSpaceInformation()));
   ASSERT_TRUE(setup.solve(10.0));
   ASSERT_TRUE(setup.haveExactSolutionPath());
-  JointPath path;
-  for (const auto* state : setup.getSolutionPath().getStates()) {
-    path.push_back(Eigen::Map<const robot::Vector6>(state->as<ob::RealVectorStateSpace::StateType>()->values));
-  }
+  const JointPath path = collision::waypointsOf(setup.getSolutionPath());
   ASSERT_GE(path.size(), 3u) << "the ball must force a detour";
 
   const TimedTrajectory trajectory = scaleToTcpSpeed(model, path, {});

@@ -4,10 +4,10 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
-#include <sstream>
 
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/error.h"
+#include "arcplan/common/text_formatting.h"
 #include "arcplan/common/text_parsing.h"
 
 namespace arcplan::trajectory {
@@ -17,19 +17,13 @@ constexpr const char* kHeader = "q0,q1,q2,q3,q4,q5";
 // Waypoints produced by IK at a limit of ±2·pi may differ from it in the last bits.
 constexpr double kLimitTolerance = 1e-9;
 
-std::string formatNumber(double value) {
-  std::ostringstream text;
-  text << std::setprecision(9) << value;
-  return text.str();
-}
-
 // Message for the first joint of q outside the model's limits, or empty.
 std::string limitViolation(const robot::RobotModel& model, const robot::Vector6& q) {
   for (int j = 0; j < 6; ++j) {
     const auto& joint = model.joints()[j];
     if (q[j] < joint.limits.lower - kLimitTolerance || q[j] > joint.limits.upper + kLimitTolerance) {
-      return "q" + std::to_string(j) + " (" + joint.name + ") = " + formatNumber(q[j]) + " rad is outside its limits [" +
-             formatNumber(joint.limits.lower) + ", " + formatNumber(joint.limits.upper) + "]";
+      return "q" + std::to_string(j) + " (" + joint.name + ") = " + formatNumber(q[j], 9) + " rad is outside its limits [" +
+             formatNumber(joint.limits.lower, 9) + ", " + formatNumber(joint.limits.upper, 9) + "]";
     }
   }
   return {};
@@ -44,19 +38,21 @@ void requireSixJoints(const robot::RobotModel& model) {
 JointPath readPath(const std::filesystem::path& file, const robot::RobotModel* model) {
   if (model != nullptr) requireSixJoints(*model);
   std::ifstream in(file);
-  if (!in) throw Error("path file " + file.string() + ": cannot be opened");
-  const std::string where = "path file " + file.string();
+  // Messages name the place as compilers do: "<file>:<line>: column q4: ...".
+  const std::string where = file.string();
+  if (!in) throw Error(where + ": cannot be opened");
   JointPath path;
   std::string line;
   bool headerSeen = false;
   for (int lineNumber = 1; std::getline(in, line); ++lineNumber) {
     const std::string_view text = trim(line);
     if (text.empty() || text.front() == '#') continue;
-    const std::string location = where + ", line " + std::to_string(lineNumber);
+    const std::string location = where + ":" + std::to_string(lineNumber);
     const auto fields = splitFields(text, ',');
     if (!headerSeen) {
-      std::string header;
-      for (const auto field : fields) header += (header.empty() ? "" : ",") + std::string(trim(field));
+      std::vector<std::string> names;
+      for (const auto field : fields) names.emplace_back(trim(field));
+      const std::string header = joinText(names, ",");
       if (header != kHeader) {
         throw Error(location + ": expected the header '" + kHeader + "', found '" + std::string(text) + "'");
       }
@@ -71,11 +67,11 @@ JointPath readPath(const std::filesystem::path& file, const robot::RobotModel* m
     for (int j = 0; j < 6; ++j) {
       const auto value = parseDouble(fields[j]);
       if (!value) {
-        throw Error(location + ", column q" + std::to_string(j) + ": '" + std::string(trim(fields[j])) +
+        throw Error(location + ": column q" + std::to_string(j) + ": '" + std::string(trim(fields[j])) +
                     "' is not a number");
       }
       if (!std::isfinite(*value)) {
-        throw Error(location + ", column q" + std::to_string(j) + ": " + std::string(trim(fields[j])) +
+        throw Error(location + ": column q" + std::to_string(j) + ": " + std::string(trim(fields[j])) +
                     " is not a finite joint angle");
       }
       q[j] = *value;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "arcplan/trajectory/metric_descriptors.h"
+
 namespace arcplan::trajectory {
 namespace {
 
@@ -49,15 +51,13 @@ TrajectoryMetrics computeMetrics(const JointPath& path, const TimedTrajectory& t
 }
 
 nlohmann::json toJson(const TrajectoryMetrics& metrics) {
-  const auto numberOrNull = [](double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); };
-  return {{"tcp_path_length_m", metrics.tcpPathLength},
-          {"joint_path_length_rad", metrics.jointPathLength},
-          {"execution_time_s", metrics.executionTime},
-          {"mean_tcp_speed_mps", metrics.meanTcpSpeed},
-          {"peak_tcp_speed_mps", metrics.peakTcpSpeed},
-          {"time_above_limit_s", metrics.timeAboveLimit},
-          {"min_clearance_m", numberOrNull(metrics.minClearance)},
-          {"max_joint_speed_ratio", metrics.maxJointSpeedRatio}};
+  nlohmann::json document = nlohmann::json::object();
+  for (const MetricDescriptor& metric : metricDescriptors()) {
+    if (metric.member == nullptr) continue;  // the solve time is the planner's
+    const double value = metrics.*metric.member;
+    document[metric.key] = std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+  }
+  return document;
 }
 
 }  // namespace arcplan::trajectory

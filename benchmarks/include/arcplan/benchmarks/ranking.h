@@ -16,14 +16,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "arcplan/trajectory/metric_descriptors.h"
+
 namespace arcplan::benchmarks {
 
-// A DESIGN.md §6 metric: its JSON key and how it is read from the database's runs table.
-struct RankedMetric {
-  std::string key;          // "execution_time_s"
-  std::string label;        // "execution time (s)"
-  std::vector<std::string> columns;  // first non-NULL column wins ("simplified_solution_length", "solution_length")
-};
+// The metrics the ranking summarises: every trajectory metric, as the metric table lists them (its
+// JSON key, label and database columns; trajectory/metric_descriptors.h, docs/metrics.md).
+using RankedMetric = trajectory::MetricDescriptor;
 const std::vector<RankedMetric>& rankedMetrics();
 
 // Statistics of one metric over the successful runs; count == 0 means no successful run (values NaN).

@@ -9,7 +9,6 @@
 // sends only overlapping pairs to FCL, and also catches a part lying entirely inside another
 // (FCL compares surfaces, so a small particle inside a link would otherwise go unnoticed).
 #include <algorithm>
-#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
@@ -24,6 +23,18 @@
 #include "arcplan/robot/robot_model.h"
 
 namespace arcplan::collision {
+
+class CollisionModel;
+class CollisionData;
+
+// The internals behind CollisionModel and CollisionData (collision/src/model_implementation.h):
+// opaque here, so that they can change without changing this API or its ABI.
+namespace detail {
+struct ModelImplementation;
+struct Workspace;
+const ModelImplementation& implementationOf(const CollisionModel& model);
+Workspace& workspaceOf(CollisionData& data);
+}  // namespace detail
 
 // FCL 0.7 bounding-volume types for the BVH of mesh parts.
 enum class BoundingVolume { AABB, OBB, RSS, kIOS, OBBRSS };
@@ -68,44 +79,33 @@ public:
   std::size_t robotObstaclePairCount() const;
   std::size_t selfPairCount() const;
 
-  struct Implementation;
-  const Implementation& implementation() const { return *implementation_; }
-
 private:
+  friend const detail::ModelImplementation& detail::implementationOf(const CollisionModel& model);
   std::shared_ptr<const robot::RobotModel> robot_;
   std::vector<std::string> linkNames_;
   std::vector<std::string> obstacleNames_;
   AllowedCollisionMatrix allowed_;
   CollisionModelOptions options_;
-  std::unique_ptr<Implementation> implementation_;
+  std::unique_ptr<detail::ModelImplementation> implementation_;
 };
 
 // The robot a scene names (arcplan's UR10e or the scene's URDF), its default allowed pairs
 // (defaultAllowedCollisions) plus the scene's own.
 std::shared_ptr<const CollisionModel> makeCollisionModel(const Scene& scene, CollisionModelOptions options = {});
 
-// Per-thread scratch space: link poses, the world poses of the robot's parts and their bounding capsules.
-struct CollisionData {
+// Per-thread scratch space of the queries below (link poses, part poses, bounding volumes, the
+// bookkeeping of motion checks), sized for one model: create one per thread from the model it is
+// used with and pass it to every query.
+class CollisionData {
+public:
   explicit CollisionData(const CollisionModel& model);
-  robot::KinematicsData kinematics;
-  std::vector<Eigen::Isometry3d> partPoses;
-  std::vector<Eigen::Vector3d> capsuleStarts, capsuleEnds;          // per part
-  // Part poses and capsules are computed when a query first needs them: valid for the current
-  // configuration where partStamps[i] == stamp (incremented by every query).
-  std::vector<std::uint64_t> partStamps;
-  std::uint64_t stamp = 0;
-  std::vector<Eigen::Vector3d> linkCapsuleStarts, linkCapsuleEnds;  // per link with geometry
-  std::vector<std::pair<double, int>> distanceOrder;  // (lower bound, pair) for distance queries
-  // Motion checks (motion_check.h): per non-allowed body pair, how fast its distance can shrink
-  // along the motion [m per unit of the motion's fraction], the fractions before / after which it is
-  // proven apart, and where those certificates were measured.
-  struct MotionPair {
-    double rate = 0.0;
-    double certifiedFromStart = 0.0, certifiedFromEnd = 1.0;
-    double measuredFromStart = 0.0, measuredFromEnd = 1.0;
-  };
-  std::vector<MotionPair> motionPairs;
-  robot::JointVector motionJoints;  // the configuration on the motion being checked
+  ~CollisionData();
+  CollisionData(const CollisionData&) = delete;
+  CollisionData& operator=(const CollisionData&) = delete;
+
+private:
+  friend detail::Workspace& detail::workspaceOf(CollisionData& data);
+  std::unique_ptr<detail::Workspace> workspace_;
 };
 
 using NamePair = std::pair<std::string, std::string>;
@@ -114,6 +114,9 @@ struct CollisionReport {
   bool valid = true;
   std::vector<NamePair> collisions;  // (link, obstacle) or (link, link), each colliding pair once
 };
+
+// The colliding pairs for messages: "upper_arm_link–table, forearm_link–wrist_3_link" ("" if none).
+std::string describeCollisions(const CollisionReport& report);
 
 // Distances are 0 for a colliding pair (FCL gives no reliable penetration depth for meshes), and
 // +infinity with empty names when there is no pair to measure (no obstacles, every self pair allowed).

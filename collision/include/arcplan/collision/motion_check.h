@@ -64,7 +64,7 @@ public:
   // Certifies the straight motion from the last accepted configuration to q and accepts q; false
   // (and q not accepted) if the motion cannot be certified.
   bool extend(const robot::JointRef& q);
-  // Configurations measured with forward kinematics so far (for benchmarks and tests).
+  // Configurations measured with forward kinematics so far: the cost of the certification.
   int measurements() const { return measurements_; }
 
 private:
@@ -81,13 +81,5 @@ private:
 
 // Segments of a discrete check: ceil(largest |qb_j − qa_j| / maxJointStep), at least 1.
 int discreteSegmentCount(const robot::JointRef& qa, const robot::JointRef& qb, double maxJointStep);
-
-// Bounds the certified check relies on [m], for links given by their index into model.linkNames():
-// how far any point of link `body` can move on the motion qa -> qb (in base_link), and by how much
-// the distance between links `body` and `otherBody` can change (in the frame of their nearest common
-// ancestor, the points of each together move at most this far).
-double motionBound(const CollisionModel& model, int body, const robot::JointRef& qa, const robot::JointRef& qb);
-double relativeMotionBound(const CollisionModel& model, int body, int otherBody, const robot::JointRef& qa,
-                           const robot::JointRef& qb);
 
 }  // namespace arcplan::collision

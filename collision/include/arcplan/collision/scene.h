@@ -1,5 +1,5 @@
 #pragma once
-// A planning scene as written in data/scenes/*.yaml (DESIGN.md §7): the robot, obstacles with
+// A planning scene as written in data/scenes/*.yaml (docs/formats.md, docs/collision.md): the robot, obstacles with
 // poses, extra allowed-collision pairs, and named queries (start/goal as a tool0 pose or joints).
 #include <array>
 #include <filesystem>

@@ -17,7 +17,8 @@ struct PlotOutcome {
 // PATH; the first that imports matplotlib. Cached after the first call.
 std::optional<std::string> findMatplotlibPython();
 
-// Runs `python <plotScriptDirectory()/script> args...` without a shell and waits for it.
+// Runs `python <plotScriptDirectory()/script> args...` without a shell and waits for it. On failure
+// the message is one line: the script name, its exit code and the last line it printed (its error).
 PlotOutcome runPlotScript(const std::string& script, const std::vector<std::string>& arguments);
 
 }  // namespace arcplan

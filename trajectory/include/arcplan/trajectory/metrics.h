@@ -1,5 +1,6 @@
 #pragma once
-// The trajectory metrics of DESIGN.md §6, one implementation for `plan`, `scale` and `bench`.
+// The trajectory metrics (docs/metrics.md), one implementation for `plan`, `scale` and `bench`; their
+// names (JSON keys, benchmark properties, labels) are in metric_descriptors.h.
 #include <functional>
 #include <limits>
 
@@ -30,9 +31,8 @@ using ClearanceFunction = std::function<double(const robot::Vector6&)>;
 TrajectoryMetrics computeMetrics(const JointPath& path, const TimedTrajectory& trajectory,
                                  const ClearanceFunction& clearance = {});
 
-// Keys exactly as DESIGN.md §6: tcp_path_length_m, joint_path_length_rad, execution_time_s,
-// mean_tcp_speed_mps, peak_tcp_speed_mps, time_above_limit_s, min_clearance_m (null when not
-// computed), max_joint_speed_ratio.
+// Every trajectory metric under its key from metricDescriptors(); null for a value that is not finite
+// (min_clearance_m when no clearance function was given).
 nlohmann::json toJson(const TrajectoryMetrics& metrics);
 
 }  // namespace arcplan::trajectory

@@ -1,5 +1,5 @@
 #pragma once
-// Time scaling of a joint path under a TCP linear-speed limit (thesis §4.3, DESIGN.md §5).
+// Time scaling of a joint path under a TCP linear-speed limit (thesis §4.3; method in docs/trajectory.md).
 //
 // Steps: densify the path (path_densification.h); cumulative TCP arc length by forward kinematics;
 // a ramp–cruise–brake speed profile along the path, cruising at maxTcpSpeed, ramping up and braking
