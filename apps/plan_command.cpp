@@ -1,5 +1,5 @@
-// arcplan plan — solve one scene query with the arc planner or an OMPL planner (DESIGN.md §9): status,
-// reason, the DESIGN.md §6 metrics of the path, and the joint path as CSV.
+// arcplan plan — solve one scene query with the arc planner or an OMPL planner (docs/cli.md): status,
+// reason, the metrics of docs/metrics.md of the path, and the joint path as CSV.
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
@@ -17,6 +17,7 @@
 #include "arcplan/benchmarks/solution_policy.h"
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/joint_states.h"
+#include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
 #include "arcplan/planners/arc_planner.h"
@@ -42,6 +43,7 @@ struct PlanOptions {
   std::optional<double> maxTcpSpeed;
   std::string json;
   std::string pathCsv;
+  bool allowApproximate = false;
   bool verbose = false;
 };
 
@@ -84,10 +86,35 @@ nlohmann::json arcDetails(const planners::ArcPlannerResult& result) {
                        {"exit_radius_m", detour.shape.exitRadius},
                        {"plane_angle_rad", detour.planeAngle}});
   }
+  nlohmann::json vias = nlohmann::json::array();
+  for (std::size_t i = 0; i < result.viaPoints.size(); ++i) {
+    const Eigen::Vector3d& point = result.viaPoints[i];
+    vias.push_back({{"position_m", {point.x(), point.y(), point.z()}}, {"blend_m", result.blends[i]}});
+  }
   return {{"detours", detours},
+          {"via_points", vias},
           {"obstacles", result.obstacles},
           {"analytic_tcp_path_length_m", result.tcpPathLength},
-          {"candidates_checked", result.candidatesTried}};
+          {"routes_tried", result.routesTried}};
+}
+
+// The planner parameters for --help, read from the planners themselves (the arc planner on the
+// robot with no obstacles).
+std::string plannerParameterHelp() {
+  const auto model = collision::makeCollisionModel(collision::Scene{});
+  const auto si = collision::makeSpaceInformation(model);
+  std::ostringstream text;
+  text << "Planner parameters (--param NAME=VALUE; default, declared range):\n";
+  for (const auto& [planner, parameters] : planners::declaredParameters(si, {model, {}})) {
+    text << "  " << planner << ":";
+    if (parameters.empty()) text << " (none)";
+    for (const auto& parameter : parameters) {
+      text << " " << parameter.name << "=" << parameter.defaultValue;
+      if (!parameter.range.empty()) text << " [" << parameter.range << "]";
+    }
+    text << "\n";
+  }
+  return text.str();
 }
 
 void printSummary(const nlohmann::json& document, const std::string& reason, const planners::ArcPlanner* arc,
@@ -97,6 +124,15 @@ void printSummary(const nlohmann::json& document, const std::string& reason, con
             << "status              " << document["status"].get<std::string>() << "\n";
   if (!reason.empty()) std::cout << "reason              " << reason << "\n";
   std::cout << std::setprecision(6) << "solve time          " << document["solve_time_s"].get<double>() << " s\n";
+  if (arc && !arc->lastResult().mode().empty()) {
+    std::cout << "mode                " << arc->lastResult().mode() << " (cartesian fraction "
+              << arc->lastResult().cartesianFraction << ")\n";
+    for (std::size_t i = 0; i < arc->lastResult().viaPoints.size(); ++i) {
+      const Eigen::Vector3d& point = arc->lastResult().viaPoints[i];
+      std::cout << "via point           (" << point.x() << ", " << point.y() << ", " << point.z() << ") m, blend "
+                << arc->lastResult().blends[i] << " m\n";
+    }
+  }
   if (arc) {
     for (const planners::Detour& detour : arc->lastResult().detours) {
       std::cout << "arc detour          O at " << detour.position << " m: h " << detour.shape.sagitta << ", r "
@@ -159,7 +195,13 @@ void runPlan(const PlanOptions& options) {
   std::string reason;
   if (!haveExact) reason = arc ? arc->lastResult().reason : omplReason(status, setup, options.time);
   if (!reason.empty()) document["reason"] = reason;
-  if (arc) document["arc"] = arcDetails(arc->lastResult());
+  if (arc) {
+    document["arc"] = arcDetails(arc->lastResult());
+    if (havePath) {
+      document["mode"] = arc->lastResult().mode();
+      document["cartesian_fraction"] = arc->lastResult().cartesianFraction;
+    }
+  }
 
   trajectory::JointPath path;
   if (havePath) {
@@ -177,7 +219,7 @@ void runPlan(const PlanOptions& options) {
       document.update(trajectory::toJson(trajectory::computeMetrics(path, timed, clearance)));
       document["vmax_mps"] = *options.maxTcpSpeed;
     } else {
-      // The same densification as the metrics of a scaled trajectory (DESIGN.md §6).
+      // The same densification as the metrics of a scaled trajectory (docs/metrics.md).
       const trajectory::DensePath dense = trajectory::densifyJointPath(model.robot(), path);
       double minClearance = std::numeric_limits<double>::infinity();
       for (const robot::Vector6& q : dense.waypoints) minClearance = std::min(minClearance, clearance(q));
@@ -191,11 +233,17 @@ void runPlan(const PlanOptions& options) {
   // With the JSON on stdout, the summary would corrupt it.
   if (options.json != "-") printSummary(document, reason, arc, options, path.size());
   if (!options.json.empty()) writeJson(options.json, document);
-  if (!options.pathCsv.empty() && havePath) trajectory::writeJointPathCsv(options.pathCsv, path);
+  // An approximate path ends away from the goal: only written when asked for.
+  const bool acceptedPath = haveExact || (havePath && options.allowApproximate);
+  if (!options.pathCsv.empty() && acceptedPath) trajectory::writeJointPathCsv(options.pathCsv, path);
   if (!haveExact) {
-    if (havePath) {
+    if (havePath && options.allowApproximate) {
       std::cerr << "arcplan: warning: " << plannerName << " returned an approximate path: " << reason << "\n";
       return;
+    }
+    if (havePath) {
+      throw Error("planner " + plannerName + " found only an approximate path (--allow-approximate accepts it): " +
+                  reason);
     }
     throw Error("planner " + plannerName + " found no path: " + reason);
   }
@@ -209,6 +257,7 @@ void registerPlanCommand(CLI::App& app) {
   command->footer(
       "Solves a scene query with the arc planner (thesis ch. 3) or an OMPL planner; reports status, reason, "
       "solve time, TCP/joint path length and clearance; writes the joint path.");
+  command->footer(plannerParameterHelp);
   command
       ->add_option("--scene", options->scene,
                    "scene YAML (a path, or a name under data/, e.g. scenes/thesis_obstacle.yaml)")
@@ -220,8 +269,7 @@ void registerPlanCommand(CLI::App& app) {
                    "BiTRRT, InformedRRTstar, BITstar, ... (case-insensitive)")
       ->capture_default_str();
   command->add_option("--param", options->parameters,
-                      "planner parameter NAME=VALUE, repeatable (arc: sagitta, half_chord, entry_radius, exit_radius, "
-                      "plane_angle, resolution, max_joint_step, auto; OMPL planners: e.g. range)");
+                      "planner parameter NAME=VALUE, repeatable; each planner's parameters are listed below");
   command->add_option("--time", options->time, "time limit for solving [s]")->capture_default_str();
   command->add_option("--seed", options->seed,
                       "seed of OMPL's random numbers, for reproducible sampling planners (set once per process)");
@@ -230,6 +278,8 @@ void registerPlanCommand(CLI::App& app) {
       "also time-scale the path (PCHIP) under this TCP speed limit [m/s] and report the scaled metrics");
   command->add_option("--json", options->json, "write the result as JSON to this file ('-' for stdout)");
   command->add_option("--path-csv", options->pathCsv, "write the joint path (q0..q5 per waypoint) as CSV");
+  command->add_flag("--allow-approximate", options->allowApproximate,
+                    "accept an approximate path (one that ends away from the goal): exit 0 and write its CSV");
   command->add_flag("--verbose", options->verbose, "show OMPL's informational messages");
   command->callback([options] { runPlan(*options); });
 }

@@ -1,7 +1,7 @@
 // Planner solve times on the thesis query (thesis_obstacle.yaml, A_to_B; the certified motion
 // validator): the arc planner with the thesis shape h = 0.5 r (defaults: waypoints 1 cm apart, every
-// motion validated; and variants), its auto search, the straight line of thesis_free, and RRTConnect
-// on the same problem.
+// motion validated; and variants), its auto mode (via-point search), the straight line of
+// thesis_free, and RRTConnect on the same problem.
 // Each benchmark times every solve itself and reports the median (counter `median_us`), because a
 // sampling planner's mean is dominated by its rare long runs. ArcVsRRTConnect alternates the two
 // planners in one loop and reports the ratio of their medians (`speedup`).
@@ -104,9 +104,10 @@ BENCHMARK(PlannerRRTConnect)->Unit(benchmark::kMicrosecond);
 // Both planners on the same problem, alternating, so that machine load affects them alike. Besides
 // the solve times it reports RRTConnect's time to the path `arcplan plan` and the benchmark execute:
 // solve plus OMPL's path simplifier (the arc path needs none), and the ratio to that.
+// Argument: 0 the arc planner's auto mode, 1 the thesis shape, 5 the thesis shape with 5 cm waypoints.
 void PlannerArcVsRRTConnect(benchmark::State& state) {
   PlanningProblem& planning = problem("thesis_obstacle");
-  Parameters arcParameters = kThesisShape;
+  Parameters arcParameters = state.range(0) == 0 ? Parameters{} : kThesisShape;
   if (state.range(0) == 5) arcParameters.emplace_back("resolution", "0.05");
   const auto arc = planner(planning, "arc", arcParameters);
   const auto rrtConnect = planner(planning, "RRTConnect", {});
@@ -127,9 +128,10 @@ void PlannerArcVsRRTConnect(benchmark::State& state) {
   state.counters["speedup_to_simplified_path"] = median(rrtConnectSimplifiedTimes) / median(arcTimes);
 }
 BENCHMARK(PlannerArcVsRRTConnect)
+    ->Arg(0)
     ->Arg(1)
     ->Arg(5)
-    ->ArgName("waypoint_spacing_cm")
+    ->ArgName("auto0_or_waypoint_spacing_cm")
     ->Unit(benchmark::kMicrosecond)
     ->Iterations(400);
 

@@ -2,176 +2,20 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <optional>
 #include <random>
 
 #include <yaml-cpp/yaml.h>
 
-#include "arcplan/collision/collision_model.h"
 #include "arcplan/common/error.h"
-#include "arcplan/robot/pose.h"
-#include "arcplan/robot/robot_model.h"
-#include "arcplan/robot/ur_inverse_kinematics.h"
+#include "problem_factory.h"
 
 namespace arcplan::benchmarks {
 namespace {
 
-using robot::Vector6;
-using Eigen::Vector3d;
+using namespace detail;
 
-constexpr int kAttemptsPerProblem = 2000;
-constexpr double kLineStep = 0.005;          // m, IK continuation step along the straight TCP line
-constexpr double kMaxJointJumpPerStep = 0.1;  // rad: larger means the IK branch flipped
-constexpr double kTableThickness = 0.05;
-
-// The standard fixes std::mt19937_64's output sequence but not the distributions built on it, so
-// reals and choices are made here from the raw 64-bit output (identical on every platform).
-class Random {
-public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-  double uniform(double low, double high) {
-    const double unit = static_cast<double>(engine_() >> 11) * 0x1.0p-53;  // [0, 1) with 53 random bits
-    return low + (high - low) * unit;
-  }
-  int choice(int count) { return static_cast<int>(engine_() % static_cast<std::uint64_t>(count)); }
-
-private:
-  std::mt19937_64 engine_;
-};
-
-// SplitMix64 finaliser: independent streams per (seed, family, index), so adding problems of one
-// family leaves the others unchanged.
-std::uint64_t mix(std::uint64_t value) {
-  value += 0x9e3779b97f4a7c15ULL;
-  value = (value ^ (value >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  value = (value ^ (value >> 27)) * 0x94d049bb133111ebULL;
-  return value ^ (value >> 31);
-}
-
-std::uint64_t streamSeed(std::uint64_t seed, std::uint64_t family, std::uint64_t index) {
-  return mix(mix(mix(seed) ^ family) ^ index);
-}
-
-// The thesis' tool orientation: tool0 z pointing straight down.
-Eigen::Matrix3d toolDown() { return robot::rotationFromRpy(0.0, -M_PI, M_PI / 2.0); }
-
-// Elbow-up, wrist-down seed in the style of the thesis seeds, for a TCP at azimuth `azimuth`.
-Vector6 thesisStyleSeed(double azimuth) {
-  Vector6 seed;
-  seed << azimuth - 0.3, -1.55, 2.2, -2.2, -M_PI / 2.0, azimuth - 0.3;
-  return seed;
-}
-
-Eigen::Isometry3d toolPose(const Vector3d& position) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = toolDown();
-  pose.translation() = position;
-  return pose;
-}
-
-collision::Obstacle box(const std::string& name, const Vector3d& size, const Vector3d& center, double yaw) {
-  collision::Obstacle obstacle;
-  obstacle.name = name;
-  obstacle.shape = collision::Obstacle::Shape::Box;
-  obstacle.size = size;
-  obstacle.pose = Eigen::Isometry3d::Identity();
-  obstacle.pose.linear() = robot::rotationFromRpy(0.0, 0.0, yaw);
-  obstacle.pose.translation() = center;
-  return obstacle;
-}
-
-collision::Scene tableScene(const std::string& name) {
-  collision::Scene scene;
-  scene.name = name;
-  scene.obstacles.push_back(box("table", Vector3d(2.0, 2.0, kTableThickness), Vector3d(0.0, 0.0, -kTableThickness / 2), 0.0));
-  scene.allowedCollisions.emplace_back("table", "base_link_inertia");
-  return scene;
-}
-
-// Checks and solves what every generated problem needs: start and goal tool-down poses joined by a
-// straight TCP line along which IK stays on one branch without jumps. Returns the joint vectors at
-// A and B (the goal is where the continuation from the start arrives, so it lies on that branch).
-struct LineEnds {
-  Vector6 start;
-  Vector6 goal;
-};
-
-class ProblemFactory {
-public:
-  ProblemFactory() : model_(robot::ur10e()), ik_(model_) {}
-
-  std::optional<LineEnds> straightLineEnds(const Vector3d& a, const Vector3d& b) const {
-    const auto start = ik_.solveNearest(toolPose(a), thesisStyleSeed(std::atan2(a.y(), a.x())));
-    if (!start) return std::nullopt;
-    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kLineStep)));
-    Vector6 q = *start;
-    for (int k = 1; k <= steps; ++k) {
-      const Vector3d point = a + (b - a) * (static_cast<double>(k) / steps);
-      const auto next = ik_.solveNearest(toolPose(point), q);
-      if (!next || (*next - q).cwiseAbs().maxCoeff() > kMaxJointJumpPerStep) return std::nullopt;
-      q = *next;
-    }
-    return LineEnds{*start, q};
-  }
-
-  static bool collisionFree(const collision::Scene& scene, const LineEnds& ends) {
-    const auto model = collision::makeCollisionModel(scene);
-    collision::CollisionData data(*model);
-    return collision::isCollisionFree(*model, data, ends.start) && collision::isCollisionFree(*model, data, ends.goal);
-  }
-
-private:
-  const robot::RobotModel& model_;
-  robot::UrInverseKinematics ik_;
-};
-
-// A random TCP point in front of and beside the robot, within comfortable reach.
-Vector3d workspacePoint(Random& random, double zLow, double zHigh) {
-  const double radius = random.uniform(0.4, 0.9);
-  const double azimuth = random.uniform(-2.0, 2.0);
-  return Vector3d(radius * std::cos(azimuth), radius * std::sin(azimuth), random.uniform(zLow, zHigh));
-}
-
-// Shortest horizontal distance from the robot's vertical axis to the segment a-b.
-double distanceFromBaseAxis(const Vector3d& a, const Vector3d& b) {
-  const Eigen::Vector2d p = a.head<2>(), d = (b - a).head<2>();
-  const double t = d.squaredNorm() > 0 ? std::clamp(-p.dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (p + t * d).norm();
-}
-
-// A unit vector orthogonal to `direction`, uniformly around it.
-Vector3d randomPerpendicular(Random& random, const Vector3d& direction) {
-  const Vector3d u = direction.unitOrthogonal();
-  const Vector3d v = direction.normalized().cross(u);
-  const double angle = random.uniform(-M_PI, M_PI);
-  return std::cos(angle) * u + std::sin(angle) * v;
-}
-
-void setQuery(collision::Scene& scene, const LineEnds& ends) {
-  collision::Query query;
-  query.name = "main";
-  query.start.joints = ends.start;
-  query.goal.joints = ends.goal;
-  scene.queries = {query};
-}
-
-std::string indexed(const std::string& family, int index) {
-  char suffix[16];
-  std::snprintf(suffix, sizeof suffix, "-%03d", index);
-  return family + suffix;
-}
-
-Problem makeProblem(const std::string& name, const std::string& kind, std::uint64_t seed, int index,
-                    collision::Scene scene) {
-  Problem problem;
-  problem.name = name;
-  problem.kind = kind;
-  problem.origin = "generator seed " + std::to_string(seed) + ", " + kind + " problem " + std::to_string(index);
-  scene.name = name;
-  scene.sourceFile = problem.origin;
-  problem.scene = std::move(scene);
-  problem.query = "main";
-  return problem;
-}
 
 // One sphere, box or cylinder on or near the straight line (the thesis' situation, randomised).
 Problem lineObstacleProblem(const ProblemFactory& factory, std::uint64_t seed, int index) {
@@ -222,16 +66,28 @@ Problem lineObstacleProblem(const ProblemFactory& factory, std::uint64_t seed, i
               std::to_string(seed) + " after " + std::to_string(kAttemptsPerProblem) + " attempts");
 }
 
+// Sizes of a pillar or shelf family.
+struct FurnitureFamily {
+  const char* kind;
+  std::uint64_t stream;
+  double low, high;  // pillar: radius; shelf: depth (m)
+  double height;     // pillar height (m); unused for shelves
+};
+const FurnitureFamily kPillars{"pillar", 2, 0.05, 0.09, 1.6};
+const FurnitureFamily kTallPillars{"pillar-tall", 8, 0.08, 0.14, 2.0};
+const FurnitureFamily kShelves{"shelf", 3, 0.25, 0.35, 0.0};
+const FurnitureFamily kDeepShelves{"shelf-deep", 9, 0.38, 0.45, 0.0};
+
 // A floor-to-ceiling column across the line: an arc of bounded height cannot clear it.
-Problem pillarProblem(const ProblemFactory& factory, std::uint64_t seed, int index) {
-  Random random(streamSeed(seed, 2, static_cast<std::uint64_t>(index)));
+Problem pillarProblem(const ProblemFactory& factory, std::uint64_t seed, int index, const FurnitureFamily& family) {
+  Random random(streamSeed(seed, family.stream, static_cast<std::uint64_t>(index)));
   for (int attempt = 0; attempt < kAttemptsPerProblem; ++attempt) {
     const Vector3d a = workspacePoint(random, 0.15, 0.5);
     const Vector3d b = workspacePoint(random, 0.15, 0.5);
     const double length = (b - a).norm();
     if (length < 0.6 || length > 1.1 || distanceFromBaseAxis(a, b) < 0.4) continue;
-    const double radius = random.uniform(0.05, 0.09);
-    const double height = 1.6;
+    const double radius = random.uniform(family.low, family.high);
+    const double height = family.height;
     Vector3d center = a + random.uniform(0.4, 0.6) * (b - a);
     center += random.uniform(0.0, 0.5 * radius) * randomPerpendicular(random, Vector3d(b - a).cwiseProduct(Vector3d(1, 1, 0)));
     center.z() = height / 2;
@@ -252,22 +108,24 @@ Problem pillarProblem(const ProblemFactory& factory, std::uint64_t seed, int ind
     scene.obstacles.push_back(pillar);
     if (!factory.collisionFree(scene, *ends)) continue;
     setQuery(scene, *ends);
-    return makeProblem(indexed("pillar", index), "pillar", seed, index, std::move(scene));
+    return makeProblem(indexed(family.kind, index), family.kind, seed, index, std::move(scene));
   }
-  throw Error("problem generator: no valid pillar problem " + std::to_string(index) + " for seed " + std::to_string(seed));
+  throw Error(std::string("problem generator: no valid ") + family.kind + " problem " + std::to_string(index) +
+              " for seed " + std::to_string(seed));
 }
 
 // A shelf unit (side panels, three boards, back panel facing the start) across the line: the tool
 // has to go over or around a wall-like obstacle much larger than any arc detour.
-Problem shelfProblem(const ProblemFactory& factory, std::uint64_t seed, int index) {
-  Random random(streamSeed(seed, 3, static_cast<std::uint64_t>(index)));
+Problem shelfProblem(const ProblemFactory& factory, std::uint64_t seed, int index, const FurnitureFamily& family) {
+  Random random(streamSeed(seed, family.stream, static_cast<std::uint64_t>(index)));
   constexpr double panel = 0.02;
   for (int attempt = 0; attempt < kAttemptsPerProblem; ++attempt) {
     const Vector3d a = workspacePoint(random, 0.12, 0.3);
     const Vector3d b = workspacePoint(random, 0.12, 0.3);
     const double length = (b - a).head<2>().norm();
     if (length < 0.65 || length > 1.1 || distanceFromBaseAxis(a, b) < 0.45) continue;
-    const double width = random.uniform(0.4, 0.6), depth = random.uniform(0.25, 0.35), height = random.uniform(0.55, 0.8);
+    const double width = random.uniform(0.4, 0.6), depth = random.uniform(family.low, family.high);
+    const double height = random.uniform(0.55, 0.8);
     const Vector3d middle = 0.5 * (a + b);
     const double yaw = std::atan2(b.y() - a.y(), b.x() - a.x());  // shelf x axis along the line's projection
     if (middle.head<2>().norm() < 0.5 * std::hypot(width, depth) + 0.25) continue;
@@ -287,10 +145,12 @@ Problem shelfProblem(const ProblemFactory& factory, std::uint64_t seed, int inde
     if (!ends) continue;
     if (!factory.collisionFree(scene, *ends)) continue;
     setQuery(scene, *ends);
-    return makeProblem(indexed("shelf", index), "shelf", seed, index, std::move(scene));
+    return makeProblem(indexed(family.kind, index), family.kind, seed, index, std::move(scene));
   }
-  throw Error("problem generator: no valid shelf problem " + std::to_string(index) + " for seed " + std::to_string(seed));
+  throw Error(std::string("problem generator: no valid ") + family.kind + " problem " + std::to_string(index) +
+              " for seed " + std::to_string(seed));
 }
+
 
 void emitVector(YAML::Emitter& out, const double* values, int count) {
   out << YAML::Flow << YAML::BeginSeq;
@@ -301,14 +161,26 @@ void emitVector(YAML::Emitter& out, const double* values, int count) {
 }  // namespace
 
 std::vector<Problem> generateProblems(const GeneratorSettings& settings) {
-  if (settings.lineObstacles < 0 || settings.pillars < 0 || settings.shelves < 0) {
-    throw Error("problem generator: problem counts must be >= 0");
+  using Family = std::function<Problem(const ProblemFactory&, std::uint64_t, int)>;
+  const auto furniture = [](Problem (*make)(const ProblemFactory&, std::uint64_t, int, const FurnitureFamily&),
+                            const FurnitureFamily& family) -> Family {
+    return [make, &family](const ProblemFactory& f, std::uint64_t seed, int i) { return make(f, seed, i, family); };
+  };
+  const std::vector<std::pair<int, Family>> families = {
+      {settings.lineObstacles, lineObstacleProblem},     {settings.pillars, furniture(pillarProblem, kPillars)},
+      {settings.shelves, furniture(shelfProblem, kShelves)}, {settings.clutter, clutterProblem},
+      {settings.armBlocked, armBlockedProblem},           {settings.walls, wallProblem},
+      {settings.nearEndpoint, nearEndpointProblem},       {settings.tallPillars, furniture(pillarProblem, kTallPillars)},
+      {settings.deepShelves, furniture(shelfProblem, kDeepShelves)},
+  };
+  for (const auto& [count, make] : families) {
+    if (count < 0) throw Error("problem generator: problem counts must be >= 0");
   }
   const ProblemFactory factory;
   std::vector<Problem> problems;
-  for (int i = 0; i < settings.lineObstacles; ++i) problems.push_back(lineObstacleProblem(factory, settings.seed, i));
-  for (int i = 0; i < settings.pillars; ++i) problems.push_back(pillarProblem(factory, settings.seed, i));
-  for (int i = 0; i < settings.shelves; ++i) problems.push_back(shelfProblem(factory, settings.seed, i));
+  for (const auto& [count, make] : families) {
+    for (int i = 0; i < count; ++i) problems.push_back(make(factory, settings.seed, i));
+  }
   return problems;
 }
 

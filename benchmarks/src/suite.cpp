@@ -72,6 +72,19 @@ struct SuiteReader {
     return value;
   }
 
+  // A length in metres, >= 0 and below a metre (more would leave no room to move).
+  double distance(const YAML::Node& map, const std::string& key, const std::string& what) const {
+    const auto node = map[key];
+    double value = 0.0;
+    try {
+      value = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(node, what + ": field '" + key + "' must be a number (m)");
+    }
+    if (!std::isfinite(value) || value < 0.0 || value >= 1.0) fail(node, what + ": field '" + key + "' must be in [0, 1) m");
+    return value;
+  }
+
   long long count(const YAML::Node& map, const std::string& key, const std::string& what, long long minimum,
                   long long maximum) const {
     const auto node = map[key];
@@ -143,13 +156,22 @@ struct SuiteReader {
   }
 
   GeneratorSettings generator(const YAML::Node& node) const {
-    expectKeys(node, {"seed", "line_obstacles", "pillars", "shelves"}, "generate");
     GeneratorSettings settings;
+    const std::vector<std::pair<const char*, int*>> counts = {
+        {"line_obstacles", &settings.lineObstacles}, {"pillars", &settings.pillars},
+        {"shelves", &settings.shelves},              {"clutter", &settings.clutter},
+        {"arm_blocked", &settings.armBlocked},       {"walls", &settings.walls},
+        {"near_endpoint", &settings.nearEndpoint},   {"tall_pillars", &settings.tallPillars},
+        {"deep_shelves", &settings.deepShelves},
+    };
+    std::set<std::string> keys{"seed"};
+    for (const auto& [key, field] : counts) keys.insert(key);
+    expectKeys(node, keys, "generate");
     if (!node["seed"]) fail(node, "generate: missing field 'seed' (problems must be reproducible)");
     settings.seed = static_cast<std::uint64_t>(count(node, "seed", "generate", 0, std::numeric_limits<long long>::max()));
-    if (node["line_obstacles"]) settings.lineObstacles = static_cast<int>(count(node, "line_obstacles", "generate", 0, kMaximumGeneratedPerKind));
-    if (node["pillars"]) settings.pillars = static_cast<int>(count(node, "pillars", "generate", 0, kMaximumGeneratedPerKind));
-    if (node["shelves"]) settings.shelves = static_cast<int>(count(node, "shelves", "generate", 0, kMaximumGeneratedPerKind));
+    for (const auto& [key, field] : counts) {
+      if (node[key]) *field = static_cast<int>(count(node, key, "generate", 0, kMaximumGeneratedPerKind));
+    }
     return settings;
   }
 };
@@ -176,7 +198,9 @@ namespace {
 Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
   const SuiteReader reader{file};
   if (!root || !root.IsMap()) throw Error(file.string() + ": a suite must be a YAML map (name, runs, problems, planners)");
-  reader.expectKeys(root, {"name", "description", "runs", "time_limit", "v_max", "problems", "generate", "planners", "plots"},
+  reader.expectKeys(root,
+                    {"name", "description", "runs", "time_limit", "v_max", "clearance", "problems", "generate", "planners",
+                     "plots"},
                     "suite");
 
   Suite suite;
@@ -186,6 +210,7 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
   if (root["runs"]) suite.runs = static_cast<unsigned>(reader.count(root, "runs", "suite", 1, kMaximumRuns));
   if (root["time_limit"]) suite.timeLimit = reader.positive(root, "time_limit", "suite");
   if (root["v_max"]) suite.vMax = reader.positive(root, "v_max", "suite");
+  if (root["clearance"]) suite.clearance = reader.distance(root, "clearance", "suite");
 
   if (const auto problems = root["problems"]) {
     if (!problems.IsSequence()) reader.fail(problems, "problems must be a list");

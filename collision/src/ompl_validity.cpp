@@ -32,20 +32,26 @@ ob::StateSpacePtr makeJointStateSpace(const robot::RobotModel& model) {
 }
 
 CollisionStateValidityChecker::CollisionStateValidityChecker(ob::SpaceInformation* si,
-                                                             std::shared_ptr<const CollisionModel> model)
-    : ob::StateValidityChecker(si), pool_(std::move(model)) {
+                                                             std::shared_ptr<const CollisionModel> model,
+                                                             double clearance)
+    : ob::StateValidityChecker(si), pool_(std::move(model)), clearance_(clearance) {
+  if (!std::isfinite(clearance) || clearance < 0.0) {
+    throw Error("state validity: clearance must be a finite distance >= 0 m, got " + std::to_string(clearance));
+  }
   specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::APPROXIMATE;  // workspace distance, not C-space
 }
 
 bool CollisionStateValidityChecker::isValid(const ob::State* state) const {
   if (!si_->satisfiesBounds(state)) return false;
   const auto lease = pool_.lease();
-  return isCollisionFree(model(), *lease, jointsOf(state, model().robot().dof()));
+  const auto q = jointsOf(state, model().robot().dof());
+  if (clearance_ > 0.0) return distance(model(), *lease, q).minimum() >= clearance_;
+  return isCollisionFree(model(), *lease, q);
 }
 
 bool CollisionStateValidityChecker::isValid(const ob::State* state, double& clearance) const {
   clearance = this->clearance(state);
-  return clearance > 0.0 && si_->satisfiesBounds(state);
+  return clearance > 0.0 && clearance >= clearance_ && si_->satisfiesBounds(state);
 }
 
 double CollisionStateValidityChecker::clearance(const ob::State* state) const {
@@ -97,12 +103,14 @@ bool JointMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
 }
 
 ob::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model,
-                                             const MotionCheckOptions& motionCheck) {
+                                             const MotionCheckOptions& motionCheck, double clearance) {
   if (!model) throw Error("makeSpaceInformation: no collision model");
   auto space = makeJointStateSpace(model->robot());
   auto si = std::make_shared<ob::SpaceInformation>(space);
-  si->setStateValidityChecker(std::make_shared<CollisionStateValidityChecker>(si.get(), model));
-  si->setMotionValidator(std::make_shared<JointMotionValidator>(si.get(), std::move(model), motionCheck));
+  si->setStateValidityChecker(std::make_shared<CollisionStateValidityChecker>(si.get(), model, clearance));
+  MotionCheckOptions motions = motionCheck;
+  motions.minimumClearance = std::max(motions.minimumClearance, clearance);
+  si->setMotionValidator(std::make_shared<JointMotionValidator>(si.get(), std::move(model), motions));
   // The resolution is what OMPL planners take as the longest motion worth checking in one piece
   // (BiTRRT, for one, connects its trees only within 10 of them). Only the discrete validator checks
   // at its step; with certified motions OMPL's default (1 % of the space's extent) stands.

@@ -12,27 +12,33 @@ namespace {
 // Below this a length counts as zero (m): far under any resolution a robot can execute.
 constexpr double kLengthTolerance = 1e-12;
 
-void requirePositive(double value, const char* name) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    std::ostringstream message;
-    message << "arc parameter " << name << " must be a finite number > 0 (got " << value << ")";
-    throw Error(message.str());
-  }
+std::string notPositive(double value, const char* name) {
+  if (std::isfinite(value) && value > 0.0) return {};
+  std::ostringstream message;
+  message << "arc parameter " << name << " must be a finite number > 0 (got " << value << ")";
+  return message.str();
 }
 
 }  // namespace
 
-void validateArcParameters(const ArcParameters& p) {
-  requirePositive(p.sagitta, "sagitta (h)");
-  requirePositive(p.halfChord, "half_chord (r)");
-  requirePositive(p.entryRadius, "entry_radius (R2)");
-  requirePositive(p.exitRadius, "exit_radius (R3)");
+std::string arcParametersProblem(const ArcParameters& p) {
+  for (const std::string& problem :
+       {notPositive(p.sagitta, "sagitta (h)"), notPositive(p.halfChord, "half_chord (r)"),
+        notPositive(p.entryRadius, "entry_radius (R2)"), notPositive(p.exitRadius, "exit_radius (R3)")}) {
+    if (!problem.empty()) return problem;
+  }
   if (p.sagitta > p.halfChord) {
     std::ostringstream message;
     message << "arc parameter sagitta (h) must satisfy 0 < h <= half_chord (r); got h = " << p.sagitta
             << " m > r = " << p.halfChord << " m";
-    throw Error(message.str());
+    return message.str();
   }
+  return {};
+}
+
+void validateArcParameters(const ArcParameters& p) {
+  const std::string problem = arcParametersProblem(p);
+  if (!problem.empty()) throw Error(problem);
 }
 
 double PlanarArc::length() const { return radius * std::abs(sweep); }

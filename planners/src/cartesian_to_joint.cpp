@@ -13,7 +13,7 @@ constexpr double kGoalTolerance = 1e-6;  // rad per joint
 
 class Converter {
  public:
-  Converter(const robot::UrInverseKinematics& ik, const ArcPath& path, const JointConversionOptions& options,
+  Converter(const robot::UrInverseKinematics& ik, const TcpPath& path, const JointConversionOptions& options,
             const std::optional<robot::Vector6>& goal, const WaypointCheck& check, JointWaypoints& result)
       : ik_(ik),
         path_(path),
@@ -102,7 +102,7 @@ class Converter {
 
  private:
   const robot::UrInverseKinematics& ik_;
-  const ArcPath& path_;
+  const TcpPath& path_;
   const JointConversionOptions& options_;
   const std::optional<robot::Vector6>& goal_;
   const WaypointCheck& check_;
@@ -132,7 +132,7 @@ const char* toString(ConversionStatus status) {
   return "unknown";
 }
 
-JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const ArcPath& path, const robot::Vector6& seed,
+JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const TcpPath& path, const robot::Vector6& seed,
                                const std::optional<robot::Vector6>& goal, const JointConversionOptions& options,
                                double fromArcLength, double toArcLength, const WaypointCheck& check) {
   if (!(options.maxJointStep > 0.0) || !std::isfinite(options.maxJointStep)) {

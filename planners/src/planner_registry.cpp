@@ -32,8 +32,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <functional>
 #include <map>
+#include <optional>
+#include <sstream>
 
 #include "arcplan/common/error.h"
 #include "arcplan/planners/arc_planner.h"
@@ -92,6 +95,24 @@ constexpr const char* kArcName = "arc";
 std::string lowercase(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
   return text;
+}
+
+// The numeric bounds of an OMPL range suggestion ("low:high" or "low:step:high"); none for other
+// suggestions (a list of choices such as "0,1", or nothing).
+std::optional<std::pair<double, double>> numericRange(const std::string& suggestion) {
+  std::vector<double> numbers;
+  std::size_t begin = 0;
+  while (begin <= suggestion.size()) {
+    const std::size_t end = std::min(suggestion.find(':', begin), suggestion.size());
+    const std::string part = suggestion.substr(begin, end - begin);
+    char* stop = nullptr;
+    const double value = std::strtod(part.c_str(), &stop);
+    if (part.empty() || stop != part.c_str() + part.size()) return std::nullopt;
+    numbers.push_back(value);
+    begin = end + 1;
+  }
+  if (numbers.size() < 2 || numbers.size() > 3) return std::nullopt;
+  return std::make_pair(numbers.front(), numbers.back());
 }
 
 std::string joined(const std::vector<std::string>& items) {
@@ -153,6 +174,18 @@ void setPlannerParameters(ob::Planner& planner, const std::vector<std::pair<std:
     }
     const std::string rejected =
         "planner " + planner.getName() + ": parameter '" + key + "' does not accept '" + value + "'";
+    // OMPL's setters take any number; the declared range is the contract the planner documents.
+    const std::string suggestion = planner.params()[key].getRangeSuggestion();
+    if (const auto range = numericRange(suggestion)) {
+      char* stop = nullptr;
+      const double number = std::strtod(value.c_str(), &stop);
+      if (stop != value.c_str() + value.size() || !(number >= range->first && number <= range->second)) {
+        std::ostringstream message;
+        message << rejected << ": expected a number in [" << range->first << ", " << range->second
+                << "] (declared range " << suggestion << ")";
+        throw Error(message.str());
+      }
+    }
     bool accepted = false;
     try {
       accepted = planner.params().setParam(key, value);
@@ -162,10 +195,23 @@ void setPlannerParameters(ob::Planner& planner, const std::vector<std::pair<std:
       throw Error(rejected + ": " + error.what());
     }
     if (!accepted) {
-      const std::string suggestion = planner.params()[key].getRangeSuggestion();
       throw Error(rejected + (suggestion.empty() ? "" : " (suggested range " + suggestion + ")"));
     }
   }
+}
+
+std::vector<std::pair<std::string, std::vector<DeclaredParameter>>> declaredParameters(
+    const ob::SpaceInformationPtr& si, const PlannerContext& context) {
+  std::vector<std::pair<std::string, std::vector<DeclaredParameter>>> result;
+  for (const std::string& name : plannerNames()) {
+    const ob::PlannerPtr planner = plannerAllocator(name, context)(si);
+    std::vector<DeclaredParameter> parameters;
+    for (const auto& [key, parameter] : planner->params().getParams()) {
+      parameters.push_back({key, parameter->getValue(), parameter->getRangeSuggestion()});
+    }
+    result.emplace_back(name, std::move(parameters));
+  }
+  return result;
 }
 
 std::pair<std::string, std::string> parseParameterAssignment(const std::string& text) {

@@ -89,7 +89,7 @@ PlanningProblem makePlanningProblem(std::shared_ptr<const collision::Scene> scen
   problem.goal = resolveEndpoint(query.goal, *problem.collisionModel, ik, where + ", goal");
 
   problem.setup = std::make_shared<ompl::geometric::SimpleSetup>(
-      collision::makeSpaceInformation(problem.collisionModel, options.motionCheck));
+      collision::makeSpaceInformation(problem.collisionModel, options.motionCheck, options.clearance));
   const ompl::base::StateSpacePtr& space = problem.setup->getStateSpace();
   ompl::base::ScopedState<> start(space), goal(space);
   for (int j = 0; j < 6; ++j) {

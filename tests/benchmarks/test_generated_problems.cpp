@@ -24,6 +24,12 @@ GeneratorSettings smallSettings(std::uint64_t seed) {
   settings.lineObstacles = 6;
   settings.pillars = 2;
   settings.shelves = 2;
+  settings.clutter = 1;
+  settings.armBlocked = 1;
+  settings.walls = 1;
+  settings.nearEndpoint = 1;
+  settings.tallPillars = 1;
+  settings.deepShelves = 1;
   return settings;
 }
 
@@ -68,7 +74,7 @@ TEST(GeneratedProblems, FamiliesAreIndependentStreams) {
 
 TEST(GeneratedProblems, NamesAndFamiliesAsRequested) {
   const auto& problems = problemsOfSeed7();
-  ASSERT_EQ(problems.size(), 10u);
+  ASSERT_EQ(problems.size(), 16u);
   std::set<std::string> names;
   for (const auto& problem : problems) names.insert(problem.name);
   EXPECT_EQ(names.size(), problems.size());
@@ -77,6 +83,9 @@ TEST(GeneratedProblems, NamesAndFamiliesAsRequested) {
   EXPECT_EQ(problems[2].name, "line-cylinder-002");
   EXPECT_EQ(problems[6].name, "pillar-000");
   EXPECT_EQ(problems[9].name, "shelf-001");
+  const std::vector<std::string> workcell{"clutter-000",    "arm-blocked-000", "wall-000",
+                                          "near-end-000",   "pillar-tall-000", "shelf-deep-000"};
+  for (std::size_t i = 0; i < workcell.size(); ++i) EXPECT_EQ(problems[10 + i].name, workcell[i]);
   for (const auto& problem : problems) {
     EXPECT_EQ(problem.query, "main");
     ASSERT_EQ(problem.scene.queries.size(), 1u);
@@ -102,6 +111,8 @@ TEST(GeneratedProblems, StartAndGoalAreValidReachableToolDownPoses) {
       // Every colliding pair, not just the first: none may be reported.
       const auto report = collision::collide(*collisionModel, data, q);
       EXPECT_TRUE(report.valid) << (report.collisions.empty() ? "" : report.collisions[0].first + " / " + report.collisions[0].second);
+      // More room than the built-in suites' 1 cm clearance, so every planner may start and end there.
+      EXPECT_GE(collision::distance(*collisionModel, data, q).minimum(), 0.012);
       const auto pose = robot::tipPose(model, q);
       EXPECT_NEAR((pose.linear() * Eigen::Vector3d::UnitZ() - down).norm(), 0.0, 1e-9) << "tool not pointing down";
       EXPECT_GT(pose.translation().z(), 0.1);
@@ -151,6 +162,57 @@ TEST(GeneratedProblems, ClutteredScenesAreTallerThanAnyArcDetour) {
       EXPECT_GE(pillar.length, 1.5);
     } else if (problem.kind == "shelf") {
       EXPECT_EQ(problem.scene.obstacles.size(), 7u);  // table, back, 2 sides, 3 boards
+    }
+  }
+}
+
+TEST(GeneratedProblems, WorkcellFamiliesHaveTheObstaclesTheyPromise) {
+  const auto& model = robot::ur10e();
+  const robot::UrInverseKinematics ik(model);
+  for (const auto& problem : problemsOfSeed7()) {
+    SCOPED_TRACE(problem.name);
+    const auto& query = problem.scene.queries.front();
+    const Eigen::Vector3d a = robot::tipPose(model, *query.start.joints).translation();
+    const Eigen::Vector3d b = robot::tipPose(model, *query.goal.joints).translation();
+    const auto& obstacles = problem.scene.obstacles;  // the table first
+    if (problem.kind == "clutter") {
+      EXPECT_GE(obstacles.size(), 3u);
+      EXPECT_LE(obstacles.size(), 6u);
+      for (std::size_t i = 1; i < obstacles.size(); ++i) {
+        EXPECT_LT(distanceToSegment(obstacles[i].pose.translation(), a, b), 0.13);
+      }
+    } else if (problem.kind == "arm-blocked") {
+      // The tool's line keeps 5 cm from the body's ball, but the arm following it hits the body
+      // (walked here again with the IK, 5 mm steps).
+      const auto& body = obstacles.back();
+      EXPECT_GT(distanceToSegment(body.boundingCenter(), a, b), body.boundingRadius() + 0.05);
+      const auto collisionModel = collision::makeCollisionModel(problem.scene);
+      collision::CollisionData data(*collisionModel);
+      robot::Vector6 q = *query.start.joints;
+      bool hit = false;
+      Eigen::Isometry3d pose = robot::tipPose(model, q);
+      for (int k = 1; k <= 400 && !hit; ++k) {
+        pose.translation() = a + (b - a) * (k / 400.0);
+        q = *ik.solveNearest(pose, q);
+        hit = !collision::isCollisionFree(*collisionModel, data, q);
+      }
+      EXPECT_TRUE(hit);
+    } else if (problem.kind == "wall") {
+      const auto& wall = obstacles.back();
+      EXPECT_EQ(wall.shape, collision::Obstacle::Shape::Box);
+      EXPECT_NEAR(wall.pose.translation().z() - wall.size.z() / 2, 0.0, 1e-12);  // stands on the table
+      EXPECT_GT(wall.size.z(), std::max(a.z(), b.z()) + 0.05 - 1e-12);           // higher than the line
+      EXPECT_LT(distanceToSegment(Eigen::Vector3d(wall.pose.translation().x(), wall.pose.translation().y(), 0.0),
+                                  Eigen::Vector3d(a.x(), a.y(), 0.0), Eigen::Vector3d(b.x(), b.y(), 0.0)),
+                1e-9);  // across it
+    } else if (problem.kind == "near-end") {
+      const Eigen::Vector3d c = obstacles.back().pose.translation();
+      EXPECT_LT(std::min((c - a).norm(), (c - b).norm()), 0.16);
+    } else if (problem.kind == "pillar-tall") {
+      EXPECT_NEAR(obstacles.back().length, 2.0, 1e-12);
+      EXPECT_GE(obstacles.back().radius, 0.08);
+    } else if (problem.kind == "shelf-deep") {
+      EXPECT_GE(obstacles[2].size.x(), 0.38);  // a side panel: depth along the line
     }
   }
 }

@@ -57,13 +57,17 @@ TEST(Suite, ThesisSuiteHasBothThesisCasesAndEveryRequiredPlanner) {
   expectRequiredPlanners(suite);
 }
 
-TEST(Suite, GeneratedSuiteHasAtLeastFiftyProblemsOfEveryFamily) {
+TEST(Suite, GeneratedSuiteHasAtLeastEightyProblemsOfEveryFamily) {
   const auto suite = loadSuite(findSuite("generated"));
   ASSERT_TRUE(suite.generator.has_value());
-  EXPECT_GE(suite.problems.size(), 50u);
+  EXPECT_GE(suite.problems.size(), 80u);
+  EXPECT_DOUBLE_EQ(suite.clearance, 0.01);
   std::map<std::string, int> kinds;
   for (const auto& problem : suite.problems) ++kinds[problem.kind];
   for (const char* kind : {"line-sphere", "line-box", "line-cylinder", "pillar", "shelf"}) EXPECT_GE(kinds[kind], 5) << kind;
+  for (const char* kind : {"clutter", "arm-blocked", "wall", "near-end", "pillar-tall", "shelf-deep"}) {
+    EXPECT_GE(kinds[kind], 3) << kind;
+  }
   expectRequiredPlanners(suite);
 }
 
@@ -99,6 +103,7 @@ planners:
   EXPECT_EQ(suite.runs, 3u);
   EXPECT_DOUBLE_EQ(suite.timeLimit, 0.25);
   EXPECT_DOUBLE_EQ(suite.vMax, 0.25);  // default
+  EXPECT_DOUBLE_EQ(suite.clearance, 0.01);  // default
   ASSERT_EQ(suite.problems.size(), 1u);
   EXPECT_EQ(suite.problems[0].query, "A_to_B");  // the scene's first query
   ASSERT_EQ(suite.planners.size(), 2u);
@@ -136,6 +141,10 @@ TEST(Suite, BadSuiteFilesAreReportedWithFileLineAndField) {
        {"unknown_plot.yaml:4", "no problem named 'q'"}},
       {"not_yaml", "name: [x\n", {"not_yaml.yaml", "not a valid suite"}},
       {"no_seed", "name: x\ngenerate: {pillars: 1}\nplanners: [RRT]\n", {"no_seed.yaml:2", "missing field 'seed'"}},
+      {"bad_clearance", "name: x\nclearance: -0.01\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
+       {"bad_clearance.yaml:2", "'clearance' must be in [0, 1) m"}},
+      {"bad_family", "name: x\ngenerate: {seed: 1, walls: -1}\nplanners: [RRT]\n",
+       {"bad_family.yaml:2", "'walls' must be between 0 and 1000"}},
   };
   for (const auto& bad : cases) {
     SCOPED_TRACE(bad.name);

@@ -12,6 +12,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "arcplan/collision/ompl_validity.h"
+#include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
 
 namespace {
@@ -101,6 +102,41 @@ TEST(OmplValidity, MotionValidatorCatchesAnObstacleBetweenValidEndpoints) {
   raisedFrom[1] -= 0.4;
   raisedTo[1] -= 0.4;
   EXPECT_TRUE(si->checkMotion(stateOf(si, raisedFrom).get(), stateOf(si, raisedTo).get()));
+}
+
+TEST(OmplValidity, ClearanceMakesStatesAndMotionsKeepTheirDistance) {
+  // A ball 0.17 m beside tool0 at A (see above); the distance query measures the state's clearance d,
+  // and a required clearance just below / above d accepts / rejects the state.
+  auto scene = loadScene(arcplan::dataDirectory() / "scenes" / "thesis_free.yaml");
+  Obstacle ball;
+  ball.name = "ball";
+  ball.radius = 0.03;
+  Vector6 middle = kSolutionA;
+  middle[0] += 0.3;
+  ball.pose.translation() = arcplan::robot::tipPose(arcplan::robot::ur10e(), middle).translation();
+  scene.obstacles.push_back(ball);
+  const auto model = makeCollisionModel(scene);
+  CollisionData data(*model);
+  const double d = distance(*model, data, kSolutionA).minimum();
+  ASSERT_GT(d, 0.05);
+  const auto lenient = makeSpaceInformation(model, {}, d - 0.001);
+  const auto strict = makeSpaceInformation(model, {}, d + 0.001);
+  EXPECT_TRUE(lenient->isValid(stateOf(lenient, kSolutionA).get()));
+  EXPECT_FALSE(strict->isValid(stateOf(strict, kSolutionA).get()));
+
+  // Swinging toward the ball: the smallest distance along the motion, sampled densely, decides.
+  Vector6 closer = kSolutionA;
+  closer[0] += 0.15;
+  double closest = d;
+  for (int k = 0; k <= 400; ++k) {
+    closest = std::min(closest, distance(*model, data, kSolutionA + (closer - kSolutionA) * (k / 400.0)).minimum());
+  }
+  ASSERT_LT(closest, d - 0.02);
+  const auto loose = makeSpaceInformation(model, {}, closest - 0.005);
+  const auto tight = makeSpaceInformation(model, {}, closest + 0.005);
+  EXPECT_TRUE(loose->checkMotion(stateOf(loose, kSolutionA).get(), stateOf(loose, closer).get()));
+  EXPECT_FALSE(tight->checkMotion(stateOf(tight, kSolutionA).get(), stateOf(tight, closer).get()));
+  EXPECT_THROW(makeSpaceInformation(model, {}, -0.01), arcplan::Error);
 }
 
 TEST(OmplValidity, SegmentCountFollowsTheLargestJointStep) {

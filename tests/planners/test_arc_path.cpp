@@ -1,4 +1,4 @@
-// The arc detour geometry against the thesis (Table 3.1, the lengths of Table 3.3 / DESIGN.md §4)
+// The arc detour geometry against the thesis (Table 3.1, the lengths of Table 3.3 / docs/planners.md)
 // and against properties any correct construction must have (C¹ junctions, clearance, lengths).
 #include <gtest/gtest.h>
 

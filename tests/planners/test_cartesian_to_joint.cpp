@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "arcplan/planners/arc_path.h"
 #include "arcplan/planners/cartesian_to_joint.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/pose.h"

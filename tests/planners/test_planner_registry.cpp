@@ -55,8 +55,8 @@ TEST(PlannerRegistry, ParametersAreSetByName) {
       makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"range", "0.2"}});
   EXPECT_DOUBLE_EQ(dynamic_cast<ompl::geometric::RRTConnect&>(*rrt).getRange(), 0.2);
   const auto prm = makePlanner("PRM", problem.setup->getSpaceInformation(), problem.plannerContext(),
-                               {{"max_nearest_neighbors", "7"}});
-  EXPECT_EQ(dynamic_cast<ompl::geometric::PRM&>(*prm).getMaxNearestNeighbors(), 7u);
+                               {{"max_nearest_neighbors", "9"}});
+  EXPECT_EQ(dynamic_cast<ompl::geometric::PRM&>(*prm).getMaxNearestNeighbors(), 9u);
 }
 
 TEST(PlannerRegistry, UnknownParameterListsTheValidOnes) {
@@ -82,7 +82,25 @@ TEST(PlannerRegistry, ValueThePlannerCannotTakeIsRejected) {
   const std::string arc = errorMessageOf([&] {
     makePlanner("arc", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"resolution", "-0.01"}});
   });
-  EXPECT_NE(arc.find("resolution must be a finite number > 0"), std::string::npos) << arc;
+  EXPECT_NE(arc.find("parameter 'resolution' does not accept '-0.01'"), std::string::npos) << arc;
+  EXPECT_NE(arc.find("[0.001, 0.1]"), std::string::npos) << arc;
+}
+
+TEST(PlannerRegistry, ValuesOutsideTheDeclaredRangeAreRejected) {
+  // OMPL declares RRTConnect's range as "0.:1.:10000." and PRM's neighbours as "8:1000"; its setters
+  // themselves would take -1 and 3.
+  auto problem = thesisProblem("thesis_free");
+  const std::string range = errorMessageOf([&] {
+    makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"range", "-1"}});
+  });
+  EXPECT_NE(range.find("parameter 'range' does not accept '-1': expected a number in [0, 10000]"), std::string::npos)
+      << range;
+  const std::string neighbours = errorMessageOf([&] {
+    makePlanner("PRM", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"max_nearest_neighbors", "3"}});
+  });
+  EXPECT_NE(neighbours.find("[8, 1000]"), std::string::npos) << neighbours;
+  EXPECT_NO_THROW(
+      makePlanner("RRTConnect", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"range", "10000"}}));
 }
 
 TEST(PlannerRegistry, ParameterAssignmentsNeedNameAndValue) {

@@ -1,4 +1,4 @@
-// Regression against the thesis (seed Table 3.3, DESIGN.md §4) and against the committed baseline
+// Regression against the thesis (seed Table 3.3, docs/planners.md) and against the committed baseline
 // tests/planners/baselines/arc_thesis.json.
 //
 // Cases: (a) thesis_free, straight line; (b)-(d) thesis_obstacle with r = 0.2, R2 = 0.1, R3 = 0.2 and
@@ -34,7 +34,7 @@ struct ThesisCase {
   std::string scene;
   double sagittaFactor;  // h / r; 0 for the straight line
   double thesisLength;   // Table 3.3 total distance (m)
-  double designLength;   // DESIGN.md §4 analytic length (m)
+  double designLength;   // analytic length, docs/planners.md (m)
 };
 
 const std::vector<ThesisCase>& thesisCases() {
@@ -81,7 +81,7 @@ CaseRun run(const ThesisCase& c, double resolution = 0.0) {
   return result;
 }
 
-// DESIGN.md §6: length of the TCP curve of the densified joint path.
+// docs/metrics.md: length of the TCP curve of the densified joint path.
 double tcpPathLength(const std::vector<arcplan::robot::Vector6>& joints) {
   return arcplan::trajectory::densifyJointPath(arcplan::robot::ur10e(), joints).tcpArcLength.back();
 }

@@ -34,6 +34,12 @@ struct GeneratorSettings {
   int lineObstacles = 40;  // one sphere/box/cylinder on or near the straight TCP line
   int pillars = 5;         // a floor-to-ceiling pillar on the line: no arc detour clears it
   int shelves = 5;         // a shelf unit between start and goal: the tool must go over or around it
+  int clutter = 0;         // 2-5 small bodies along and around the line
+  int armBlocked = 0;      // a body above the line: the tool passes under it, the arm does not
+  int walls = 0;           // a thin wall across the line, to pass over
+  int nearEndpoint = 0;    // a small body 8-15 cm from the tool at the start or goal
+  int tallPillars = 0;     // 2 m pillars, 8-14 cm in radius
+  int deepShelves = 0;     // shelves 0.38-0.45 m deep (the usual ones: 0.25-0.35)
 };
 
 struct Suite {
@@ -43,6 +49,9 @@ struct Suite {
   unsigned runs = 10;
   double timeLimit = 1.0;  // s per run
   double vMax = 0.25;      // TCP speed limit of the time scaling, m/s
+  // m every planner's states and motions keep from obstacles and between links (the validity checker
+  // and motion validator of every job); a run whose executed path comes closer is not a success.
+  double clearance = 0.01;
   std::vector<Problem> problems;
   std::vector<PlannerConfiguration> planners;
   std::optional<GeneratorSettings> generator;  // set when some problems are generated

@@ -3,6 +3,10 @@
 // (collision + joint bounds, clearance from the distance query) and a motion validator for straight
 // joint-space motions (certified by default, see motion_check.h). Any OMPL geometric planner can use
 // the SpaceInformation from makeSpaceInformation; all three are safe to call from several threads.
+//
+// A clearance c > 0 (a benchmark suite's `clearance`, docs/benchmarks.md) makes every planner keep
+// the same distance: a state is valid only if every non-allowed pair is at least c apart (one
+// distance query instead of a boolean one), and certified motions reject pairs measured closer than c.
 #include <memory>
 #include <utility>
 
@@ -21,9 +25,11 @@ ompl::base::StateSpacePtr makeJointStateSpace(const robot::RobotModel& model);
 
 class CollisionStateValidityChecker : public ompl::base::StateValidityChecker {
 public:
-  CollisionStateValidityChecker(ompl::base::SpaceInformation* si, std::shared_ptr<const CollisionModel> model);
+  // Throws arcplan::Error for a negative or non-finite clearance.
+  CollisionStateValidityChecker(ompl::base::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
+                                double clearance = 0.0);
 
-  // Inside the joint bounds and collision-free.
+  // Inside the joint bounds, collision-free and (clearance > 0) every pair at least clearance apart.
   bool isValid(const ompl::base::State* state) const override;
   // Same, and `clearance` = the state's clearance().
   bool isValid(const ompl::base::State* state, double& clearance) const override;
@@ -31,9 +37,11 @@ public:
   double clearance(const ompl::base::State* state) const override;
 
   const CollisionModel& model() const { return pool_.model(); }
+  double requiredClearance() const { return clearance_; }
 
 private:
   CollisionDataPool pool_;
+  double clearance_;
 };
 
 class JointMotionValidator : public ompl::base::MotionValidator {
@@ -64,7 +72,10 @@ private:
 // Joint state space + CollisionStateValidityChecker + JointMotionValidator, set up. The
 // SpaceInformation's state validity checking resolution (what OMPL planners treat as the longest
 // motion checked in one piece) is OMPL's default for certified motions and maxJointStep for discrete ones.
+// With clearance > 0 the state validity checker keeps it and the certified motion check rejects pairs
+// closer than max(clearance, motionCheck.minimumClearance).
 ompl::base::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model,
-                                                     const MotionCheckOptions& motionCheck = {});
+                                                     const MotionCheckOptions& motionCheck = {},
+                                                     double clearance = 0.0);
 
 }  // namespace arcplan::collision

@@ -1,6 +1,6 @@
 #pragma once
-// The thesis' arc detour (seed chapter 3.4, Table 3.1; DESIGN.md §4) and the TCP path it makes
-// along a segment A→B.
+// The thesis' arc detour (seed chapter 3.4, Table 3.1; geometry in docs/planners.md) and the TCP path
+// it makes along a segment A→B.
 //
 // 2D: in the avoidance plane, origin at the obstacle point O on the line, x along A→B, z away from
 // the obstacle side. The straight line is left at (-bx2, 0) on an entry arc (radius R2), continues
@@ -12,8 +12,11 @@
 // The tool orientation is constant when start and goal agree, else slerped over the arc length.
 #include <Eigen/Geometry>
 #include <array>
+#include <string>
 #include <utility>
 #include <vector>
+
+#include "arcplan/planners/tcp_path.h"
 
 namespace arcplan::planners {
 
@@ -25,7 +28,10 @@ struct ArcParameters {
   double exitRadius = 0.2;   // R3, the arc nearer to B
 };
 
-// Throws arcplan::Error naming the parameter and the valid range (all finite, 0 < h <= r, R2, R3 > 0).
+// What is wrong with the shape, naming the parameter and the valid range (all finite, 0 < h <= r,
+// R2, R3 > 0); empty when it is valid.
+std::string arcParametersProblem(const ArcParameters& parameters);
+// Throws arcplan::Error with arcParametersProblem's text for an invalid shape.
 void validateArcParameters(const ArcParameters& parameters);
 
 // A circular arc in a plane: the point at angle t is center + radius·(cos t, sin t).
@@ -70,15 +76,8 @@ struct Detour {
 // Unit "away" direction of the avoidance plane, orthogonal to the unit line direction.
 Eigen::Vector3d avoidanceDirection(const Eigen::Vector3d& lineDirection, double planeAngle);
 
-// A point of a sampled TCP path.
-struct PathSample {
-  double arcLength = 0.0;  // from A along the path
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  bool junction = false;  // A, B, or a point where two pieces (line/arc) meet
-};
-
 // The TCP path from start to goal: the straight line with the given detours (none: a LIN move).
-class ArcPath {
+class ArcPath : public TcpPath {
  public:
   // Throws arcplan::Error for invalid shapes, detours out of order, overlapping, or not fitting
   // between A and B (bx2 <= |AO|, bx3 <= |OB|), and detours on a zero-length line.
@@ -91,20 +90,18 @@ class ArcPath {
   const Eigen::Vector3d& lineDirection() const { return lineDirection_; }
   double straightLength() const { return straightLength_; }
   // Analytic length: |AB| + the extra length of every detour.
-  double length() const { return length_; }
+  double length() const override { return length_; }
 
   Eigen::Vector3d position(double arcLength) const;
   Eigen::Vector3d tangent(double arcLength) const;  // unit; the line direction at a junction's far side
   Eigen::Quaterniond orientation(double arcLength) const;
-  Eigen::Isometry3d pose(double arcLength) const;
+  Eigen::Isometry3d pose(double arcLength) const override;
 
   // Arc lengths of A, every junction between pieces, and B, ascending.
   std::vector<double> junctions() const;
   // Arc lengths where detour i leaves the line and where it rejoins it.
   std::pair<double, double> detourSpan(std::size_t i) const { return detourSpans_.at(i); }
-  // Samples no more than `resolution` apart along the path (each piece split evenly), containing
-  // every junction exactly. Throws arcplan::Error if resolution is not positive.
-  std::vector<PathSample> sample(double resolution) const;
+  std::vector<PathSample> sample(double resolution) const override;
 
  private:
   struct Piece {

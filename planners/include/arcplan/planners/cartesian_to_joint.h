@@ -1,15 +1,16 @@
 #pragma once
 // A TCP path to joint waypoints with the analytic UR inverse kinematics, staying on the IK branch of
 // the start configuration: at every sample that branch's solution (UrInverseKinematics::solveBranch)
-// in the 2·pi representation nearest to the previous waypoint, steps of any joint bounded (a too-large step is bisected along the path; if that does not help, the
-// path crosses a singularity or changes branch and the conversion fails with the reason).
+// in the 2·pi representation nearest to the previous waypoint, steps of any joint bounded (a
+// too-large step is bisected along the path; if that does not help, the path crosses a singularity
+// or changes branch and the conversion fails with the reason).
 #include <functional>
 #include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "arcplan/planners/arc_path.h"
+#include "arcplan/planners/tcp_path.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 
 namespace arcplan::planners {
@@ -50,7 +51,7 @@ using WaypointCheck =
 // fromArcLength and becomes the first waypoint unchanged. When `goal` is given the last waypoint must
 // be the goal within 1e-6 rad per joint and is then replaced by it exactly (before `check` sees it).
 // Throws arcplan::Error for invalid options.
-JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const ArcPath& path, const robot::Vector6& seed,
+JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const TcpPath& path, const robot::Vector6& seed,
                                const std::optional<robot::Vector6>& goal, const JointConversionOptions& options,
                                double fromArcLength = 0.0, double toArcLength = std::numeric_limits<double>::infinity(),
                                const WaypointCheck& check = {});

@@ -45,6 +45,19 @@ ompl::base::PlannerPtr makePlanner(const std::string& name, const ompl::base::Sp
 void setPlannerParameters(ompl::base::Planner& planner,
                           const std::vector<std::pair<std::string, std::string>>& parameters);
 
+// A parameter as a planner declares it (ompl::base::ParamSet): its name, default value and range
+// suggestion ("low:step:high", or the choices, e.g. "0,1").
+struct DeclaredParameter {
+  std::string name;
+  std::string defaultValue;
+  std::string range;
+};
+
+// The declared parameters of every registered planner, in plannerNames() order, read from a freshly
+// allocated instance of each on `si`.
+std::vector<std::pair<std::string, std::vector<DeclaredParameter>>> declaredParameters(
+    const ompl::base::SpaceInformationPtr& si, const PlannerContext& context);
+
 // "name=value" -> (name, value); throws arcplan::Error for text without '=' or with an empty side.
 std::pair<std::string, std::string> parseParameterAssignment(const std::string& text);
 

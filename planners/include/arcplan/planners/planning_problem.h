@@ -29,6 +29,7 @@ extern const robot::Vector6 kDefaultIkSeed;
 
 struct PlanningProblemOptions {
   collision::MotionCheckOptions motionCheck;  // how the SpaceInformation's motion validator checks motions
+  double clearance = 0.0;  // m every state and motion keeps (collision::makeSpaceInformation); 0: only no contact
 };
 
 struct PlanningProblem {

@@ -1,0 +1,59 @@
+#pragma once
+// The lazy search of the via-point graph: routes start -> via points -> goal, shortest first.
+//
+// The graph's vertices are the start, the goal and the via-point candidates of the obstacle
+// clusters found so far (via_points.h); its edges are straight legs. Edges are evaluated lazily, as
+// in LazyPRM: only the legs of the currently shortest route are checked (by walking it, which the
+// caller does), a leg that fails is removed from the graph, and the cluster that blocked it adds its
+// candidates as new ways round that leg. A route's cost is its polyline length: at the TCP speed
+// limit, execution time is length / v_max plus the fixed ramps, so the shortest route is the fastest.
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <queue>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "arcplan/planners/via_points.h"
+
+namespace arcplan::planners {
+
+struct Route {
+  std::vector<Eigen::Vector3d> points;  // start, via points, goal
+  std::vector<double> margins;          // per via point: the margin its candidate keeps (m)
+  double length = 0.0;                  // polyline length (m)
+};
+
+class RouteSearch {
+ public:
+  // Starts with the straight route start -> goal. `maxViaPoints` bounds a route's via points.
+  RouteSearch(const Eigen::Vector3d& start, const Eigen::Vector3d& goal, std::size_t maxViaPoints);
+
+  // The shortest route none of whose legs is known to fail; nothing once every route is exhausted.
+  std::optional<Route> next();
+  // Leg k of `route` failed: remove it, and add `route` with that leg replaced by each candidate.
+  void legFailed(const Route& route, std::size_t leg, const std::vector<ViaCandidate>& ways);
+  // Leg k of `route` failed for a reason no via point removes (e.g. unreachable): remove it only.
+  void removeLeg(const Route& route, std::size_t leg);
+
+  std::size_t routesTried() const { return tried_; }
+  std::size_t routesQueued() const { return queued_; }
+
+ private:
+  using Point = std::array<double, 3>;
+  using Leg = std::pair<Point, Point>;
+  static Leg legOf(const Route& route, std::size_t k);
+  void push(Route route);
+
+  struct Longer {
+    bool operator()(const Route& a, const Route& b) const { return a.length > b.length; }
+  };
+  std::priority_queue<Route, std::vector<Route>, Longer> queue_;
+  std::set<Leg> failedLegs_;
+  std::size_t maxViaPoints_;
+  std::size_t tried_ = 0, queued_ = 0;
+};
+
+}  // namespace arcplan::planners

@@ -1,0 +1,49 @@
+#pragma once
+// Via-point candidates from the obstacles' geometry, for the via-point search (route_search.h).
+//
+// Obstacles are grouped into clusters: bodies whose bounding boxes come closer than `gap` are one
+// cluster (a shelf's panels, a box on a box), since the robot cannot pass between them. Bodies lying
+// below the robot's base plane (the table it stands on) are the floor: never part of a cluster.
+// Each cluster is kept as points whose convex hull contains it (box corners, the circumscribed
+// octagons of a cylinder's caps, the circumscribed cube of a sphere or mesh ball).
+//
+// Around a cluster blocking a leg p -> q, candidates lie in planes through the leg, the plane's
+// "away" direction d turned about the leg in 30° steps from world up (avoidanceDirection, so 0 is
+// "lift over" and ±90° go round the side). With y the hull's largest extent along d and [x0, x1] its
+// extent along the leg, a candidate keeps clearance + margin beyond y:
+//   - over: two via points at x0 - margin and x1 + margin (a trapezoid, for walls and wide bodies);
+//   - apex: one via point above the cluster's middle, high enough that both straight legs clear
+//     every hull point by clearance + margin (a triangle, the shortest way past a small body).
+// Margins grow from 2 cm to 35 cm: the tool and the arm above it need room besides the clearance.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "arcplan/collision/scene.h"
+
+namespace arcplan::planners {
+
+struct ObstacleCluster {
+  std::vector<std::string> names;
+  std::vector<Eigen::Vector3d> hull;  // points whose convex hull contains every body of the cluster
+};
+
+// Points whose convex hull contains the obstacle.
+std::vector<Eigen::Vector3d> hullPoints(const collision::Obstacle& obstacle);
+
+// Clusters of the obstacles that are not floor, in the order of their first body.
+std::vector<ObstacleCluster> clusterObstacles(const std::vector<collision::Obstacle>& obstacles, double gap);
+
+// A way past a cluster: one or two via points between p and q, with the margin they keep.
+struct ViaCandidate {
+  std::vector<Eigen::Vector3d> points;
+  double margin = 0.0;  // m beyond clearance
+};
+
+// Candidates (over and apex, every plane and margin) around `cluster` for the leg p -> q. Points
+// closer than 1 cm to p or q along the leg are moved inward; candidates needing an apex higher than
+// 1.5 m are left out.
+std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Eigen::Vector3d& p,
+                                        const Eigen::Vector3d& q, double clearance);
+
+}  // namespace arcplan::planners

@@ -1,0 +1,93 @@
+// The arc planner's fallback where no route through via points validates: a certified joint-space
+// path from RRTConnect on the planner's own SpaceInformation, shortened by OMPL's simplifier, with
+// each segment replaced by a straight TCP line where that line validates for the whole robot. The
+// result reports which share of its TCP length is Cartesian (docs/planners.md), so the arc planner
+// is never a disguised RRTConnect.
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/PathSimplifier.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+
+#include "arc_planning.h"
+#include "arcplan/robot/kinematics.h"
+
+namespace arcplan::planners::detail {
+namespace {
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+// TCP length of a straight joint motion, from forward kinematics at this many points.
+constexpr int kTcpSamples = 32;
+
+double tcpLengthOf(const robot::RobotModel& robot, const robot::Vector6& from, const robot::Vector6& to) {
+  double length = 0.0;
+  Eigen::Vector3d previous = robot::tipPose(robot, from).translation();
+  for (int k = 1; k <= kTcpSamples; ++k) {
+    const Eigen::Vector3d p = robot::tipPose(robot, from + (to - from) * (static_cast<double>(k) / kTcpSamples)).translation();
+    length += (p - previous).norm();
+    previous = p;
+  }
+  return length;
+}
+
+robot::Vector6 jointsOf(const ob::SpaceInformation& si, const ob::State* state) {
+  robot::Vector6 q;
+  for (int j = 0; j < 6; ++j) q[j] = *si.getStateSpace()->getValueAddressAtIndex(state, j);
+  return q;
+}
+
+}  // namespace
+
+JointWaypoints planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, ArcPlannerResult& result) {
+  auto problem = std::make_shared<ob::ProblemDefinition>(si);
+  ob::ScopedState<> start(si), goal(si);
+  for (int j = 0; j < 6; ++j) {
+    start[j] = query.start[j];
+    goal[j] = query.goal[j];
+  }
+  problem->setStartAndGoalStates(start, goal);
+  og::RRTConnect sampler(si);
+  sampler.setProblemDefinition(problem);
+  sampler.setup();
+  if (sampler.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) {
+    result.reason += "; the joint-space fallback found no path either";
+    return {};
+  }
+  og::PathGeometric path(*problem->getSolutionPath()->as<og::PathGeometric>());
+  og::PathSimplifier(si).simplify(path, query.ptc);
+
+  JointWaypoints waypoints = query.startOnly();
+  double cartesian = 0.0, total = 0.0;
+  for (std::size_t i = 1; i < path.getStateCount(); ++i) {
+    const robot::Vector6 from = waypoints.joints.back(), to = jointsOf(*si, path.getState(i));
+    const Eigen::Isometry3d fromPose = robot::tipPose(query.model.robot(), from);
+    const Eigen::Isometry3d toPose = robot::tipPose(query.model.robot(), to);
+    const ArcPath line(fromPose, toPose);
+    JointWaypoints here;
+    here.joints.push_back(from);
+    here.arcLengths.push_back(0.0);
+    const JointWaypoints walked = query.validator.walk(line, here, to);
+    const double offset = waypoints.arcLengths.back();
+    if (walked.ok()) {  // the segment as a TCP line
+      for (std::size_t k = 1; k < walked.joints.size(); ++k) {
+        waypoints.joints.push_back(walked.joints[k]);
+        waypoints.arcLengths.push_back(offset + walked.arcLengths[k]);
+      }
+      cartesian += line.length();
+      total += line.length();
+    } else {  // the joint motion RRTConnect found, certified by the SpaceInformation's motion validator
+      const double length = tcpLengthOf(query.model.robot(), from, to);
+      waypoints.joints.push_back(to);
+      waypoints.arcLengths.push_back(offset + length);
+      total += length;
+    }
+  }
+  result.kind = ArcPlannerResult::Kind::Fallback;
+  result.cartesianFraction = total > 0.0 ? cartesian / total : 0.0;
+  result.tcpPathLength = cartesian;
+  return waypoints;
+}
+
+}  // namespace arcplan::planners::detail

@@ -1,0 +1,143 @@
+// The auto mode of the arc planner: the shortest route through via points that validates, corners
+// blended as widely as validates (docs/planners.md).
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "arc_planning.h"
+#include "arcplan/planners/blended_path.h"
+#include "arcplan/planners/route_search.h"
+#include "arcplan/planners/via_points.h"
+
+namespace arcplan::planners::detail {
+namespace {
+
+// Bodies closer than this form one cluster: the flange and wrist (~0.1 m across) cannot pass between.
+constexpr double kClusterGap = 0.1;
+// A route has at most this many via points (two clusters passed over a trapezoid each).
+constexpr std::size_t kMaxViaPoints = 4;
+// Routes walked before the search gives up (each walk costs ~0.1 ms).
+constexpr int kMaxRoutes = 300;
+// Blends shrink by halves down to this tangent length (m); below it the corner counts as failed.
+constexpr double kSmallestBlend = 0.004;
+
+// The blend a corner starts with: the largest that fits, but whose arc does not cut the corner by more
+// than half the margin its via point keeps (t·tan(φ/4) inside the corner).
+double initialBlend(const std::vector<Eigen::Vector3d>& points, std::size_t i, double margin) {
+  const double largest = BlendedPath::maxBlend(points, i);
+  const double quarterTurn = std::tan(0.25 * BlendedPath::turningAngle(points, i + 1));
+  return quarterTurn > 1e-9 ? std::min(largest, 0.5 * margin / quarterTurn) : largest;
+}
+
+bool legsLongEnough(const Route& route) {
+  for (std::size_t k = 0; k + 1 < route.points.size(); ++k) {
+    if ((route.points[k + 1] - route.points[k]).norm() < 2.0 * kSmallestBlend) return false;
+  }
+  return true;
+}
+
+// The via point's configuration on the start's branch keeps the margin: a cheap test before a walk.
+bool viaPointClear(const ArcQuery& query, collision::CollisionData& data, const Eigen::Vector3d& point) {
+  Eigen::Isometry3d pose = query.a;
+  pose.translation() = point;
+  const int branch = query.ik.branchOf(query.start);
+  const auto q = query.ik.solveBranch(pose, branch, query.start[5]);
+  if (!q) return false;
+  return collision::distance(query.model, data, *q).minimum() >= query.validator.margin();
+}
+
+}  // namespace
+
+JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result) {
+  const std::vector<ObstacleCluster> clusters = clusterObstacles(query.obstacles, kClusterGap);
+  RouteSearch search(query.a.translation(), query.b.translation(), kMaxViaPoints);
+  collision::CollisionData data(query.model);
+  const bool orientationHeld = Eigen::Quaterniond(query.a.linear()).angularDistance(Eigen::Quaterniond(query.b.linear())) < 1e-12;
+  std::set<std::array<double, 3>> blockedPoints;
+  std::string lastFailure = "no route";
+  while (const std::optional<Route> route = search.next()) {
+    if (query.ptc()) {
+      result.reason = "time limit reached before a valid route was found (" + lastFailure + ")";
+      return {};
+    }
+    if (static_cast<int>(search.routesTried()) > kMaxRoutes) break;
+    if (!legsLongEnough(*route)) continue;
+    const std::vector<Eigen::Vector3d> vias(route->points.begin() + 1, route->points.end() - 1);
+    // With a held orientation a via point's posture is known before the walk: test it first.
+    bool viasClear = true;
+    for (const Eigen::Vector3d& v : vias) {
+      const std::array<double, 3> key{v.x(), v.y(), v.z()};
+      if (blockedPoints.count(key) > 0) viasClear = false;
+      if (viasClear && orientationHeld && !viaPointClear(query, data, v)) {
+        blockedPoints.insert(key);
+        viasClear = false;
+      }
+    }
+    if (!viasClear) continue;
+    std::vector<double> blends;
+    for (std::size_t i = 0; i < vias.size(); ++i) blends.push_back(initialBlend(route->points, i, route->margins[i]));
+    result.routesTried = static_cast<int>(search.routesTried());
+    for (;;) {
+      const BlendedPath path(query.a, query.b, vias, blends);
+      const JointWaypoints walked = query.validator.walk(path, query.startOnly(), query.goal);
+      if (walked.ok()) {
+        result.kind = vias.empty() ? ArcPlannerResult::Kind::StraightLine : ArcPlannerResult::Kind::ViaPoints;
+        result.viaPoints = vias;
+        result.blends = blends;
+        result.tcpPathLength = path.length();
+        return walked;
+      }
+      if (query.ptc()) break;
+      const double failedAt = walked.failedAtArcLength;
+      // A failure on a blend first narrows that blend; on a line (or a blend at its smallest) the
+      // leg is dropped from the graph.
+      std::size_t leg = vias.size();
+      bool narrowed = false;
+      for (std::size_t i = 0; i < vias.size(); ++i) {
+        const auto [from, to] = path.blendSpan(i);
+        if (failedAt > to + 1e-12) continue;
+        if (failedAt >= from - 1e-12 && blends[i] > 2.0 * kSmallestBlend) {
+          blends[i] *= 0.5;
+          narrowed = true;
+        }
+        leg = failedAt >= from - 1e-12 ? i + 1 : i;
+        break;
+      }
+      if (narrowed) continue;
+      std::ostringstream failure;
+      failure << toString(walked.status) << " on leg " << leg + 1 << " of a route with " << vias.size()
+              << " via points";
+      if (walked.status != ConversionStatus::Rejected) {
+        lastFailure = failure.str() + ": " + walked.reason;
+        search.removeLeg(*route, leg);
+        break;
+      }
+      const Rejection rejection = query.validator.rejection();
+      lastFailure = failure.str() + ": " + rejection.describe(query.validator.margin());
+      const auto cluster = std::find_if(clusters.begin(), clusters.end(), [&](const ObstacleCluster& c) {
+        return std::any_of(c.names.begin(), c.names.end(), [&](const std::string& n) { return rejection.involves(n); });
+      });
+      if (cluster == clusters.end()) {
+        search.removeLeg(*route, leg);
+        break;
+      }
+      for (const std::string& name : cluster->names) {
+        if (rejection.involves(name) &&
+            std::find(result.obstacles.begin(), result.obstacles.end(), name) == result.obstacles.end()) {
+          result.obstacles.push_back(name);
+        }
+      }
+      search.legFailed(*route, leg, viaCandidates(*cluster, route->points[leg], route->points[leg + 1], query.validator.margin()));
+      break;
+    }
+  }
+  result.routesTried = static_cast<int>(search.routesTried());
+  std::ostringstream message;
+  message << (query.ptc() ? "time limit reached" : "no route through via points is valid") << " ("
+          << search.routesTried() << " routes walked of " << search.routesQueued() << "; last: " << lastFailure << ")";
+  result.reason = message.str();
+  return {};
+}
+
+}  // namespace arcplan::planners::detail
