@@ -9,6 +9,7 @@
 #include "arcplan/report/median_run.h"
 #include "arcplan/report/robot_animation.h"
 #include "arcplan/robot/robot_model.h"
+#include "compact_number.h"
 #include "json_file.h"
 
 namespace arcplan::report {
@@ -16,8 +17,6 @@ namespace {
 
 constexpr std::size_t kLongText = 200;
 
-// Shortest decimal that survives the rounding: the page needs 0.1 mm and 0.1 mm/s, not 17 digits.
-double rounded(double value, double step) { return std::round(value / step) * step; }
 
 std::string relativeLink(const std::filesystem::path& target, const std::filesystem::path& output) {
   const auto from = std::filesystem::weakly_canonical(std::filesystem::absolute(output)).parent_path();
@@ -48,9 +47,9 @@ nlohmann::json runsJson(const BenchmarkRuns& runs) {
 nlohmann::json medianRunJson(const MedianRun& run, const robot::RobotModel& robot, const CampaignReportOptions& options) {
   nlohmann::json t = nlohmann::json::array(), speed = nlohmann::json::array(), tcp = nlohmann::json::array();
   const auto keep = [&](std::size_t i) {
-    t.push_back(rounded(run.time[i], 1e-4));
-    speed.push_back(rounded(run.tcpSpeed[i], 1e-5));
-    for (int k = 0; k < 3; ++k) tcp.push_back(rounded(run.tcp[i][k], 1e-4));
+    t.push_back(detail::withSignificantDigits(run.time[i], 6));
+    speed.push_back(detail::withSignificantDigits(run.tcpSpeed[i], 5));
+    for (int k = 0; k < 3; ++k) tcp.push_back(detail::withSignificantDigits(run.tcp[i][k], 5));
   };
   const std::size_t n = run.time.size();
   const std::size_t stride = std::max<std::size_t>(1, (n + options.profileSamples - 1) / options.profileSamples);

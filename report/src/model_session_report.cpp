@@ -1,10 +1,13 @@
 #include "arcplan/report/model_session_report.h"
 
+#include <algorithm>
+
 
 #include "arcplan/common/error.h"
 #include "arcplan/model/report.h"
 #include "arcplan/model/workflow.h"
 #include "arcplan/report/model_series.h"
+#include "compact_number.h"
 #include "json_file.h"
 
 namespace arcplan::report {
@@ -21,14 +24,22 @@ std::filesystem::path latestSeries(const std::filesystem::path& session, const s
   return latest;
 }
 
+nlohmann::json compact(const std::vector<double>& values) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const double value : values) out.push_back(detail::withSignificantDigits(value, 5));
+  return out;
+}
+
 nlohmann::json seriesJson(const std::filesystem::path& file, std::size_t maxSamples) {
   nlohmann::json channels = nlohmann::json::array();
   for (const auto& series : readModelSeries(file, maxSamples)) {
+    nlohmann::json signals = nlohmann::json::object();
+    for (const auto& [signal, values] : series.signals) signals[signal] = compact(values);
     channels.push_back({{"channel", series.channel},
-                        {"time", series.time},
-                        {"measured", series.measured},
-                        {"predicted", series.predicted},
-                        {"signals", series.signals}});
+                        {"time", compact(series.time)},
+                        {"measured", compact(series.measured)},
+                        {"predicted", compact(series.predicted)},
+                        {"signals", signals}});
   }
   return {{"file", file.filename().string()}, {"channels", channels}};
 }
@@ -39,24 +50,32 @@ std::string joinedJoints(const nlohmann::json& joints) {
   return text;
 }
 
-// What to write to add the suggested effects: the `--add` option and the model file's effects line
-// (model_spec.h syntax "effect:joints"), after the effects the session's last step had.
+// A suggested candidate as a model-file effect entry: the catalogue's "effect:joints" syntax
+// (model_spec.h), or the expression entry the diagnosis wrote for a term it discovered.
+std::string modelEntry(const nlohmann::json& candidate) {
+  if (candidate.contains("model_entry")) return candidate.at("model_entry").get<std::string>();
+  return candidate.at("effect").get<std::string>() + ":" + joinedJoints(candidate.at("joints"));
+}
+
+// What to write to add the best suggestion: the model file's effects line after the effects of the
+// session's last step, and for a catalogue effect the `fit --add` command; every suggested entry too.
 nlohmann::json suggestedModelLines(const nlohmann::json& diagnosis, const std::vector<model::SessionStep>& history) {
-  std::vector<std::string> additions;
+  nlohmann::json entries = nlohmann::json::array();
   for (const auto& candidate : diagnosis.value("ranking", nlohmann::json::array())) {
-    if (candidate.value("suggested", false)) additions.push_back(candidate.at("effect").get<std::string>() + ":" + joinedJoints(candidate.at("joints")));
+    if (candidate.value("suggested", false)) entries.push_back(modelEntry(candidate));
   }
-  if (additions.empty()) return nullptr;
+  if (entries.empty()) return nullptr;
+  const auto& best = *std::find_if(diagnosis["ranking"].begin(), diagnosis["ranking"].end(),
+                                   [](const nlohmann::json& c) { return c.value("suggested", false); });
   std::string effects;
   if (!history.empty()) {
-    for (const auto& effect : history.back().effects) effects += (effects.empty() ? "" : ", ") + effect;
+    for (const auto& effect : history.back().effects) effects += effect + ", ";
   }
-  std::string command = "arcplan model fit";
-  for (const auto& addition : additions) {
-    effects += (effects.empty() ? "" : ", ") + addition;
-    command += " --add " + addition;
-  }
-  return {{"effects_line", "effects: [" + effects + "]"}, {"fit_command", command + " --save next.yaml"}};
+  nlohmann::json lines{{"effects_line", "effects: [" + effects + modelEntry(best) + "]"}, {"entries", entries}};
+  lines["fit_command"] = best.contains("model_entry")
+                             ? nlohmann::json(nullptr)
+                             : nlohmann::json("arcplan model fit --add " + modelEntry(best) + " --save next.yaml");
+  return lines;
 }
 
 }  // namespace

@@ -154,8 +154,10 @@
       "The scene's obstacles (red), start (green) and goal (black), each planner's TCP path in its colour, and the UR10e at the " +
       "planned joint states. Drag to orbit, scroll to zoom, right-drag to pan; move the time slider or press play to run the " +
       "time-scaled motion, choose which planner's motion the arm shows, tick planners on or off.");
+    const byRank = (a, b) => allPlanners.indexOf(a.name) - allPlanners.indexOf(b.name);
     for (const problem of plotted) {
       const paths = data.paths[problem];
+      paths.planners.sort(byRank);  // legends, toggles and the arm's default planner in ranking order
       const vmax = paths.scene.vmax_mps;
       const traces = paths.planners.map(planner => ({type: "scatter", mode: "lines", name: planner.name, x: planner.t, y: planner.speed,
                                                      line: {color: colours[planner.name], width: 1.6},

@@ -116,9 +116,9 @@
     const diagnosis = data.diagnosis;
     if (!diagnosis) return;
     const section = addSection("diagnosis", "What is missing: the diagnosis",
-      "Every catalogue effect not yet in the model, fitted to the residual and scored on " + diagnosis.heldout +
+      "Every catalogue effect not yet in the model, and terms found in the joints' signals, fitted to the residual and scored on " + diagnosis.heldout +
       ". The share of the held-out residual it removes ranks it; suggested effects pass the significance test.");
-    section.appendChild(el("p", {class: "explanation", text: diagnosis.summary}));
+    section.appendChild(el("p", {class: "explanation summary", text: diagnosis.summary}));
     const ranking = diagnosis.ranking.map((candidate, index) => Object.assign({key: candidate.effect, rank: index + 1}, candidate));
     const container = el("div", {class: "plot wide", id: "diagnosis-plot"});
     section.appendChild(container);
@@ -136,11 +136,18 @@
       {label: "explanation", text: true, value: c => c.explanation, cell: c => el("span", {class: "explanation", text: c.explanation || ""})},
     ], ranking));
     if (data.model_lines) {
-      section.appendChild(el("h3", {text: "Add the suggestion"}));
+      const lines = data.model_lines;
+      section.appendChild(el("h3", {text: "Add the best suggestion"}));
       section.appendChild(el("p", {class: "intro", text: "In the model file, the effects line becomes:"}));
-      section.appendChild(el("pre", {id: "model-lines", text: data.model_lines.effects_line}));
-      section.appendChild(el("p", {class: "intro", text: "or refit from the command line:"}));
-      section.appendChild(el("pre", {text: data.model_lines.fit_command}));
+      section.appendChild(el("pre", {id: "model-lines", text: lines.effects_line}));
+      if (lines.fit_command) {
+        section.appendChild(el("p", {class: "intro", text: "or refit from the command line:"}));
+        section.appendChild(el("pre", {text: lines.fit_command}));
+      }
+      if (lines.entries.length > 1) {
+        section.appendChild(el("p", {class: "intro", text: "Every suggested entry, best first (add one at a time and diagnose again):"}));
+        section.appendChild(el("pre", {id: "suggested-entries", text: lines.entries.join("\n")}));
+      }
     }
     if (diagnosis.skipped && diagnosis.skipped.length) {
       section.appendChild(el("h3", {text: "Not tried"}));
