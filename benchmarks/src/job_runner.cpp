@@ -123,6 +123,7 @@ struct RecordedRun {
   double tcpPathLength = 0.0;
   std::vector<double> time, speed;
   std::vector<Eigen::Vector3d> tcp;
+  std::vector<robot::Vector6> joints;  // the HTML report moves the arm along them
 };
 
 RecordedRun recordProfile(unsigned run, const trajectory::TimedTrajectory& trajectory) {
@@ -132,16 +133,14 @@ RecordedRun recordProfile(unsigned run, const trajectory::TimedTrajectory& traje
   recorded.tcpPathLength = trajectory.tcpPathLength;
   const std::size_t n = trajectory.time.size();
   const std::size_t stride = std::max<std::size_t>(1, n / kProfileSamples);
-  for (std::size_t i = 0; i < n; i += stride) {
+  const auto keep = [&](std::size_t i) {
     recorded.time.push_back(trajectory.time[i]);
     recorded.speed.push_back(trajectory.tcpSpeed[i]);
     recorded.tcp.push_back(trajectory.tcpPosition[i]);
-  }
-  if (n > 0 && (n - 1) % stride != 0) {
-    recorded.time.push_back(trajectory.time.back());
-    recorded.speed.push_back(trajectory.tcpSpeed.back());
-    recorded.tcp.push_back(trajectory.tcpPosition.back());
-  }
+    recorded.joints.push_back(trajectory.position[i]);
+  };
+  for (std::size_t i = 0; i < n; i += stride) keep(i);
+  if (n > 0 && (n - 1) % stride != 0) keep(n - 1);
   return recorded;
 }
 
@@ -155,10 +154,12 @@ void writeMedianRun(const std::filesystem::path& file, const std::string& planne
   AtomicOutputFile out(file);
   out.stream() << std::setprecision(9) << "# planner: " << planner << "\n# run: " << median.run
                << "\n# execution time (s): " << median.executionTime << "\n# tcp path length (m): " << median.tcpPathLength
-               << "\n# successful runs: " << runs.size() << "\nt,tcp_speed,x,y,z\n";
+               << "\n# successful runs: " << runs.size() << "\nt,tcp_speed,x,y,z,q0,q1,q2,q3,q4,q5\n";
   for (std::size_t i = 0; i < median.time.size(); ++i) {
     out.stream() << median.time[i] << "," << median.speed[i] << "," << median.tcp[i].x() << "," << median.tcp[i].y()
-                 << "," << median.tcp[i].z() << "\n";
+                 << "," << median.tcp[i].z();
+    for (int j = 0; j < 6; ++j) out.stream() << "," << median.joints[i][j];
+    out.stream() << "\n";
   }
   out.commit();
 }

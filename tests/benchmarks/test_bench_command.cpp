@@ -109,7 +109,7 @@ TEST(BenchCommand, ThesisCampaignWritesLogsDatabaseAndRanking) {
   // The speed-profile and 3D plots' data: each planner's median run on the plot problems.
   for (const auto& planner : kPlanners) {
     const auto csv = readFile(campaign.out / "paths" / "thesis" / "obstacle" / (planner + ".csv"));
-    EXPECT_NE(csv.find("t,tcp_speed,x,y,z\n"), std::string::npos) << planner;
+    EXPECT_NE(csv.find("t,tcp_speed,x,y,z,q0,q1,q2,q3,q4,q5\n"), std::string::npos) << planner;
   }
   EXPECT_TRUE(std::filesystem::exists(campaign.out / "paths" / "thesis" / "straight" / "scene.json"));
   EXPECT_FALSE(std::filesystem::exists(campaign.out / "plots"));  // --no-plots
