@@ -64,7 +64,7 @@ async function checkCampaign(page, options) {
   check("planner names are distinct", new Set(rows).size === rows.length);
 
   // Sorting by a header reorders (or keeps) the rows, never loses one.
-  await page.click("#ranking-overall thead th:nth-child(2)");
+  await page.evaluate(() => [...document.querySelectorAll("#ranking-overall thead th")].find(th => th.textContent === "planner").click());
   const sorted = await page.$$eval("#ranking-overall tbody tr", trs => trs.map(tr => tr.getAttribute("data-key")));
   check("sorting by planner name orders the rows", JSON.stringify(sorted) === JSON.stringify(rows.slice().sort((a, b) => a.localeCompare(b))),
         sorted.join(", "));
