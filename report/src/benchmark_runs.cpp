@@ -11,22 +11,30 @@
 namespace arcplan::report {
 namespace {
 
-struct DatabaseCloser {
-  void operator()(sqlite3* db) const { sqlite3_close(db); }
-};
-struct StatementFinalizer {
-  void operator()(sqlite3_stmt* statement) const { sqlite3_finalize(statement); }
-};
-using Database = std::unique_ptr<sqlite3, DatabaseCloser>;
-using Statement = std::unique_ptr<sqlite3_stmt, StatementFinalizer>;
+// A database opened read-only; statements finalize themselves.
+class ReadOnlyDatabase {
+public:
+  using Statement = std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)>;
 
-Statement prepare(sqlite3* db, const std::string& sql, const std::filesystem::path& file) {
-  sqlite3_stmt* raw = nullptr;
-  if (sqlite3_prepare_v2(db, sql.c_str(), -1, &raw, nullptr) != SQLITE_OK) {
-    throw Error(file.string() + ": not an OMPL benchmark database (" + sqlite3_errmsg(db) + ")");
+  explicit ReadOnlyDatabase(const std::filesystem::path& file) : file_(file), db_(nullptr, sqlite3_close) {
+    sqlite3* raw = nullptr;
+    const int status = sqlite3_open_v2(file.string().c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
+    db_.reset(raw);
+    if (status != SQLITE_OK) throw Error("cannot open benchmark database " + file.string() + ": " + sqlite3_errmsg(raw));
   }
-  return Statement(raw);
-}
+  Statement query(const std::string& sql) const {
+    sqlite3_stmt* raw = nullptr;
+    if (sqlite3_prepare_v2(db_.get(), sql.c_str(), -1, &raw, nullptr) != SQLITE_OK) {
+      throw Error(file_.string() + ": not an OMPL benchmark database (" + sqlite3_errmsg(db_.get()) + ")");
+    }
+    return Statement(raw, sqlite3_finalize);
+  }
+  std::string lastError() const { return sqlite3_errmsg(db_.get()); }
+
+private:
+  std::filesystem::path file_;
+  std::unique_ptr<sqlite3, int (*)(sqlite3*)> db_;
+};
 
 std::string columnText(sqlite3_stmt* statement, int column) {
   const auto* text = sqlite3_column_text(statement, column);
@@ -34,9 +42,9 @@ std::string columnText(sqlite3_stmt* statement, int column) {
 }
 
 // Column name -> declared type of a table ("REAL", "INTEGER", ...).
-std::map<std::string, std::string> tableColumns(sqlite3* db, const std::string& table, const std::filesystem::path& file) {
+std::map<std::string, std::string> tableColumns(const ReadOnlyDatabase& db, const std::string& table) {
   std::map<std::string, std::string> columns;
-  auto statement = prepare(db, "PRAGMA table_info(" + table + ")", file);
+  auto statement = db.query("PRAGMA table_info(" + table + ")");
   while (sqlite3_step(statement.get()) == SQLITE_ROW) columns[columnText(statement.get(), 1)] = columnText(statement.get(), 2);
   return columns;
 }
@@ -73,9 +81,9 @@ std::vector<std::pair<RunAttribute, std::string>> attributeExpressions(const std
   return expressions;
 }
 
-nlohmann::json experimentRows(sqlite3* db, const std::filesystem::path& file) {
+nlohmann::json experimentRows(const ReadOnlyDatabase& db) {
   nlohmann::json rows = nlohmann::json::array();
-  auto statement = prepare(db, "SELECT * FROM experiments ORDER BY id", file);
+  auto statement = db.query("SELECT * FROM experiments ORDER BY id");
   const int count = sqlite3_column_count(statement.get());
   while (sqlite3_step(statement.get()) == SQLITE_ROW) {
     nlohmann::json row = nlohmann::json::object();
@@ -97,13 +105,8 @@ nlohmann::json experimentRows(sqlite3* db, const std::filesystem::path& file) {
 
 BenchmarkRuns readBenchmarkRuns(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) throw Error("benchmark database " + file.string() + " not found");
-  sqlite3* raw = nullptr;
-  if (sqlite3_open_v2(file.string().c_str(), &raw, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
-    Database closer(raw);
-    throw Error("cannot open benchmark database " + file.string() + ": " + sqlite3_errmsg(raw));
-  }
-  Database db(raw);
-  const auto columns = tableColumns(db.get(), "runs", file);
+  const ReadOnlyDatabase db(file);
+  const auto columns = tableColumns(db, "runs");
   for (const char* required : {"experimentid", "plannerid", "solved"}) {
     if (columns.count(required) == 0) {
       throw Error(file.string() + ": not an OMPL benchmark database (table runs has no column '" + required + "')");
@@ -119,7 +122,7 @@ BenchmarkRuns readBenchmarkRuns(const std::filesystem::path& file) {
   }
   select += " FROM runs JOIN experiments ON runs.experimentid = experiments.id"
             " JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id ORDER BY runs.id";
-  auto statement = prepare(db.get(), select, file);
+  auto statement = db.query(select);
   int step = 0;
   int count = 0;
   while ((step = sqlite3_step(statement.get())) == SQLITE_ROW) {
@@ -136,9 +139,9 @@ BenchmarkRuns readBenchmarkRuns(const std::filesystem::path& file) {
     plannerRuns.push_back(std::move(run));
     ++count;
   }
-  if (step != SQLITE_DONE) throw Error(file.string() + ": reading runs failed: " + sqlite3_errmsg(db.get()));
+  if (step != SQLITE_DONE) throw Error(file.string() + ": reading runs failed: " + db.lastError());
   if (count == 0) throw Error(file.string() + ": the database holds no benchmark runs");
-  result.experiments = experimentRows(db.get(), file);
+  result.experiments = experimentRows(db);
   return result;
 }
 

@@ -1,4 +1,5 @@
 // `arcplan report` on bad input: one line naming what is wrong, exit 1, and no report file.
+#include <algorithm>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -10,7 +11,14 @@ namespace {
 using arcplan::testing::freshTempDirectory;
 using arcplan::testing::runArcplan;
 
-int lineCount(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+// Bad input: exit 1, one error line containing `fragment`, and no report written.
+void expectOneLineError(const arcplan::testing::CommandResult& result, const std::string& fragment,
+                        const std::filesystem::path& report) {
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_NE(result.err.find(fragment), std::string::npos) << result.err;
+  EXPECT_FALSE(std::filesystem::exists(report));
+}
 
 TEST(ReportCommand, FolderThatIsNeitherCampaignNorSession) {
   const auto folder = freshTempDirectory("report_neither");
@@ -25,32 +33,21 @@ TEST(ReportCommand, FolderThatIsNeitherCampaignNorSession) {
 TEST(ReportCommand, UnfinishedCampaignIsNamed) {
   const auto folder = freshTempDirectory("report_unfinished");
   std::filesystem::create_directories(folder / "logs");
-  const auto result = runArcplan({"report", folder.string()});
-  EXPECT_EQ(result.exitCode, 1);
-  EXPECT_EQ(lineCount(result.err), 1);
-  EXPECT_NE(result.err.find("campaign without benchmark.db"), std::string::npos) << result.err;
-  EXPECT_FALSE(std::filesystem::exists(folder / "report.html"));
+  expectOneLineError(runArcplan({"report", folder.string()}), "campaign without benchmark.db", folder / "report.html");
 }
 
 TEST(ReportCommand, DatabaseThatIsNotOneLeavesNoFile) {
   const auto folder = freshTempDirectory("report_bad_db");
   std::ofstream(folder / "benchmark.db") << "not sqlite\n";
   const auto output = folder / "out.html";
-  const auto result = runArcplan({"report", folder.string(), "--out", output.string()});
-  EXPECT_EQ(result.exitCode, 1);
-  EXPECT_EQ(lineCount(result.err), 1);
-  EXPECT_NE(result.err.find("not an OMPL benchmark database"), std::string::npos) << result.err;
-  EXPECT_FALSE(std::filesystem::exists(output));
+  expectOneLineError(runArcplan({"report", folder.string(), "--out", output.string()}), "not an OMPL benchmark database",
+                     output);
 }
 
 TEST(ReportCommand, BrokenSessionFileLeavesNoFile) {
   const auto folder = freshTempDirectory("report_bad_session");
   std::ofstream(folder / "session.json") << "{\"steps\": [";
-  const auto result = runArcplan({"report", folder.string()});
-  EXPECT_EQ(result.exitCode, 1);
-  EXPECT_EQ(lineCount(result.err), 1);
-  EXPECT_NE(result.err.find("session.json"), std::string::npos) << result.err;
-  EXPECT_FALSE(std::filesystem::exists(folder / "report.html"));
+  expectOneLineError(runArcplan({"report", folder.string()}), "session.json", folder / "report.html");
 }
 
 TEST(ReportCommand, MissingLibraryIsNamedWithItsPackage) {

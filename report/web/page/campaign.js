@@ -119,9 +119,7 @@
     const section = addSection("boxplots", "Runs per metric",
       "Every run of every planner as a point over its box (median, quartiles, whiskers at 1.5 IQR). Hover a point for its run; " +
       "drag to zoom, double-click to reset. Failed runs have no metrics and are counted in the x labels (successes/runs).");
-    const grid = el("div", {class: "plots"});
-    function draw(problem) {
-      grid.replaceChildren();
+    selectablePlotGrid(section, "problem", problems.map(p => ({value: p, label: p})), (problem, grid) => {
       for (const attribute of data.attributes) {
         const container = el("div", {class: "plot boxplot", id: "box-" + slug(attribute.key), "data-problem": problem});
         grid.appendChild(container);
@@ -138,10 +136,7 @@
         plot(container, traces, {title: {text: attribute.label, font: {size: 14}}, showlegend: false,
                                  xaxis: {tickangle: -40, automargin: true}, yaxis: {zeroline: false, automargin: true}});
       }
-    }
-    section.appendChild(el("div", {class: "controls"}, [selectControl("problem", problems.map(p => ({value: p, label: p})), draw)]));
-    section.appendChild(grid);
-    draw(problems[0]);
+    });
   }
 
   function pathSections() {

@@ -118,5 +118,14 @@ function selectControl(label, options, onChange) {
   return el("label", {}, [label + " ", select]);
 }
 
+// A grid of plots and the <select> that picks what it shows; draw(value, grid) fills the emptied grid.
+function selectablePlotGrid(section, label, options, draw) {
+  const grid = el("div", {class: "plots"});
+  const redraw = value => { grid.replaceChildren(); draw(value, grid); };
+  section.appendChild(el("div", {class: "controls"}, [selectControl(label, options, redraw)]));
+  section.appendChild(grid);
+  redraw(options[0].value);
+}
+
 // The page reports its own state for the browser tests (window.arcplanReport.ready etc.).
 window.arcplanReport = {ready: false, views: []};

@@ -56,9 +56,9 @@
     const section = addSection("series", "Measured vs predicted",
       "Each channel's measured signal and the model's prediction; the worst windows (largest normalised residual) are shaded. " +
       "Drag to zoom into a window, double-click to reset.");
-    const grid = el("div", {class: "plots"});
-    function draw(which) {
-      grid.replaceChildren();
+    const options = available.map(which => ({value: which,
+      label: which === "validation" ? "validation data (held out) — " + data.series[which].file : "fitted data — " + data.series[which].file}));
+    selectablePlotGrid(section, "data", options, (which, grid) => {
       const shading = worstWindows(which).map(w => ({type: "rect", xref: "x", yref: "paper", x0: w.start, x1: w.end, y0: 0, y1: 1,
                                                      fillcolor: "#f4a261", opacity: 0.25, line: {width: 0}}));
       data.series[which].channels.forEach((channel, index) => {
@@ -70,11 +70,7 @@
         ], {title: {text: channel.channel, font: {size: 14}}, shapes: shading, xaxis: {title: {text: "time (s)"}},
             legend: {orientation: "h", y: -0.25}});
       });
-    }
-    section.appendChild(el("div", {class: "controls"}, [selectControl("data", available.map(which => ({value: which,
-      label: which === "validation" ? "validation data (held out) — " + data.series[which].file : "fitted data — " + data.series[which].file})), draw)]));
-    section.appendChild(grid);
-    draw(available[0]);
+    });
 
     const windows = data.comparison && data.comparison.worst_windows;
     if (windows && windows.length) {
@@ -93,11 +89,9 @@
     const section = addSection("residual", "Residual against the signals",
       "The residual (measured − predicted) of one channel against each signal: a pattern (a step at zero speed, a slope with load, " +
       "a ripple with the angle) is an effect the model is missing.");
-    const grid = el("div", {class: "plots"});
-    function draw(indexText) {
+    selectablePlotGrid(section, "channel", channels.map((c, i) => ({value: String(i), label: c.channel})), (indexText, grid) => {
       const channel = channels[Number(indexText)];
       const residual = channel.measured.map((m, i) => m - channel.predicted[i]);
-      grid.replaceChildren();
       for (const [signal, values] of Object.entries(channel.signals)) {
         const container = el("div", {class: "plot residual-plot", id: "residual-" + signal});
         grid.appendChild(container);
@@ -106,10 +100,7 @@
              {title: {text: "residual vs " + signal, font: {size: 14}}, xaxis: {title: {text: signal}},
               yaxis: {title: {text: "residual"}}, showlegend: false});
       }
-    }
-    section.appendChild(el("div", {class: "controls"}, [selectControl("channel", channels.map((c, i) => ({value: String(i), label: c.channel})), draw)]));
-    section.appendChild(grid);
-    draw("0");
+    });
   }
 
   function diagnosisSection() {
