@@ -96,9 +96,7 @@ ArcPath::ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, 
   const Eigen::Vector3d a = start.translation(), b = goal.translation();
   straightLength_ = (b - a).norm();
   if (straightLength_ > kLengthTolerance) lineDirection_ = (b - a) / straightLength_;
-  startRotation_ = Eigen::Quaterniond(start.linear()).normalized();
-  goalRotation_ = Eigen::Quaterniond(goal.linear()).normalized();
-  constantOrientation_ = startRotation_.angularDistance(goalRotation_) < 1e-12;
+  setEndOrientations(start, goal);
 
   if (!detours_.empty() && straightLength_ <= kLengthTolerance) {
     throw Error("an arc detour needs distinct start and goal TCP positions (|AB| = 0)");
@@ -191,11 +189,7 @@ Eigen::Vector3d ArcPath::tangent(double arcLength) const {
   return planar.x() * piece.axisX + planar.y() * piece.axisZ;
 }
 
-Eigen::Quaterniond ArcPath::orientation(double arcLength) const {
-  if (constantOrientation_) return startRotation_;
-  if (length_ <= kLengthTolerance) return arcLength > 0.0 ? goalRotation_ : startRotation_;
-  return startRotation_.slerp(std::clamp(arcLength / length_, 0.0, 1.0), goalRotation_);
-}
+Eigen::Quaterniond ArcPath::orientation(double arcLength) const { return orientationAt(arcLength); }
 
 Eigen::Isometry3d ArcPath::pose(double arcLength) const {
   Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
@@ -212,32 +206,11 @@ std::vector<double> ArcPath::junctions() const {
 }
 
 std::vector<PathSample> ArcPath::sample(double resolution) const {
-  if (!std::isfinite(resolution) || resolution <= 0.0) {
-    std::ostringstream message;
-    message << "path resolution must be a finite number > 0 m (got " << resolution << ")";
-    throw Error(message.str());
-  }
-  std::vector<PathSample> samples;
-  const auto addSample = [&](double arcLength, const Eigen::Vector3d& point, bool junction) {
-    PathSample sample;
-    sample.arcLength = arcLength;
-    sample.pose.linear() = orientation(arcLength).toRotationMatrix();
-    sample.pose.translation() = point;
-    sample.junction = junction;
-    samples.push_back(sample);
-  };
-  for (const Piece& piece : pieces_) {
-    const int count = std::max(1, static_cast<int>(std::ceil(piece.length / resolution - 1e-9)));
-    for (int k = 0; k < count; ++k) {
-      const double fraction = static_cast<double>(k) / count;
-      addSample(piece.startArcLength + fraction * piece.length, piecePoint(piece, fraction), k == 0);
-    }
-  }
-  if (samples.empty()) addSample(0.0, start_.translation(), true);
-  // B exactly, not as the end of the last piece (which differs by rounding).
-  addSample(length_, goal_.translation(), true);
-  if (!constantOrientation_) samples.back().pose.linear() = goalRotation_.toRotationMatrix();
-  return samples;
+  std::vector<std::pair<double, double>> spans;
+  for (const Piece& piece : pieces_) spans.emplace_back(piece.startArcLength, piece.length);
+  return sampleEvenly(
+      resolution, spans, [this](std::size_t i, double fraction) { return piecePoint(pieces_[i], fraction); },
+      start_.translation(), goal_.translation());
 }
 
 }  // namespace arcplan::planners

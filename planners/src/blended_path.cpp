@@ -41,9 +41,7 @@ BlendedPath::BlendedPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d
       throw Error(message.str());
     }
   }
-  startRotation_ = Eigen::Quaterniond(start.linear()).normalized();
-  goalRotation_ = Eigen::Quaterniond(goal.linear()).normalized();
-  constantOrientation_ = startRotation_.angularDistance(goalRotation_) < 1e-12;
+  setEndOrientations(start, goal);
 
   Eigen::Vector3d lineStart = points_.front();
   for (std::size_t i = 0; i < blends_.size(); ++i) {
@@ -122,45 +120,20 @@ Eigen::Vector3d BlendedPath::tangent(double arcLength) const {
   return -std::sin(angle) * piece.axisX + std::cos(angle) * piece.axisY;
 }
 
-Eigen::Quaterniond BlendedPath::orientation(double arcLength) const {
-  if (constantOrientation_) return startRotation_;
-  if (length_ <= kLengthTolerance) return arcLength > 0.0 ? goalRotation_ : startRotation_;
-  return startRotation_.slerp(std::clamp(arcLength / length_, 0.0, 1.0), goalRotation_);
-}
-
 Eigen::Isometry3d BlendedPath::pose(double arcLength) const {
   Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
-  result.linear() = orientation(arcLength).toRotationMatrix();
+  result.linear() = orientationAt(arcLength).toRotationMatrix();
   result.translation() = position(arcLength);
   return result;
 }
 
 std::vector<PathSample> BlendedPath::sample(double resolution) const {
-  if (!std::isfinite(resolution) || resolution <= 0.0) {
-    std::ostringstream message;
-    message << "path resolution must be a finite number > 0 m (got " << resolution << ")";
-    throw Error(message.str());
-  }
-  std::vector<PathSample> samples;
-  const auto add = [&](double arcLength, const Eigen::Vector3d& point, bool junction) {
-    PathSample sample;
-    sample.arcLength = arcLength;
-    sample.pose.linear() = orientation(arcLength).toRotationMatrix();
-    sample.pose.translation() = point;
-    sample.junction = junction;
-    samples.push_back(sample);
-  };
-  for (const Piece& piece : pieces_) {
-    const int count = std::max(1, static_cast<int>(std::ceil(piece.length / resolution - 1e-9)));
-    for (int k = 0; k < count; ++k) {
-      const double distance = piece.length * k / count;
-      add(piece.startArcLength + distance, piecePoint(piece, distance), k == 0);
-    }
-  }
-  if (samples.empty()) add(0.0, points_.front(), true);
-  add(length_, points_.back(), true);  // the goal exactly, not the last piece's rounded end
-  if (!constantOrientation_) samples.back().pose.linear() = goalRotation_.toRotationMatrix();
-  return samples;
+  std::vector<std::pair<double, double>> spans;
+  for (const Piece& piece : pieces_) spans.emplace_back(piece.startArcLength, piece.length);
+  return sampleEvenly(
+      resolution, spans,
+      [this](std::size_t i, double fraction) { return piecePoint(pieces_[i], fraction * pieces_[i].length); },
+      points_.front(), points_.back());
 }
 
 }  // namespace arcplan::planners

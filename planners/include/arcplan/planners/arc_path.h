@@ -121,8 +121,6 @@ class ArcPath : public TcpPath {
   Eigen::Vector3d lineDirection_ = Eigen::Vector3d::Zero();
   double straightLength_ = 0.0;
   double length_ = 0.0;
-  bool constantOrientation_ = true;
-  Eigen::Quaterniond startRotation_, goalRotation_;
   std::vector<Piece> pieces_;
   std::vector<std::pair<double, double>> detourSpans_;
 };

@@ -52,7 +52,6 @@ class BlendedPath : public TcpPath {
   };
   const Piece& pieceAt(double arcLength) const;
   Eigen::Vector3d piecePoint(const Piece& piece, double distance) const;
-  Eigen::Quaterniond orientation(double arcLength) const;
   void addLine(const Eigen::Vector3d& from, const Eigen::Vector3d& to);
 
   Eigen::Isometry3d start_, goal_;
@@ -61,8 +60,6 @@ class BlendedPath : public TcpPath {
   std::vector<Piece> pieces_;
   std::vector<std::pair<double, double>> blendSpans_;
   double length_ = 0.0;
-  bool constantOrientation_ = true;
-  Eigen::Quaterniond startRotation_, goalRotation_;
 };
 
 }  // namespace arcplan::planners

@@ -4,6 +4,8 @@
 // meet with a common tangent. Implemented by the thesis' line-with-detours (arc_path.h) and by
 // lines through via points with blended corners (blended_path.h).
 #include <Eigen/Geometry>
+#include <functional>
+#include <utility>
 #include <vector>
 
 namespace arcplan::planners {
@@ -25,6 +27,21 @@ class TcpPath {
   // every junction exactly and ending exactly at the goal. Throws arcplan::Error if resolution is not
   // positive.
   virtual std::vector<PathSample> sample(double resolution) const = 0;
+
+ protected:
+  // The tool orientation: constant when start and goal agree, else slerped over the arc length.
+  void setEndOrientations(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal);
+  Eigen::Quaterniond orientationAt(double arcLength) const;
+  // sample() for a path of pieces given as (start arc length, length): each split into
+  // ceil(length / resolution) equal parts, `pointOn(i, fraction)` the position that fraction along piece
+  // i; then the goal point exactly (not the last piece's rounded end).
+  std::vector<PathSample> sampleEvenly(double resolution, const std::vector<std::pair<double, double>>& pieces,
+                                       const std::function<Eigen::Vector3d(std::size_t, double)>& pointOn,
+                                       const Eigen::Vector3d& startPoint, const Eigen::Vector3d& goalPoint) const;
+
+ private:
+  bool constantOrientation_ = true;
+  Eigen::Quaterniond startRotation_ = Eigen::Quaterniond::Identity(), goalRotation_ = Eigen::Quaterniond::Identity();
 };
 
 }  // namespace arcplan::planners
