@@ -252,4 +252,31 @@ TEST(RobotModel, JointLoopAboveTheTipIsAnError) {
   }
 }
 
+// Found by fuzzing: TinyXML skips the bytes a UTF-8 lead byte announces, so a sequence cut short at
+// the end of the text made it read past the buffer. Such text is rejected before TinyXML sees it.
+TEST(RobotModel, TextThatIsNotUtf8IsRejectedWithItsLine) {
+  const std::string truncatedSequence = "<robot name=\"r\">\n<link name=\"base_link\"/>\n<\xEF" "2";
+  const std::string overlong = "<robot name=\"\xC0\xAF\"/>";
+  const std::string nulByte = std::string("<robot name=\"r\"/>\n") + '\0' + "x";
+  const std::string validMultiByte = "<robot name=\"r\xC3\xA9\xE2\x82\xAC\xF0\x9F\x98\x80\"/>";
+  struct Case { std::string text; std::string expected; };
+  for (const Case& c : {Case{truncatedSequence, "bad.urdf:3: expected UTF-8 text, found byte 0xef"},
+                        Case{overlong, "bad.urdf:1: expected UTF-8 text, found byte 0xc0"},
+                        Case{nulByte, "bad.urdf:2: expected UTF-8 text, found byte 0x0 at offset 18 (a NUL byte)"}}) {
+    try {
+      arcplan::robot::parseRobotModel(c.text, "bad.urdf");
+      ADD_FAILURE() << "no error for " << c.expected;
+    } catch (const arcplan::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(c.expected), std::string::npos) << e.what();
+    }
+  }
+  // Well-formed 2-, 3- and 4-byte sequences pass the check and reach urdfdom (which then wants links).
+  try {
+    arcplan::robot::parseRobotModel(validMultiByte, "good.urdf");
+    ADD_FAILURE() << "a robot without links was accepted";
+  } catch (const arcplan::Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("UTF-8"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
