@@ -161,7 +161,7 @@ void runFit(const ModelOptions& o) {
 }
 
 void runHistory(const ModelOptions& o) {
-  if (o.out.empty()) throw Error("history: give the session directory with --out DIR");
+  if (o.out.empty()) throw UsageError("history: give the session directory with --out DIR");
   const std::filesystem::path directory = o.out;
   const auto session = directory / "session.json";
   if (!std::filesystem::exists(session)) {
@@ -175,9 +175,11 @@ void runHistory(const ModelOptions& o) {
 }
 
 void runSimulate(const ModelOptions& o) {
+  if (o.format != "rtde" && o.format != "record") {
+    throw UsageError("--format: expected rtde or record, got '" + o.format + "'");
+  }
+  if (!(o.rate > 0.0) || !(o.duration > 0.0)) throw UsageError("--rate and --duration must be positive");
   const auto truth = model::loadModelFile(o.model);
-  if (o.format != "rtde" && o.format != "record") throw Error("--format: expected rtde or record, got '" + o.format + "'");
-  if (o.rate <= 0.0 || o.duration <= 0.0) throw Error("--rate and --duration must be positive");
   const auto robot = model::modelRobot(truth);
   auto trajectoryFor = [&](unsigned seed) {
     if (o.trajectory == "excitation") {

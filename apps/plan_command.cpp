@@ -159,9 +159,9 @@ void runPlan(const PlanOptions& options) {
   // OMPL's seed is process-global and must be set before anything random exists.
   if (options.seed) ompl::RNG::setSeed(*options.seed);
   ompl::msg::setLogLevel(options.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
-  if (!(options.time > 0.0) || !std::isfinite(options.time)) throw Error("--time must be a positive number of seconds");
+  if (!(options.time > 0.0) || !std::isfinite(options.time)) throw UsageError("--time must be a positive number of seconds");
   if (options.maxTcpSpeed && (!(*options.maxTcpSpeed > 0.0) || !std::isfinite(*options.maxTcpSpeed))) {
-    throw Error("--vmax must be a positive TCP speed in m/s");
+    throw UsageError("--vmax must be a positive TCP speed in m/s");
   }
   std::vector<std::pair<std::string, std::string>> parameters;
   for (const std::string& text : options.parameters) parameters.push_back(planners::parseParameterAssignment(text));

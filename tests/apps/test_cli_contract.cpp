@@ -135,6 +135,48 @@ TEST(ArcplanExitCodes, AWrongJointCountFailsBeforeAnythingIsPrinted) {
   EXPECT_EQ(result.out, "");
 }
 
+TEST(ArcplanExitCodes, PlanOptionValuesOutOfRangeAreUsageErrors) {
+  const auto dir = freshTempDirectory("cli_plan_usage");
+  const std::vector<std::string> outputs{"--json", (dir / "out.json").string(), "--path-csv", (dir / "path.csv").string()};
+  const struct {
+    std::vector<std::string> arguments;
+    std::string message;
+  } cases[] = {
+      {{"plan", "--scene", kScene, "--time", "0"}, "--time must be a positive number of seconds"},
+      {{"plan", "--scene", kScene, "--vmax", "-1"}, "--vmax must be a positive TCP speed in m/s"},
+  };
+  for (const auto& c : cases) {
+    auto arguments = c.arguments;
+    arguments.insert(arguments.end(), outputs.begin(), outputs.end());
+    const auto result = runArcplan(arguments);
+    EXPECT_EQ(result.exitCode, 2) << c.message;
+    expectOneErrorLine(result, c.message);
+    EXPECT_EQ(result.out, "");
+    EXPECT_TRUE(fs::is_empty(dir)) << c.message;
+  }
+}
+
+TEST(ArcplanExitCodes, ModelOptionValuesOutOfRangeOrMissingAreUsageErrors) {
+  const auto dir = freshTempDirectory("cli_model_usage");
+  // The options are checked before the model file is read: a missing model file does not hide them.
+  const std::string model = (dir / "no_such_model.yaml").string(), log = (dir / "log.csv").string();
+  const struct {
+    std::vector<std::string> arguments;
+    std::string message;
+  } cases[] = {
+      {{"model", "simulate", "--model", model, "--data", log, "--format", "csv"},
+       "--format: expected rtde or record, got 'csv'"},
+      {{"model", "simulate", "--model", model, "--data", log, "--rate", "0"}, "--rate and --duration must be positive"},
+      {{"model", "history", "--out", ""}, "history: give the session directory with --out DIR"},
+  };
+  for (const auto& c : cases) {
+    const auto result = runArcplan(c.arguments);
+    EXPECT_EQ(result.exitCode, 2) << c.message;
+    expectOneErrorLine(result, c.message);
+    EXPECT_TRUE(fs::is_empty(dir)) << c.message;
+  }
+}
+
 TEST(ArcplanExitCodes, ABadInputFileIsOneAndNamesFileLineAndColumn) {
   const auto dir = freshTempDirectory("cli_bad_csv");
   const fs::path path = dir / "path.csv";
