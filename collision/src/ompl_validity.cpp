@@ -5,18 +5,12 @@
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
+#include "arcplan/collision/joint_states.h"
 #include "arcplan/common/error.h"
 
 namespace arcplan::collision {
-namespace {
 
 namespace ob = ompl::base;
-
-Eigen::Map<const Eigen::VectorXd> jointsOf(const ob::State* state, int dof) {
-  return {state->as<ob::RealVectorStateSpace::StateType>()->values, dof};
-}
-
-}  // namespace
 
 ob::StateSpacePtr makeJointStateSpace(const robot::RobotModel& model) {
   auto space = std::make_shared<ob::RealVectorStateSpace>(static_cast<unsigned>(model.dof()));

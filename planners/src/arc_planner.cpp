@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "arc_planning.h"
+#include "arcplan/collision/joint_states.h"
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/robot/kinematics.h"
@@ -36,12 +37,6 @@ const std::map<std::string, Range>& ranges() {
       {"max_joint_step", {0.001, 0.5, "0.001:0.001:0.5"}},    {"clearance", {0.0, 0.2, "0.:0.005:0.2"}},
   };
   return table;
-}
-
-robot::Vector6 jointsOf(const ob::SpaceInformation& si, const ob::State* state) {
-  robot::Vector6 q;
-  for (int j = 0; j < 6; ++j) q[j] = *si.getStateSpace()->getValueAddressAtIndex(state, j);
-  return q;
 }
 
 std::string number(double value) {
@@ -165,7 +160,7 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
   if (goalState == nullptr) {
     return fail(ob::PlannerStatus::INVALID_GOAL, "no valid goal state (it is outside the joint limits or in collision)");
   }
-  const robot::Vector6 start = jointsOf(*si_, startState), goal = jointsOf(*si_, goalState);
+  const robot::Vector6 start(collision::jointsOf(startState, 6)), goal(collision::jointsOf(goalState, 6));
   // The margin: the planner's clearance or the motion validator's, the larger; lowered to what a start
   // or goal closer to an obstacle has itself (else nothing could leave it).
   const auto* motionValidator = dynamic_cast<const collision::JointMotionValidator*>(si_->getMotionValidator().get());
@@ -176,7 +171,7 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
   const bool autoMode = getAuto();
   ob::ScopedState<> scratch(si_);
   const auto waypointValid = [&](const robot::Vector6& q) {
-    for (int j = 0; j < 6; ++j) scratch[j] = q[j];
+    collision::setJoints(scratch.get(), q);
     return si_->isValid(scratch.get());
   };
   // The auto mode's routes pass close to obstacles: their motions are always certified.
@@ -213,7 +208,7 @@ void ArcPlanner::setSolution(const JointWaypoints& waypoints) {
   auto path = std::make_shared<og::PathGeometric>(si_);
   ob::State* state = si_->allocState();
   for (const robot::Vector6& q : waypoints.joints) {
-    for (int j = 0; j < 6; ++j) *si_->getStateSpace()->getValueAddressAtIndex(state, j) = q[j];
+    collision::setJoints(state, q);
     path->append(state);
   }
   si_->freeState(state);
@@ -242,7 +237,7 @@ void ArcPlanner::getPlannerData(ob::PlannerData& data) const {
     solution_ = std::make_shared<og::PathGeometric>(si_);
     ob::State* state = si_->allocState();
     for (const robot::Vector6& q : solutionJoints_) {
-      for (int j = 0; j < 6; ++j) *si_->getStateSpace()->getValueAddressAtIndex(state, j) = q[j];
+      collision::setJoints(state, q);
       solution_->append(state);
     }
     si_->freeState(state);

@@ -10,6 +10,7 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
 #include "arc_planning.h"
+#include "arcplan/collision/joint_states.h"
 #include "arcplan/robot/kinematics.h"
 
 namespace arcplan::planners::detail {
@@ -32,21 +33,13 @@ double tcpLengthOf(const robot::RobotModel& robot, const robot::Vector6& from, c
   return length;
 }
 
-robot::Vector6 jointsOf(const ob::SpaceInformation& si, const ob::State* state) {
-  robot::Vector6 q;
-  for (int j = 0; j < 6; ++j) q[j] = *si.getStateSpace()->getValueAddressAtIndex(state, j);
-  return q;
-}
-
 }  // namespace
 
 JointWaypoints planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, ArcPlannerResult& result) {
   auto problem = std::make_shared<ob::ProblemDefinition>(si);
   ob::ScopedState<> start(si), goal(si);
-  for (int j = 0; j < 6; ++j) {
-    start[j] = query.start[j];
-    goal[j] = query.goal[j];
-  }
+  collision::setJoints(start.get(), query.start);
+  collision::setJoints(goal.get(), query.goal);
   problem->setStartAndGoalStates(start, goal);
   og::RRTConnect sampler(si);
   sampler.setProblemDefinition(problem);
@@ -60,8 +53,9 @@ JointWaypoints planInJointSpace(const ArcQuery& query, const ob::SpaceInformatio
 
   JointWaypoints waypoints = query.startOnly();
   double cartesian = 0.0, total = 0.0;
-  for (std::size_t i = 1; i < path.getStateCount(); ++i) {
-    const robot::Vector6 from = waypoints.joints.back(), to = jointsOf(*si, path.getState(i));
+  const std::vector<robot::Vector6> simplified = collision::waypointsOf(path);
+  for (std::size_t i = 1; i < simplified.size(); ++i) {
+    const robot::Vector6 from = waypoints.joints.back(), to = simplified[i];
     const Eigen::Isometry3d fromPose = robot::tipPose(query.model.robot(), from);
     const Eigen::Isometry3d toPose = robot::tipPose(query.model.robot(), to);
     const ArcPath line(fromPose, toPose);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "arcplan/collision/joint_states.h"
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/robot/pose.h"
@@ -15,12 +16,6 @@ namespace arcplan::planners {
 const robot::Vector6 kDefaultIkSeed = (robot::Vector6() << 0.0, -M_PI_2, M_PI_2, -M_PI_2, -M_PI_2, 0.0).finished();
 
 namespace {
-
-std::string describe(const collision::CollisionReport& report) {
-  std::string text;
-  for (const auto& [first, second] : report.collisions) text += (text.empty() ? "" : ", ") + first + "–" + second;
-  return text;
-}
 
 std::string jointText(const robot::Vector6& q) {
   std::ostringstream text;
@@ -48,7 +43,7 @@ robot::Vector6 resolveEndpoint(const collision::QueryEndpoint& endpoint, const c
       }
     }
     const collision::CollisionReport report = collision::collide(model, data, q);
-    if (!report.valid) throw Error(label + ": the joint configuration is in collision (" + describe(report) + ")");
+    if (!report.valid) throw Error(label + ": the joint configuration is in collision (" + collision::describeCollisions(report) + ")");
     return q;
   }
   if (!endpoint.pose) throw Error(label + ": needs `pose` or `joints`");
@@ -62,7 +57,7 @@ robot::Vector6 resolveEndpoint(const collision::QueryEndpoint& endpoint, const c
     const collision::CollisionReport report = collision::collide(model, data, q);
     if (!report.valid) {
       throw Error(label + ": the IK solution nearest to the seed, " + jointText(q) + ", is in collision (" +
-                  describe(report) + "); choose another seed");
+                  collision::describeCollisions(report) + "); choose another seed");
     }
     return q;
   }
@@ -92,10 +87,8 @@ PlanningProblem makePlanningProblem(std::shared_ptr<const collision::Scene> scen
       collision::makeSpaceInformation(problem.collisionModel, options.motionCheck, options.clearance));
   const ompl::base::StateSpacePtr& space = problem.setup->getStateSpace();
   ompl::base::ScopedState<> start(space), goal(space);
-  for (int j = 0; j < 6; ++j) {
-    start[j] = problem.start[j];
-    goal[j] = problem.goal[j];
-  }
+  collision::setJoints(start.get(), problem.start);
+  collision::setJoints(goal.get(), problem.goal);
   problem.setup->setStartAndGoalStates(start, goal);
   return problem;
 }

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "arcplan/collision/joint_states.h"
 #include "arcplan/collision/scene.h"
 #include "arcplan/planners/planning_problem.h"
 #include "arcplan/robot/kinematics.h"
@@ -40,17 +41,6 @@ inline std::pair<ompl::base::PlannerPtr, ompl::base::PlannerStatus> solve(
   problem.setup->setup();
   const auto status = problem.setup->solve(time);
   return {instance, status};
-}
-
-inline std::vector<robot::Vector6> jointsOf(const ompl::geometric::PathGeometric& path) {
-  std::vector<robot::Vector6> joints;
-  for (std::size_t i = 0; i < path.getStateCount(); ++i) {
-    robot::Vector6 q;
-    for (int j = 0; j < 6; ++j)
-      q[j] = *path.getSpaceInformation()->getStateSpace()->getValueAddressAtIndex(path.getState(i), j);
-    joints.push_back(q);
-  }
-  return joints;
 }
 
 inline std::vector<Eigen::Isometry3d> tcpPoses(const std::vector<robot::Vector6>& joints) {

@@ -62,7 +62,7 @@ TEST(ArcPlanner, FreeLineIsTheStraightTcpLine) {
   const auto [planner, status] = solve(problem, "arc");
   ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
   EXPECT_EQ(arcOf(planner).lastResult().kind, ArcPlannerResult::Kind::StraightLine);
-  const auto joints = jointsOf(problem.setup->getSolutionPath());
+  const auto joints = arcplan::collision::waypointsOf(problem.setup->getSolutionPath());
   EXPECT_EQ(joints.front(), problem.start);
   EXPECT_EQ(joints.back(), problem.goal);
   const auto poses = tcpPoses(joints);
@@ -105,7 +105,7 @@ TEST(ArcPlanner, ThesisParticleGetsTheGivenDetourAtO) {
   // The detour: TCP at least h above... every waypoint at distance >= h from O, and motions valid
   // at the motion validator's resolution too.
   const Eigen::Vector3d o = thesisLinePoint(-0.1);
-  for (const auto& pose : tcpPoses(jointsOf(problem.setup->getSolutionPath()))) {
+  for (const auto& pose : tcpPoses(arcplan::collision::waypointsOf(problem.setup->getSolutionPath()))) {
     EXPECT_GE((pose.translation() - o).norm(), 0.1 - 1e-9);
     EXPECT_LE(arcplan::robot::rotationDistance(pose.linear(), thesisToolDown()), 1e-6);
   }
@@ -120,7 +120,7 @@ TEST(ArcPlanner, CheckMotionsValidatesEveryMotion) {
   // Every motion between consecutive waypoints is collision-free: certified by the motion check,
   // and no collision at a fine discrete sampling (1e-3 rad) written here.
   arcplan::collision::CollisionData data(*problem.collisionModel);
-  const auto joints = jointsOf(problem.setup->getSolutionPath());
+  const auto joints = arcplan::collision::waypointsOf(problem.setup->getSolutionPath());
   ASSERT_GT(joints.size(), 50u);  // 1 cm waypoints
   for (std::size_t i = 1; i < joints.size(); ++i) {
     EXPECT_TRUE(arcplan::collision::isMotionCollisionFree(*problem.collisionModel, data, joints[i - 1], joints[i]));
@@ -260,7 +260,7 @@ TEST(ArcPlanner, SolidObstacleIsAvoidedAroundItsBoundingBall) {
 // a second measurement, independent of the certified check the planner used.
 double closestApproach(const arcplan::planners::PlanningProblem& problem) {
   arcplan::collision::CollisionData data(*problem.collisionModel);
-  const auto joints = jointsOf(problem.setup->getSolutionPath());
+  const auto joints = arcplan::collision::waypointsOf(problem.setup->getSolutionPath());
   double closest = INFINITY;
   for (std::size_t i = 1; i < joints.size(); ++i) {
     const int samples = static_cast<int>(std::ceil((joints[i] - joints[i - 1]).cwiseAbs().maxCoeff() / 2e-3)) + 1;
@@ -307,7 +307,7 @@ TEST(ArcPlanner, TallPillarIsPassedSideways) {
   ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
   EXPECT_EQ(arcOf(planner).lastResult().mode(), "arc");
   EXPECT_TRUE(problem.setup->getSolutionPath().check());
-  for (const auto& pose : tcpPoses(jointsOf(problem.setup->getSolutionPath()))) {
+  for (const auto& pose : tcpPoses(arcplan::collision::waypointsOf(problem.setup->getSolutionPath()))) {
     EXPECT_GE((pose.translation() - pillar.pose.translation()).head<2>().norm(), 0.05 + 0.01);
   }
   EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);

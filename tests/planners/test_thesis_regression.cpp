@@ -75,7 +75,7 @@ CaseRun run(const ThesisCase& c, double resolution = 0.0) {
   const auto [planner, status] = solve(result.problem, "arc", parametersOf(c, resolution));
   result.status = status;
   if (status == ompl::base::PlannerStatus::EXACT_SOLUTION) {
-    result.joints = jointsOf(result.problem.setup->getSolutionPath());
+    result.joints = arcplan::collision::waypointsOf(result.problem.setup->getSolutionPath());
     result.analyticLength = dynamic_cast<const arcplan::planners::ArcPlanner&>(*planner).lastResult().tcpPathLength;
   }
   return result;
