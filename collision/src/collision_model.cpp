@@ -154,38 +154,37 @@ const char* toString(BoundingVolume boundingVolume) {
   return "?";
 }
 
-CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, const Scene& scene,
-                               AllowedCollisionMatrix allowed, CollisionModelOptions options)
-    : robot_(std::move(robot)), allowed_(std::move(allowed)), options_(options),
-      implementation_(std::make_unique<detail::ModelImplementation>()) {
-  if (!robot_) throw Error("collision model: no robot model");
-  if (options_.distanceBoundingVolume == BoundingVolume::OBB) {
-    throw Error("collision model: FCL 0.7 computes no mesh–mesh distance with OBB; use RSS, kIOS or OBBRSS");
+namespace {
+
+// The parts of one collision geometry of a link, in the geometry's own frame.
+std::vector<Part> geometryParts(const robot::CollisionGeometry& geometry, const std::string& linkName,
+                                const CollisionModelOptions& options) {
+  switch (geometry.shape) {
+    case robot::CollisionGeometry::Shape::Mesh:
+      try {
+        return detail::meshParts(robot::loadMesh(geometry.meshFile, geometry.meshScale), options);
+      } catch (const Error& e) {
+        throw Error("link " + linkName + ": " + e.what());
+      }
+    case robot::CollisionGeometry::Shape::Box: return {detail::boxPart(geometry.boxSize)};
+    case robot::CollisionGeometry::Shape::Sphere: return {detail::spherePart(geometry.radius)};
+    case robot::CollisionGeometry::Shape::Cylinder: return {detail::cylinderPart(geometry.radius, geometry.length)};
   }
-  Implementation& impl = *implementation_;
-  const auto& links = robot_->links();
+  return {};
+}
+
+// One body per link with collision geometry (its name appended to linkNames), its parts and the
+// capsule around the whole link.
+void addRobotParts(const robot::RobotModel& robot, const CollisionModelOptions& options, Implementation& impl,
+                   std::vector<std::string>& linkNames) {
+  const auto& links = robot.links();
   for (std::size_t l = 0; l < links.size(); ++l) {
     if (links[l].collisions.empty()) continue;
-    const int body = static_cast<int>(linkNames_.size());
-    linkNames_.push_back(links[l].name);
+    const int body = static_cast<int>(linkNames.size());
+    linkNames.push_back(links[l].name);
     std::vector<detail::Capsule> partCapsules;
     for (const auto& geometry : links[l].collisions) {
-      std::vector<Part> parts;
-      switch (geometry.shape) {
-        case robot::CollisionGeometry::Shape::Mesh:
-          try {
-            parts = detail::meshParts(robot::loadMesh(geometry.meshFile, geometry.meshScale), options_);
-          } catch (const Error& e) {
-            throw Error("link " + links[l].name + ": " + e.what());
-          }
-          break;
-        case robot::CollisionGeometry::Shape::Box: parts.push_back(detail::boxPart(geometry.boxSize)); break;
-        case robot::CollisionGeometry::Shape::Sphere: parts.push_back(detail::spherePart(geometry.radius)); break;
-        case robot::CollisionGeometry::Shape::Cylinder:
-          parts.push_back(detail::cylinderPart(geometry.radius, geometry.length));
-          break;
-      }
-      for (auto& part : parts) {
+      for (auto& part : geometryParts(geometry, links[l].name, options)) {
         part.body = body;
         part.offset = geometry.origin;
         partCapsules.push_back({part.offset * part.capsule.start, part.offset * part.capsule.end, part.capsule.radius});
@@ -196,28 +195,37 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
     impl.linkCapsules.push_back(detail::enclosingCapsule(partCapsules));
     impl.linkCapsuleLink.push_back(static_cast<int>(l));
   }
+}
 
+// The parts of an obstacle, in the obstacle's own frame.
+std::vector<Part> obstacleShapeParts(const Obstacle& obstacle, const CollisionModelOptions& options) {
+  switch (obstacle.shape) {
+    case Obstacle::Shape::Sphere: return {detail::spherePart(obstacle.radius)};
+    case Obstacle::Shape::Box: {
+      Part box = detail::boxPart(obstacle.size);
+      box.boxBound = true;
+      return {std::move(box)};
+    }
+    case Obstacle::Shape::Cylinder: return {detail::cylinderPart(obstacle.radius, obstacle.length)};
+    case Obstacle::Shape::Mesh:
+      try {
+        return detail::meshParts(
+            obstacle.meshData ? *obstacle.meshData : robot::loadMesh(obstacle.meshFile, obstacle.meshScale), options);
+      } catch (const Error& e) {
+        throw Error("obstacle " + obstacle.name + ": " + e.what());
+      }
+  }
+  return {};
+}
+
+// One body per obstacle (its name appended to obstacleNames), its parts placed in the world with the
+// capsules and inverse poses the distance bounds use.
+void addObstacleParts(const Scene& scene, const CollisionModelOptions& options, Implementation& impl,
+                      std::vector<std::string>& obstacleNames) {
   for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
     const Obstacle& obstacle = scene.obstacles[o];
-    obstacleNames_.push_back(obstacle.name);
-    std::vector<Part> parts;
-    switch (obstacle.shape) {
-      case Obstacle::Shape::Sphere: parts.push_back(detail::spherePart(obstacle.radius)); break;
-      case Obstacle::Shape::Box:
-        parts.push_back(detail::boxPart(obstacle.size));
-        parts.back().boxBound = true;
-        break;
-      case Obstacle::Shape::Cylinder: parts.push_back(detail::cylinderPart(obstacle.radius, obstacle.length)); break;
-      case Obstacle::Shape::Mesh:
-        try {
-          parts = detail::meshParts(obstacle.meshData ? *obstacle.meshData : robot::loadMesh(obstacle.meshFile, obstacle.meshScale),
-                                    options_);
-        } catch (const Error& e) {
-          throw Error("obstacle " + obstacle.name + ": " + e.what());
-        }
-        break;
-    }
-    for (auto& part : parts) {
+    obstacleNames.push_back(obstacle.name);
+    for (auto& part : obstacleShapeParts(obstacle, options)) {
       part.body = static_cast<int>(o);
       part.offset = obstacle.pose;
       impl.obstacleCapsuleStarts.push_back(obstacle.pose * part.capsule.start);
@@ -226,23 +234,30 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
       impl.obstacleParts.push_back(std::move(part));
     }
   }
+}
 
-  std::set<std::string> known(obstacleNames_.begin(), obstacleNames_.end());
-  for (const auto& link : links) known.insert(link.name);
-  for (const auto& [first, second] : allowed_.pairs()) {
+// A misspelled name in the allowed pairs would silently allow nothing: every name must be a link
+// (with or without geometry) or an obstacle.
+void checkAllowedNames(const AllowedCollisionMatrix& allowed, const robot::RobotModel& robot,
+                       const std::vector<std::string>& obstacleNames) {
+  std::set<std::string> known(obstacleNames.begin(), obstacleNames.end());
+  for (const auto& link : robot.links()) known.insert(link.name);
+  for (const auto& [first, second] : allowed.pairs()) {
     for (const auto& name : {first, second}) {
       if (!known.count(name)) {
-        std::string list;
-        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
         throw Error("allowed collisions: unknown link or obstacle '" + name + "' (pair " + first + ", " + second +
-                    "); known: " + list);
+                    "); known: " + joinText({known.begin(), known.end()}, ", "));
       }
     }
   }
+}
 
-  for (int a = 0; a < static_cast<int>(linkNames_.size()); ++a) {
-    for (int b = 0; b < static_cast<int>(obstacleNames_.size()); ++b) {
-      if (allowed_.isAllowed(linkNames_[a], obstacleNames_[b])) continue;
+// The pairs of bodies that are checked (not allowed to touch), each with its pairs of parts.
+void addPairGroups(const AllowedCollisionMatrix& allowed, const std::vector<std::string>& linkNames,
+                   const std::vector<std::string>& obstacleNames, Implementation& impl) {
+  for (int a = 0; a < static_cast<int>(linkNames.size()); ++a) {
+    for (int b = 0; b < static_cast<int>(obstacleNames.size()); ++b) {
+      if (allowed.isAllowed(linkNames[a], obstacleNames[b])) continue;
       Implementation::PairGroup group{a, b, false, {}, {}, {}};
       for (std::size_t j = 0; j < impl.obstacleParts.size(); ++j) {
         if (impl.obstacleParts[j].body == b) group.obstacleParts.push_back(static_cast<int>(j));
@@ -253,8 +268,8 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
       }
       impl.obstacleGroups.push_back(std::move(group));
     }
-    for (int b = a + 1; b < static_cast<int>(linkNames_.size()); ++b) {
-      if (allowed_.isAllowed(linkNames_[a], linkNames_[b])) continue;
+    for (int b = a + 1; b < static_cast<int>(linkNames.size()); ++b) {
+      if (allowed.isAllowed(linkNames[a], linkNames[b])) continue;
       Implementation::PairGroup group{a, b, true, {}, {}, {}};
       for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
         for (std::size_t j = 0; j < impl.robotParts.size(); ++j) {
@@ -264,12 +279,30 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
       impl.selfGroups.push_back(std::move(group));
     }
   }
+  // Pointers into obstacleGroups and selfGroups: taken only once both are complete.
   for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
     for (const auto& group : *groups) {
       impl.groups.push_back(&group);
       for (const auto& [i, j] : group.parts) impl.partPairs.push_back({&group, i, j});
     }
   }
+}
+
+}  // namespace
+
+CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, const Scene& scene,
+                               AllowedCollisionMatrix allowed, CollisionModelOptions options)
+    : robot_(std::move(robot)), allowed_(std::move(allowed)), options_(options),
+      implementation_(std::make_unique<detail::ModelImplementation>()) {
+  if (!robot_) throw Error("collision model: no robot model");
+  if (options_.distanceBoundingVolume == BoundingVolume::OBB) {
+    throw Error("collision model: FCL 0.7 computes no mesh–mesh distance with OBB; use RSS, kIOS or OBBRSS");
+  }
+  Implementation& impl = *implementation_;
+  addRobotParts(*robot_, options_, impl, linkNames_);
+  addObstacleParts(scene, options_, impl, obstacleNames_);
+  checkAllowedNames(allowed_, *robot_, obstacleNames_);
+  addPairGroups(allowed_, linkNames_, obstacleNames_, impl);
   detail::computeMotionBounds(*robot_, impl);
 }
 
