@@ -12,6 +12,8 @@ void registerPlanCommand(CLI::App& app);
 void registerScaleCommand(CLI::App& app);
 void registerModelCommand(CLI::App& app);
 void registerBenchCommand(CLI::App& app);
+// `bench compare` and `bench baseline` (bench_compare_command.cpp), subcommands of `bench`.
+void registerBenchCompareCommands(CLI::App& bench);
 void registerReportCommand(CLI::App& app);
 
 // The HTML report of a campaign folder or model session folder (report_command.cpp), for the

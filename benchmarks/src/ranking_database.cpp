@@ -94,9 +94,89 @@ std::map<std::string, std::string> problemFamilies(sqlite3* db, const std::files
   return families;
 }
 
+// Settings columns of the experiments table (a job's log each) and how bench compare names them;
+// a database from elsewhere may lack some.
+struct SettingColumn {
+  const char* column;
+  const char* name;
+};
+constexpr SettingColumn kSettingColumns[] = {
+    {"runcount", "runs"},
+    {"timelimit", "time limit (s)"},
+    {"vmax", "vmax (m/s)"},
+    {"clearance", "clearance (m)"},
+    {"generatorseed", "generator seed"},
+    {"problemorigin", "problem origin"},
+    {"queryname", "query"},
+    {"arcplanversion", "arcplan version"},
+    {"omplversion", "OMPL version"},
+    {"fclversion", "FCL version"},
+    {"eigenversion", "Eigen version"},
+    {"hostname", "host"},
+};
+
+// "key = value\n;key = value\n;" as OMPL writes a planner's parameters.
+void addPlannerParameters(const std::string& text, std::map<std::string, std::string>& settings) {
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    auto end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(begin, end - begin);
+    begin = end + 1;
+    if (!line.empty() && line.front() == ';') line.erase(0, 1);
+    const auto equals = line.find(" = ");
+    if (equals == std::string::npos) continue;
+    const std::string name = line.substr(0, equals);
+    if (name.rfind("projection.", 0) == 0) continue;
+    settings["parameter " + name] = line.substr(equals + 3);
+  }
+}
+
+void recordSetting(std::map<std::string, std::string>& settings, const std::string& name, const std::string& value) {
+  auto [entry, inserted] = settings.emplace(name, value);
+  if (inserted || entry->second == value) return;
+  // Several jobs of one pair (merged shards) with different values: keep each value once.
+  if (("| " + entry->second + " |").find("| " + value + " |") != std::string::npos) return;
+  entry->second += " | " + value;
+}
+
+using SettingsByPair = std::map<std::string, std::map<std::string, std::map<std::string, std::string>>>;
+
+SettingsByPair pairSettings(sqlite3* db, const std::filesystem::path& file) {
+  const auto experimentColumns = tableColumns(db, "experiments", file);
+  const bool plannerSettings = tableColumns(db, "plannerConfigs", file).count("settings") != 0;
+  std::vector<const SettingColumn*> present;
+  std::string select = "SELECT DISTINCT experiments.name, plannerConfigs.name";
+  select += plannerSettings ? ", plannerConfigs.settings" : ", NULL";
+  for (const auto& setting : kSettingColumns) {
+    if (experimentColumns.count(setting.column) == 0) continue;
+    present.push_back(&setting);
+    select += std::string(", experiments.") + setting.column;
+  }
+  select += " FROM runs JOIN experiments ON runs.experimentid = experiments.id"
+            " JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id";
+  auto statement = prepare(db, select, file);
+  SettingsByPair settings;
+  while (sqlite3_step(statement.get()) == SQLITE_ROW) {
+    const auto text = [&](int column) {
+      const auto* value = sqlite3_column_text(statement.get(), column);
+      return value == nullptr ? std::string() : std::string(reinterpret_cast<const char*>(value));
+    };
+    auto& pair = settings[text(0)][removePrefix(text(1))];
+    std::map<std::string, std::string> parameters;
+    addPlannerParameters(text(2), parameters);
+    for (const auto& [name, value] : parameters) recordSetting(pair, name, value);
+    for (std::size_t i = 0; i < present.size(); ++i) {
+      if (sqlite3_column_type(statement.get(), static_cast<int>(i) + 3) == SQLITE_NULL) continue;
+      recordSetting(pair, present[i]->name, text(static_cast<int>(i) + 3));
+    }
+  }
+  return settings;
+}
+
 }  // namespace
 
-Ranking rankDatabase(const std::filesystem::path& file) {
+RecordedRuns readRecordedRuns(const std::filesystem::path& file) {
   const Database db = openReadOnly(file);
   const auto columns = tableColumns(db.get(), "runs", file);
   for (const char* required : {"experimentid", "plannerid", "solved"}) {
@@ -107,7 +187,8 @@ Ranking rankDatabase(const std::filesystem::path& file) {
   }
   auto statement = prepare(db.get(), runsQuery(columns), file);
 
-  std::map<std::string, std::map<std::string, std::vector<RunValues>>> runs;
+  RecordedRuns recorded;
+  auto& runs = recorded.runs;
   int step = 0;
   int count = 0;
   while ((step = sqlite3_step(statement.get())) == SQLITE_ROW) {
@@ -131,7 +212,14 @@ Ranking rankDatabase(const std::filesystem::path& file) {
   }
   if (step != SQLITE_DONE) throw Error(file.string() + ": reading runs failed: " + sqlite3_errmsg(db.get()));
   if (count == 0) throw Error(file.string() + ": the database holds no benchmark runs");
-  auto ranking = rankRuns(runs, problemFamilies(db.get(), file));
+  recorded.families = problemFamilies(db.get(), file);
+  recorded.settings = pairSettings(db.get(), file);
+  return recorded;
+}
+
+Ranking rankDatabase(const std::filesystem::path& file) {
+  const auto recorded = readRecordedRuns(file);
+  auto ranking = rankRuns(recorded.runs, recorded.families);
   ranking.database = file;
   return ranking;
 }

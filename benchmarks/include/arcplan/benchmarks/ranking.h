@@ -70,6 +70,21 @@ struct Ranking {
 // benchmark database (no runs/experiments/plannerConfigs tables) or holds no runs.
 Ranking rankDatabase(const std::filesystem::path& database);
 
+// What rankDatabase reads, for readers other than the ranking (bench compare).
+struct RecordedRuns {
+  // problem (experiment name) -> planner label -> one entry per run, metric key -> value; a failed
+  // run has no "execution_time_s" (see rankRuns).
+  std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>> runs;
+  std::map<std::string, std::string> families;  // problem -> family, where the experiments name one
+  // problem -> planner -> setting -> value, as the logs recorded them: "runs", "time limit (s)",
+  // "vmax (m/s)", "clearance (m)", library versions, host, and "parameter <name>" for each planner
+  // parameter (OMPL's projection cell sizes left out: OMPL derives them from random samples).
+  // Settings that differ between the jobs of one pair are joined with " | ".
+  std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> settings;
+};
+// Throws arcplan::Error as rankDatabase does.
+RecordedRuns readRecordedRuns(const std::filesystem::path& database);
+
 // Rank planners from per-run data (what rankDatabase does after reading): `runs` maps problem ->
 // planner -> one entry per run; an entry without "execution_time_s" is a failed run. `families`
 // maps problems to their family (the experiments' `problemkind` column in a database).

@@ -21,6 +21,9 @@ struct MetricDescriptor {
   std::string omplProperty;
   std::vector<std::string> columns;  // its columns in the benchmark database; the first non-NULL wins
   std::string label;                 // for tables and plots: "TCP path length (m)"
+  // Which way is an improvement: `bench compare` calls a change better or worse by this (a shorter
+  // path, time or time above the limit is better; a larger clearance or mean TCP speed is better).
+  bool lowerIsBetter;
 };
 
 // In the order of the ranking's tables and of ranking.csv: execution time, TCP path length, joint
