@@ -201,9 +201,11 @@ void registerBenchCommand(CLI::App& app) {
   rank->add_option("--html", rankOptions->html, "also write the self-contained HTML report of the database to this file");
   rank->callback([rankOptions] { runRank(*rankOptions); });
 
+  registerBenchCompareCommands(*command);
+
   command->require_subcommand(0, 1);
-  command->callback([options, rank] {
-    if (rank->parsed()) return;
+  command->callback([options, command] {
+    if (!command->get_subcommands().empty()) return;  // rank, compare or baseline ran instead
     runBench(*options);
   });
 }
