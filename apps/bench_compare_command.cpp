@@ -140,7 +140,8 @@ void runBaselineCheck(const BaselineCheckOptions& options) {
     throw CLI::RuntimeError(toInt(ExitCode::Interrupted));
   }
   std::cerr << "bench baseline: campaign done in " << benchmarks::formatDuration(result.wallTime) << "\n";
-  const auto current = benchmarks::loadCampaignResults(campaign.outDirectory);
+  auto current = benchmarks::loadCampaignResults(campaign.outDirectory);
+  if (temporary) current.source = "re-run of " + options.file;
   const auto comparison = benchmarks::compareCampaigns(benchmarks::baselineResults(baseline, options.file), current,
                                                        options.flags.options);
   if (temporary) std::filesystem::remove_all(campaign.outDirectory);

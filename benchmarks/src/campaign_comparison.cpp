@@ -94,10 +94,16 @@ std::string firstPathDifference(const std::filesystem::path& baseFile, const std
     const auto found = std::find(current.columns.begin(), current.columns.end(), base.columns[i]);
     if (found != current.columns.end()) shared.emplace_back(i, static_cast<std::size_t>(found - current.columns.begin()));
   }
+  // Where the paths part geometrically says more than where their timing does: positions first.
+  const auto timing = [&](const std::pair<std::size_t, std::size_t>& columns) {
+    return base.columns[columns.first] == "t" || base.columns[columns.first] == "tcp_speed";
+  };
   const std::size_t rows = std::min(base.rows.size(), current.rows.size());
-  for (std::size_t r = 0; r < rows; ++r) {
-    for (const auto& [b, c] : shared) {
-      if (std::abs(base.rows[r][b] - current.rows[r][c]) > tolerance) {
+  for (const bool timingColumns : {false, true}) {
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (const auto& columns : shared) {
+        const auto [b, c] = columns;
+        if (timing(columns) != timingColumns || std::abs(base.rows[r][b] - current.rows[r][c]) <= tolerance) continue;
         return "median runs first differ at waypoint " + std::to_string(r) + ": " + base.columns[b] + " " +
                formatNumber(base.rows[r][b], 9) + " -> " + formatNumber(current.rows[r][c], 9);
       }
