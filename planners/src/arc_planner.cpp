@@ -84,6 +84,7 @@ ArcPlanner::ArcPlanner(const ob::SpaceInformationPtr& si,
                        range.at("clearance").suggestion);
   declareParam<bool>("auto", this, &ArcPlanner::setAuto, &ArcPlanner::getAuto, "0,1");
   declareParam<bool>("fallback", this, &ArcPlanner::setFallback, &ArcPlanner::getFallback, "0,1");
+  declareParam<unsigned int>("seed", this, &ArcPlanner::setSeed, &ArcPlanner::getSeed, "0:1:4294967295");
 }
 
 ArcPlanner::~ArcPlanner() = default;
@@ -192,7 +193,13 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
     path = autoMode ? detail::planViaPoints(query, result_)
                     : detail::planThesisDetours(query, shape_, planeAngle_, result_);
   }
-  if (path.joints.empty() && autoMode && fallback_ && !ptc()) path = detail::planInJointSpace(query, si_, result_);
+  if (path.joints.empty() && autoMode && fallback_ && !ptc()) {
+    // Its own SpaceInformation, whose states and motions keep this planner's margin (the problem's
+    // may be smaller).
+    const auto fallbackSpace = collision::makeSpaceInformation(
+        collisionModel_, motionValidator != nullptr ? motionValidator->options() : collision::MotionCheckOptions{}, margin);
+    path = detail::planInJointSpace(query, fallbackSpace, seed_, result_);
+  }
   if (path.joints.empty()) return fail(ptc() ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::ABORT, result_.reason);
   if (result_.kind != ArcPlannerResult::Kind::Fallback) result_.cartesianFraction = 1.0;
   result_.reason.clear();

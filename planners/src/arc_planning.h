@@ -6,6 +6,7 @@
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/SpaceInformation.h>
 
+#include <cstdint>
 #include <vector>
 
 #include "arcplan/collision/collision_model.h"
@@ -34,8 +35,9 @@ JointWaypoints planThesisDetours(const ArcQuery& query, const ArcParameters& sha
 // Auto mode: the shortest valid route through via points, corners blended.
 JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result);
 
-// RRTConnect on `si`, simplified, its segments turned into TCP lines where they validate.
+// RRTConnect on `si` (whose validity keeps the margin), simplified, its segments turned into TCP lines where they validate; every
+// random draw from generators seeded with `seed`.
 JointWaypoints planInJointSpace(const ArcQuery& query, const ompl::base::SpaceInformationPtr& si,
-                                ArcPlannerResult& result);
+                                std::uint_fast32_t seed, ArcPlannerResult& result);
 
 }  // namespace arcplan::planners::detail

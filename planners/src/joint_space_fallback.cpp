@@ -2,9 +2,12 @@
 // path from RRTConnect on the planner's own SpaceInformation, shortened by OMPL's simplifier, with
 // each segment replaced by a straight TCP line where that line validates for the whole robot. The
 // result reports which share of its TCP length is Cartesian (docs/planners.md), so the arc planner
-// is never a disguised RRTConnect.
+// is never a disguised RRTConnect. Its random numbers come from generators seeded by the planner's
+// `seed` parameter, never from OMPL's process-wide seed: the same query gives the same path whatever
+// else ran before in the process.
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
@@ -33,15 +36,48 @@ double tcpLengthOf(const robot::RobotModel& robot, const robot::Vector6& from, c
   return length;
 }
 
+// OMPL's uniform sampler of the joint box, drawing from its own seeded generator.
+class SeededJointSampler : public ob::RealVectorStateSampler {
+ public:
+  SeededJointSampler(const ob::StateSpace* space, std::uint_fast32_t seed) : RealVectorStateSampler(space) {
+    rng_.setLocalSeed(seed);
+  }
+};
+
+// RRTConnect whose samples (and any other draw) come from seeded generators. RRTConnect allocates
+// its sampler in solve() only when it has none, so the seeded one set after setup() is used.
+class SeededRRTConnect : public og::RRTConnect {
+ public:
+  SeededRRTConnect(const ob::SpaceInformationPtr& si, std::uint_fast32_t seed) : RRTConnect(si), seed_(seed) {
+    rng_.setLocalSeed(seed);
+  }
+  void setup() override {
+    RRTConnect::setup();
+    sampler_ = std::make_shared<SeededJointSampler>(si_->getStateSpace().get(), seed_);
+  }
+
+ private:
+  std::uint_fast32_t seed_;
+};
+
+// OMPL's simplifier (shortcuts between random points) drawing from a seeded generator.
+class SeededSimplifier : public og::PathSimplifier {
+ public:
+  SeededSimplifier(const ob::SpaceInformationPtr& si, std::uint_fast32_t seed) : PathSimplifier(si) {
+    rng_.setLocalSeed(seed);
+  }
+};
+
 }  // namespace
 
-JointWaypoints planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, ArcPlannerResult& result) {
+JointWaypoints planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, std::uint_fast32_t seed,
+                                ArcPlannerResult& result) {
   auto problem = std::make_shared<ob::ProblemDefinition>(si);
   ob::ScopedState<> start(si), goal(si);
   collision::setJoints(start.get(), query.start);
   collision::setJoints(goal.get(), query.goal);
   problem->setStartAndGoalStates(start, goal);
-  og::RRTConnect sampler(si);
+  SeededRRTConnect sampler(si, seed);
   sampler.setProblemDefinition(problem);
   sampler.setup();
   if (sampler.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) {
@@ -49,7 +85,7 @@ JointWaypoints planInJointSpace(const ArcQuery& query, const ob::SpaceInformatio
     return {};
   }
   og::PathGeometric path(*problem->getSolutionPath()->as<og::PathGeometric>());
-  og::PathSimplifier(si).simplify(path, query.ptc);
+  SeededSimplifier(si, seed).simplify(path, query.ptc);
 
   JointWaypoints waypoints = query.startOnly();
   double cartesian = 0.0, total = 0.0;

@@ -77,23 +77,47 @@ JointWaypoints PathValidator::walk(const TcpPath& path, const JointWaypoints& pr
   return combined;
 }
 
+bool PathValidator::keepsMargin(const robot::Vector6& q) {
+  // A certifier's start: the same test as a walk's first waypoint, with pairs far apart settled by
+  // their bounding capsules (cheaper than measuring the smallest distance).
+  if (collision::PathCertifier(model_, data_, margin_).start(q)) return true;
+  rejectedPrevious_ = q;
+  rejectedJoints_ = q;
+  return false;
+}
+
 Rejection PathValidator::rejection() {
-  // 16 states along the rejected motion: its end first (usually where the contact is).
+  Rejection result;
+  result.pairs = collision::collide(model_, data_, rejectedJoints_);
+  if (!result.pairs.valid) return result;  // contact at the rejected waypoint (the usual case)
+  result.collides = false;
+  const auto closestPair = [](const collision::DistanceReport& d) {
+    return d.obstacleDistance <= d.selfDistance ? d.obstaclePair : d.selfPair;
+  };
+  // Closer than the margin at the rejected waypoint: that pair is the reason, one query suffices
+  // (the route search asks this for every rejected route).
+  const collision::DistanceReport atWaypoint = collision::distance(model_, data_, rejectedJoints_);
+  result.closest = atWaypoint.minimum();
+  result.pairs.collisions = {closestPair(atWaypoint)};
+  if (result.closest < margin_) return result;
+  // The waypoint keeps the margin but the motion to it could not be certified: 16 states along it.
   constexpr int kSteps = 16;
   const auto along = [&](int k) -> robot::Vector6 {
     return rejectedPrevious_ + (rejectedJoints_ - rejectedPrevious_) * (static_cast<double>(k) / kSteps);
   };
-  Rejection result;
-  result.pairs = collision::collide(model_, data_, rejectedJoints_);
-  for (int k = 0; k < kSteps && result.pairs.valid; ++k) result.pairs = collision::collide(model_, data_, along(k));
-  if (!result.pairs.valid) return result;
-  result.collides = false;
-  result.closest = std::numeric_limits<double>::infinity();
-  for (int k = 0; k <= kSteps; ++k) {
+  for (int k = 0; k < kSteps; ++k) {
+    const collision::CollisionReport contact = collision::collide(model_, data_, along(k));
+    if (!contact.valid) {
+      result.pairs = contact;
+      result.collides = true;
+      return result;
+    }
+  }
+  for (int k = 0; k < kSteps; ++k) {
     const collision::DistanceReport d = collision::distance(model_, data_, along(k));
     if (d.minimum() < result.closest) {
       result.closest = d.minimum();
-      result.pairs.collisions = {d.obstacleDistance <= d.selfDistance ? d.obstaclePair : d.selfPair};
+      result.pairs.collisions = {closestPair(d)};
     }
   }
   return result;

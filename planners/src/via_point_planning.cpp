@@ -2,6 +2,8 @@
 // blended as widely as validates (docs/planners.md).
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -37,14 +39,51 @@ bool legsLongEnough(const Route& route) {
   return true;
 }
 
-// The via point's configuration on the start's branch keeps the margin: a cheap test before a walk.
-bool viaPointClear(const ArcQuery& query, collision::CollisionData& data, const Eigen::Vector3d& point) {
+// The configuration at a TCP pose on the start's branch (what a walk would reach there).
+std::optional<robot::Vector6> postureAt(const ArcQuery& query, const Eigen::Isometry3d& pose) {
+  return query.ik.solveBranch(pose, query.ik.branchOf(query.start), query.start[5]);
+}
+
+// The via point's configuration keeps the margin: a cheap test before a walk (held orientation).
+bool viaPointClear(const ArcQuery& query, const Eigen::Vector3d& point) {
   Eigen::Isometry3d pose = query.a;
   pose.translation() = point;
-  const int branch = query.ik.branchOf(query.start);
-  const auto q = query.ik.solveBranch(pose, branch, query.start[5]);
-  if (!q) return false;
-  return collision::distance(query.model, data, *q).minimum() >= query.validator.margin();
+  const auto q = postureAt(query, pose);
+  return q && query.validator.keepsMargin(*q);
+}
+
+// Where a route probably fails, tested before it is walked: one IK solution and one distance query
+// each instead of a certified walk up to there. The suspects are the clusters' centres (the route's
+// nearest point; the arm above the tool passes them there too) and the TCP positions where earlier
+// walks were rejected (the arm takes nearly the same posture within kSuspectReach of one). Returns
+// the arc length of the first probed configuration closer than the margin (the validator's
+// rejection() then names the pair).
+constexpr double kProbeSpacing = 0.01;  // m between the route points considered
+constexpr double kSuspectReach = 0.03;  // m from an earlier rejection within which a route is probed
+
+struct Suspect {
+  Eigen::Vector3d position;
+  double reach;  // probe the route's nearest point only if it is this close
+};
+
+std::optional<double> failingProbe(const ArcQuery& query, const BlendedPath& path, const std::vector<Suspect>& suspects) {
+  const int count = static_cast<int>(std::ceil(path.length() / kProbeSpacing));
+  std::vector<Eigen::Vector3d> points;
+  for (int k = 0; k <= count; ++k) points.push_back(path.position(path.length() * k / count));
+  std::set<int> probes;
+  for (const Suspect& suspect : suspects) {
+    int nearest = 0;
+    for (int k = 1; k <= count; ++k) {
+      if ((points[k] - suspect.position).squaredNorm() < (points[nearest] - suspect.position).squaredNorm()) nearest = k;
+    }
+    if ((points[nearest] - suspect.position).norm() <= suspect.reach) probes.insert(nearest);
+  }
+  for (const int k : probes) {  // in order along the route, as a walk would meet them
+    const double arcLength = path.length() * k / count;
+    const auto q = postureAt(query, path.pose(arcLength));
+    if (q && !query.validator.keepsMargin(*q)) return arcLength;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -52,7 +91,12 @@ bool viaPointClear(const ArcQuery& query, collision::CollisionData& data, const 
 JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result) {
   const std::vector<ObstacleCluster> clusters = clusterObstacles(query.obstacles, kClusterGap);
   RouteSearch search(query.a.translation(), query.b.translation(), kMaxViaPoints);
-  collision::CollisionData data(query.model);
+  std::vector<Suspect> suspects;
+  for (const ObstacleCluster& cluster : clusters) {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : cluster.hull) centre += p / static_cast<double>(cluster.hull.size());
+    suspects.push_back({centre, std::numeric_limits<double>::infinity()});
+  }
   const bool orientationHeld = Eigen::Quaterniond(query.a.linear()).angularDistance(Eigen::Quaterniond(query.b.linear())) < 1e-12;
   std::set<std::array<double, 3>> blockedPoints;
   std::string lastFailure = "no route";
@@ -69,7 +113,7 @@ JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result) {
     for (const Eigen::Vector3d& v : vias) {
       const std::array<double, 3> key{v.x(), v.y(), v.z()};
       if (blockedPoints.count(key) > 0) viasClear = false;
-      if (viasClear && orientationHeld && !viaPointClear(query, data, v)) {
+      if (viasClear && orientationHeld && !viaPointClear(query, v)) {
         blockedPoints.insert(key);
         viasClear = false;
       }
@@ -80,7 +124,18 @@ JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result) {
     result.routesTried = static_cast<int>(search.routesTried());
     for (;;) {
       const BlendedPath path(query.a, query.b, vias, blends);
-      const JointWaypoints walked = query.validator.walk(path, query.startOnly(), query.goal);
+      JointWaypoints walked;
+      if (const std::optional<double> probedFailure = failingProbe(query, path, suspects)) {
+        walked.status = ConversionStatus::Rejected;
+        walked.failedAtArcLength = *probedFailure;
+      } else {
+        walked = query.validator.walk(path, query.startOnly(), query.goal);
+        const Eigen::Vector3d rejectedAt = path.position(walked.failedAtArcLength);
+        const bool known = std::any_of(suspects.begin(), suspects.end(), [&](const Suspect& suspect) {
+          return (suspect.position - rejectedAt).norm() < kProbeSpacing;
+        });
+        if (walked.status == ConversionStatus::Rejected && !known) suspects.push_back({rejectedAt, kSuspectReach});
+      }
       if (walked.ok()) {
         result.kind = vias.empty() ? ArcPlannerResult::Kind::StraightLine : ArcPlannerResult::Kind::ViaPoints;
         result.viaPoints = vias;

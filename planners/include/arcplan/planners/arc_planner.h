@@ -102,6 +102,9 @@ class ArcPlanner : public ompl::base::Planner {
   bool getAuto() const { return autoMode_.value_or(!shapeGiven_); }
   void setFallback(bool enabled) { fallback_ = enabled; }
   bool getFallback() const { return fallback_; }
+  // Seeds every random draw of the fallback (its own generators, not OMPL's process-wide seed).
+  void setSeed(unsigned int seed) { seed_ = seed; }
+  unsigned int getSeed() const { return seed_; }
 
  private:
   ompl::base::PlannerStatus fail(ompl::base::PlannerStatus status, const std::string& reason);
@@ -126,6 +129,7 @@ class ArcPlanner : public ompl::base::Planner {
   ArcPlannerResult result_;
   std::vector<robot::Vector6> solutionJoints_;  // the last solution's waypoints
   mutable std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
+  unsigned int seed_ = 1;  // of the fallback's random draws
 };
 
 }  // namespace arcplan::planners

@@ -14,8 +14,9 @@
 
 namespace arcplan::planners {
 
-// Why a walk stopped at a waypoint: the pairs colliding on the rejected motion; else (no contact, but
-// closer than the margin) the closest pair along it.
+// Why a walk stopped at a waypoint: the pairs in contact at the rejected waypoint, else its closest
+// pair when that is closer than the margin; only when the waypoint itself keeps the margin, the
+// pairs in contact along the motion to it, else the closest pair along that motion.
 struct Rejection {
   collision::CollisionReport pairs;
   bool collides = true;
@@ -39,7 +40,12 @@ class PathValidator {
   // where `goal` (if given) must be met; stops at the first waypoint that fails. Returns prefix +
   // continuation, with the status and reason of the conversion.
   JointWaypoints walk(const TcpPath& path, const JointWaypoints& prefix, const std::optional<robot::Vector6>& goal);
-  // The rejection behind the last walk's failure (status Rejected).
+  // One configuration tested on its own, without a walk up to it: false when it is closer than the
+  // margin to an obstacle or between links, and rejection() then explains it. A cheap test of where
+  // a path is likely to fail before the walk; a configuration that passes proves nothing about the
+  // motions around it.
+  bool keepsMargin(const robot::Vector6& q);
+  // The rejection behind the last walk's failure (status Rejected) or the last failed keepsMargin.
   Rejection rejection();
   double margin() const { return margin_; }
 
