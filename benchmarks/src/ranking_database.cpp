@@ -105,6 +105,8 @@ constexpr SettingColumn kSettingColumns[] = {
     {"timelimit", "time limit (s)"},
     {"vmax", "vmax (m/s)"},
     {"clearance", "clearance (m)"},
+    {"iterationbudget", "iteration budget"},
+    {"jobseed", "job seed"},
     {"generatorseed", "generator seed"},
     {"problemorigin", "problem origin"},
     {"queryname", "query"},

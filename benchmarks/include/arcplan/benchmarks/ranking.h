@@ -77,7 +77,7 @@ struct RecordedRuns {
   std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>> runs;
   std::map<std::string, std::string> families;  // problem -> family, where the experiments name one
   // problem -> planner -> setting -> value, as the logs recorded them: "runs", "time limit (s)",
-  // "vmax (m/s)", "clearance (m)", library versions, host, and "parameter <name>" for each planner
+  // "vmax (m/s)", "clearance (m)", iteration budget, seeds, library versions, host, and "parameter <name>" for each planner
   // parameter (OMPL's projection cell sizes left out: OMPL derives them from random samples).
   // Settings that differ between the jobs of one pair are joined with " | ".
   std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> settings;
