@@ -25,6 +25,7 @@ struct BenchOptions {
   std::vector<std::string> planners;
   std::optional<unsigned> runs;
   std::optional<double> time;
+  std::optional<long long> budget;
   std::optional<double> vMax;
   std::string out;
   std::string shard = "1/1";
@@ -67,6 +68,13 @@ void runBench(const BenchOptions& options) {
     }
     suite.timeLimit = *options.time;
   }
+  if (options.budget) {
+    if (*options.budget < 1 || *options.budget > benchmarks::kMaximumIterationBudget) {
+      throw UsageError("--budget must be a whole number of iterations from 1 to " +
+                       std::to_string(benchmarks::kMaximumIterationBudget));
+    }
+    suite.iterationBudget = static_cast<unsigned>(*options.budget);
+  }
   if (options.vMax) {
     if (!(*options.vMax > 0.0) || !std::isfinite(*options.vMax)) throw UsageError("--vmax must be a positive TCP speed in m/s");
     suite.vMax = *options.vMax;
@@ -86,7 +94,9 @@ void runBench(const BenchOptions& options) {
 
   std::cerr << "bench: suite " << suite.name << " (" << suite.sourceFile.string() << "): " << suite.problems.size()
             << " problems x " << suite.planners.size() << " planners, " << suite.runs << " runs of at most "
-            << suite.timeLimit << " s, vmax " << suite.vMax << " m/s";
+            << suite.timeLimit << " s";
+  if (suite.iterationBudget) std::cerr << " and " << *suite.iterationBudget << " iterations";
+  std::cerr << ", vmax " << suite.vMax << " m/s";
   if (campaign.shard.count > 1) std::cerr << ", shard " << campaign.shard.index << "/" << campaign.shard.count;
   std::cerr << " -> " << campaign.outDirectory.string() << "\n";
 
@@ -172,6 +182,10 @@ void registerBenchCommand(CLI::App& app) {
       ->delimiter(',');
   command->add_option("--runs", options->runs, "runs per planner and problem (default: the suite's)");
   command->add_option("--time", options->time, "time limit per run [s] (default: the suite's)");
+  command->add_option("--budget", options->budget,
+                      "iterations per run (default: the suite's `budget`, else none): runs end after this many "
+                      "whatever the machine's load, so they repeat exactly; --time becomes a safety cap "
+                      "(docs/reproducibility.md)");
   command->add_option("--vmax", options->vMax, "TCP speed limit of the time scaling [m/s] (default: the suite's, 0.25)");
   command->add_option("--out", options->out, "output directory (default: results/<suite>)");
   command->add_option("--shard", options->shard,

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <functional>
 #include <iostream>
-#include <iterator>
 
+#include <signal.h>
 #include <unistd.h>
 
 #include "arcplan/benchmarks/generated_problems.h"
@@ -61,6 +61,48 @@ detail::PoolResult runPendingJobs(const Suite& suite, const std::vector<Job>& pe
   return result;
 }
 
+// Notes about the state the output directory was found in go to stderr at once: they explain what the
+// campaign does next (and a campaign that fails later still shows them).
+void printNote(const std::string& note) { std::cerr << "bench: note: " << note << "\n"; }
+
+// A write past RLIMIT_FSIZE raises SIGXFSZ, whose default action kills the process without a word;
+// ignored, the write fails with EFBIG like a write to a full disk, and the campaign reports it.
+class FileSizeSignalIgnored {
+public:
+  FileSizeSignalIgnored() { ::sigaction(SIGXFSZ, &ignore(), &previous_); }
+  ~FileSizeSignalIgnored() { ::sigaction(SIGXFSZ, &previous_, nullptr); }
+  FileSizeSignalIgnored(const FileSizeSignalIgnored&) = delete;
+  FileSizeSignalIgnored& operator=(const FileSizeSignalIgnored&) = delete;
+
+private:
+  static const struct sigaction& ignore() {
+    static const struct sigaction action = [] {
+      struct sigaction a {};
+      a.sa_handler = SIG_IGN;
+      sigemptyset(&a.sa_mask);
+      return a;
+    }();
+    return action;
+  }
+  struct sigaction previous_ {};
+};
+
+// The shard's jobs without a complete log. An existing log that is not complete (cut short by a crash
+// or a full disk, garbled) is reported and its job runs again; the new log replaces it.
+std::vector<Job> pendingJobs(const Suite& suite, const std::vector<Job>& share, const std::filesystem::path& out) {
+  std::vector<Job> pending;
+  for (const auto& job : share) {
+    const auto log = jobLogPath(out, suite, job);
+    if (!std::filesystem::exists(log)) {
+      pending.push_back(job);
+    } else if (const auto problem = detail::jobLogProblem(out, suite, job)) {
+      printNote(log.string() + " is incomplete (" + *problem + "): its job runs again");
+      pending.push_back(job);
+    }
+  }
+  return pending;
+}
+
 }  // namespace
 
 CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options) {
@@ -68,14 +110,27 @@ CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options) {
   if (options.outDirectory.empty()) throw Error("--out: an output directory is required");
   detail::checkPlannerConfigurations(suite);  // bad planners or parameters: nothing is written
   detail::createDirectory(options.outDirectory);
+  const auto all = campaignJobs(suite);
+  std::vector<std::string> lockNotes;
+  const detail::OutputDirectoryLock lock(options.outDirectory, options.shard, all.size(), lockNotes);
+  for (const auto& note : lockNotes) printNote(note);
   detail::claimOutputDirectory(options.outDirectory, suite);
+  if (lock.otherHosts().empty()) {
+    const auto removed = detail::removeAbandonedTemporaries(options.outDirectory);
+    if (!removed.empty()) {
+      printNote("removed " + std::to_string(removed.size()) + " temporary file(s) of a campaign that was killed, e.g. " +
+                removed.front().string());
+    }
+  }
+  const FileSizeSignalIgnored fileSizeSignal;
 
   CampaignResult result;
-  const auto all = campaignJobs(suite);
   const auto share = shardJobs(all, options.shard);
-  const auto done = [&](const Job& job) { return std::filesystem::exists(jobLogPath(options.outDirectory, suite, job)); };
-  std::vector<Job> pending;
-  std::copy_if(share.begin(), share.end(), std::back_inserter(pending), [&](const Job& job) { return !done(job); });
+  const auto done = [&](const Job& job) {
+    return std::filesystem::exists(jobLogPath(options.outDirectory, suite, job)) &&
+           !detail::jobLogProblem(options.outDirectory, suite, job);
+  };
+  const std::vector<Job> pending = pendingJobs(suite, share, options.outDirectory);
   result.jobsInShard = share.size();
   result.jobsSkipped = share.size() - pending.size();
   result.jobsInCampaign = all.size();
@@ -87,6 +142,12 @@ CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options) {
   result.notes = outcome.failures;
   result.jobsDoneInCampaign = static_cast<std::size_t>(std::count_if(all.begin(), all.end(), done));
 
+  if (!outcome.outputFailure.empty()) {
+    throw Error("the campaign stopped: " + outcome.outputFailure + "\n" + std::to_string(result.jobsDoneInCampaign) +
+                " of " + std::to_string(result.jobsInCampaign) + " jobs are complete and their logs are kept in " +
+                (options.outDirectory / "logs").string() +
+                "; make room (or raise the file size limit) and run the same command again to resume");
+  }
   if (!outcome.failures.empty()) {
     std::string message = std::to_string(outcome.failures.size()) + " job(s) failed:";
     for (const auto& failure : outcome.failures) message += "\n  " + failure;
@@ -94,7 +155,12 @@ CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options) {
   }
   if (!result.interrupted && result.jobsDoneInCampaign == result.jobsInCampaign) {
     const auto database = options.outDirectory / "benchmark.db";
-    buildBenchmarkDatabase(findLogs({options.outDirectory / "logs" / suite.name}), database);
+    try {
+      buildBenchmarkDatabase(findLogs({options.outDirectory / "logs" / suite.name}), database);
+    } catch (const Error& e) {
+      throw Error(std::string(e.what()) + "\nevery job's log is complete and kept in " +
+                  (options.outDirectory / "logs").string() + "; run the same command again to build " + database.string());
+    }
     ReportOptions report;
     report.outDirectory = options.outDirectory;
     report.pathDirectories = {options.outDirectory / "paths"};

@@ -1,7 +1,10 @@
 #include "job_runner.h"
 
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <iomanip>
 #include <limits>
 #include <memory>
@@ -71,6 +74,74 @@ public:
     return static_cast<bool>(out);
   }
 };
+
+// A planner that stops after a fixed number of iterations, counted as OMPL's
+// IterationTerminationCondition counts them: every time the planner asks its termination condition
+// whether to stop. ompl::tools::Benchmark only passes a time (and memory) condition to solve(), so
+// the benchmarked planner is this wrapper, which hands its planner that condition OR the budget. For a
+// single-threaded planner with seeded random numbers, the run then no longer depends on how fast the
+// machine is; the time limit stays as a safety cap, and a run it ends is recorded as such.
+class IterationBudgetPlanner : public ob::Planner {
+public:
+  IterationBudgetPlanner(ob::PlannerPtr planner, unsigned budget)
+      : ob::Planner(planner->getSpaceInformation(), planner->getName()), planner_(std::move(planner)), budget_(budget) {
+    // What ompl::tools::Benchmark reads without a virtual call: the wrapped planner's own.
+    specs_ = planner_->getSpecs();
+    params_ = planner_->params();
+    for (const auto& [name, property] : planner_->getPlannerProgressProperties()) addPlannerProgressProperty(name, property);
+  }
+
+  ob::PlannerStatus solve(const ob::PlannerTerminationCondition& limit) override {
+    iterations_ = 0;
+    capReached_ = false;
+    // PRM evaluates its condition from two threads: the counter is atomic.
+    const ob::PlannerTerminationCondition condition([this, &limit] {
+      if (limit()) {
+        capReached_ = true;
+        return true;
+      }
+      return iterations_.fetch_add(1) >= budget_;
+    });
+    return planner_->solve(condition);
+  }
+
+  // Iterations the last run used (the evaluation that ended it included) and whether the safety cap
+  // (time or memory), not the budget, ended it.
+  unsigned long long iterationsUsed() const { return iterations_.load(); }
+  bool capReached() const { return capReached_.load(); }
+
+  void setProblemDefinition(const ob::ProblemDefinitionPtr& problem) override {
+    ob::Planner::setProblemDefinition(problem);
+    planner_->setProblemDefinition(problem);
+  }
+  void setup() override {
+    planner_->setup();
+    setup_ = true;
+  }
+  void clear() override { planner_->clear(); }
+  void clearQuery() override { planner_->clearQuery(); }
+  void checkValidity() override { planner_->checkValidity(); }
+  void getPlannerData(ob::PlannerData& data) const override { planner_->getPlannerData(data); }
+  void printProperties(std::ostream& out) const override { planner_->printProperties(out); }
+  void printSettings(std::ostream& out) const override { planner_->printSettings(out); }
+
+private:
+  ob::PlannerPtr planner_;
+  unsigned long long budget_;
+  std::atomic<unsigned long long> iterations_{0};
+  std::atomic<bool> capReached_{false};
+};
+
+// A failed write of a job's output names the file and the system's reason (disk full, file too large).
+void writeJobOutput(const std::filesystem::path& file, const std::function<void(AtomicOutputFile&)>& write) {
+  try {
+    AtomicOutputFile out(file);
+    write(out);
+    out.commit();
+  } catch (const Error& e) {
+    throw OutputWriteError(e.what());
+  }
+}
 
 // FNV-1a: a stable hash of the job's names (std::hash may differ between standard libraries).
 std::uint64_t stableHash(const std::string& text) {
@@ -151,17 +222,18 @@ void writeMedianRun(const std::filesystem::path& file, const std::string& planne
     return a.executionTime < b.executionTime || (a.executionTime == b.executionTime && a.run < b.run);
   });
   const RecordedRun& median = runs[(runs.size() - 1) / 2];
-  AtomicOutputFile out(file);
-  out.stream() << std::setprecision(9) << "# planner: " << planner << "\n# run: " << median.run
-               << "\n# execution time (s): " << median.executionTime << "\n# tcp path length (m): " << median.tcpPathLength
-               << "\n# successful runs: " << runs.size() << "\nt,tcp_speed,x,y,z,q0,q1,q2,q3,q4,q5\n";
-  for (std::size_t i = 0; i < median.time.size(); ++i) {
-    out.stream() << median.time[i] << "," << median.speed[i] << "," << median.tcp[i].x() << "," << median.tcp[i].y()
-                 << "," << median.tcp[i].z();
-    for (int j = 0; j < 6; ++j) out.stream() << "," << median.joints[i][j];
-    out.stream() << "\n";
-  }
-  out.commit();
+  writeJobOutput(file, [&](AtomicOutputFile& out) {
+    out.stream() << std::setprecision(9) << "# planner: " << planner << "\n# run: " << median.run
+                 << "\n# execution time (s): " << median.executionTime << "\n# tcp path length (m): "
+                 << median.tcpPathLength << "\n# successful runs: " << runs.size()
+                 << "\nt,tcp_speed,x,y,z,q0,q1,q2,q3,q4,q5\n";
+    for (std::size_t i = 0; i < median.time.size(); ++i) {
+      out.stream() << median.time[i] << "," << median.speed[i] << "," << median.tcp[i].x() << "," << median.tcp[i].y()
+                   << "," << median.tcp[i].z();
+      for (int j = 0; j < 6; ++j) out.stream() << "," << median.joints[i][j];
+      out.stream() << "\n";
+    }
+  });
 }
 
 // Every planner's validity checker and motion validator keep the suite's clearance.
@@ -226,9 +298,14 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   const auto planning = setUpProblem(suite, problem);
   ompl::geometric::SimpleSetup& setup = *planning.setup;
   const std::string plannerName = planners::canonicalPlannerName(configuration.planner);
-  const ob::PlannerPtr planner = planners::makePlanner(plannerName, setup.getSpaceInformation(),
-                                                       planning.plannerContext(), parameterList(configuration));
+  ob::PlannerPtr planner = planners::makePlanner(plannerName, setup.getSpaceInformation(), planning.plannerContext(),
+                                                 parameterList(configuration));
   planner->setName(configuration.label);
+  std::shared_ptr<IterationBudgetPlanner> budgeted;
+  if (suite.iterationBudget) {
+    budgeted = std::make_shared<IterationBudgetPlanner>(planner, *suite.iterationBudget);
+    planner = budgeted;
+  }
 
   CampaignBenchmark benchmark(setup, experimentName(suite, problem));
   benchmark.addExperimentParameter("suite", "TEXT", suite.name);
@@ -239,6 +316,9 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   benchmark.addExperimentParameter("vmax", "REAL", number(suite.vMax));
   benchmark.addExperimentParameter("clearance", "REAL", number(suite.clearance));
   benchmark.addExperimentParameter("job seed", "INTEGER", std::to_string(seed));
+  if (suite.iterationBudget) {
+    benchmark.addExperimentParameter("iteration budget", "INTEGER", std::to_string(*suite.iterationBudget));
+  }
   if (suite.generator) benchmark.addExperimentParameter("generator seed", "INTEGER", std::to_string(suite.generator->seed));
   benchmark.addExperimentParameter("ompl version", "TEXT",
                                    versionText(OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION));
@@ -266,6 +346,10 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   });
   benchmark.setPostRunEvent([&](const ob::PlannerPtr&, ompl::tools::Benchmark::RunProperties& run) {
     run["run seed INTEGER"] = std::to_string(currentSeed);
+    if (budgeted) {
+      run["iterations INTEGER"] = std::to_string(budgeted->iterationsUsed());
+      run["time cap reached BOOLEAN"] = budgeted->capReached() ? "1" : "0";
+    }
     // The arc planner reports its own solve time; OMPL planners' is OMPL's "time".
     const std::string& solveTime = trajectory::metricDescriptor("solve_time_s").omplProperty;
     if (run.count(solveTime) == 0) run[solveTime] = run["time REAL"];
@@ -304,9 +388,11 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
 
   // The plot data first: a job counts as done once its log exists.
   if (!files.medianRun.empty()) writeMedianRun(files.medianRun, configuration.label, std::move(recorded));
-  AtomicOutputFile log(files.log);
-  if (!benchmark.saveResultsToStream(log.stream())) throw Error("cannot write benchmark log " + files.log.string());
-  log.commit();
+  writeJobOutput(files.log, [&](AtomicOutputFile& log) {
+    if (!benchmark.saveResultsToStream(log.stream())) {
+      throw Error("writing " + files.log.string() + " failed: " + std::strerror(errno));
+    }
+  });
   return outcome;
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "arcplan/benchmarks/suite.h"
+#include "arcplan/common/error.h"
 
 namespace arcplan::benchmarks::detail {
 
@@ -27,6 +28,12 @@ struct JobInterrupted : std::exception {
   const char* what() const noexcept override { return "benchmark job interrupted"; }
 };
 
+// A job's log or median-run file could not be written (disk full, file size limit, ...): the job has
+// no log, and the jobs after it would fail the same way, so the campaign stops (worker_pool.h).
+struct OutputWriteError : Error {
+  using Error::Error;
+};
+
 // OMPL's seed generator is reseeded with this before the job's planner and SimpleSetup exist, and
 // with runSeed before every run, so a job repeats exactly whatever ran before it in the process.
 std::uint32_t jobSeed(const Suite& suite, const Problem& problem, const PlannerConfiguration& planner);
@@ -36,7 +43,7 @@ std::uint32_t runSeed(std::uint32_t jobSeed, unsigned run);
 // and parameters are reported before anything runs. Throws arcplan::Error naming the suite and planner.
 void checkPlannerConfigurations(const Suite& suite);
 
-// Throws JobInterrupted (see above) or arcplan::Error (the problem cannot be set up).
+// Throws JobInterrupted (see above), OutputWriteError or arcplan::Error (the problem cannot be set up).
 JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfiguration& planner, const JobFiles& files,
                   const std::function<void(unsigned run, bool solved)>& onRunFinished);
 

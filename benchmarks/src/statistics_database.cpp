@@ -1,6 +1,7 @@
 #include "arcplan/benchmarks/statistics_database.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -21,7 +22,193 @@ bool isExecutable(const std::filesystem::path& file) {
   return std::filesystem::is_regular_file(file) && ::access(file.c_str(), X_OK) == 0;
 }
 
+// Bad logs named in one error message; more are counted.
+constexpr std::size_t kBadLogsNamed = 10;
+
+// What is wrong with a log, at the line where it was found.
+struct LogDefect {
+  std::string message;
+};
+
+// A log's lines in the order ompl_benchmark_statistics reads them; every check names its line.
+class LogLines {
+public:
+  explicit LogLines(const std::string& text) {
+    std::size_t start = 0;
+    while (start < text.size()) {
+      const auto end = text.find('\n', start);
+      if (end == std::string::npos) {
+        lines_.push_back(text.substr(start));
+        lastLineCut_ = true;  // a complete log ends with a newline
+        break;
+      }
+      lines_.push_back(text.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+
+  bool atEnd() const { return next_ >= lines_.size(); }
+  bool lastLineCut() const { return lastLineCut_; }
+  std::size_t lineCount() const { return lines_.size(); }
+  const std::string& peek() const { return lines_[next_]; }
+
+  const std::string& take(const std::string& expected) {
+    if (atEnd()) fail("the file ends where " + expected + " was expected");
+    return lines_[next_++];
+  }
+
+  // A line "<whole number> <suffix>"; returns the number.
+  unsigned long takeCount(const std::string& suffix) {
+    const std::string& line = take("'N " + suffix + "'");
+    const auto space = line.find(' ');
+    if (space == std::string::npos || line.compare(space + 1, std::string::npos, suffix) != 0 || space == 0 ||
+        !std::all_of(line.begin(), line.begin() + static_cast<std::ptrdiff_t>(space),
+                     [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; })) {
+      fail("expected 'N " + suffix + "', found '" + shortened(line) + "'");
+    }
+    return std::stoul(line.substr(0, space));
+  }
+
+  // A line "<value> <suffix>" (the seed, the limits, the total time).
+  void takeValue(const std::string& suffix) {
+    const std::string& line = take("'... " + suffix + "'");
+    const auto space = line.find(' ');
+    if (space == std::string::npos || space == 0 || line.compare(space + 1, std::string::npos, suffix) != 0) {
+      fail("expected '<value> " + suffix + "', found '" + shortened(line) + "'");
+    }
+  }
+
+  bool nextEndsWith(const std::string& suffix) const {
+    return !atEnd() && peek().size() > suffix.size() && peek().compare(peek().size() - suffix.size(), suffix.size(), suffix) == 0;
+  }
+
+  [[noreturn]] void fail(const std::string& message) const {
+    throw LogDefect{"line " + std::to_string(std::min(next_, lines_.size())) + ": " + message};
+  }
+
+  static std::string shortened(const std::string& line) { return line.size() > 60 ? line.substr(0, 60) + "..." : line; }
+
+private:
+  std::vector<std::string> lines_;
+  std::size_t next_ = 0;
+  bool lastLineCut_ = false;
+};
+
+void takePrefixed(LogLines& lines, const std::string& prefix, std::string* rest = nullptr) {
+  const std::string& line = lines.take("'" + prefix + "...'");
+  if (line.rfind(prefix, 0) != 0) lines.fail("expected '" + prefix + "...', found '" + LogLines::shortened(line) + "'");
+  if (rest != nullptr) *rest = line.substr(prefix.size());
+}
+
+// "<<<|" ... "|>>>": the setup and CPU blocks.
+void takeBlock(LogLines& lines) {
+  takePrefixed(lines, "<<<|");
+  while (true) {
+    if (lines.take("the end of a '<<<|' block ('|>>>')").rfind("|>>>", 0) == 0) return;
+  }
+}
+
+// One planner: its settings, the property names, one line per run, optional progress data, ".".
+void checkPlanner(LogLines& lines, const LogExpectation& expected) {
+  const std::string& name = lines.take("a planner name");
+  if (!expected.planner.empty() && name != "geometric_" + expected.planner) {
+    lines.fail("planner '" + name + "', expected 'geometric_" + expected.planner + "'");
+  }
+  const auto settings = lines.takeCount("common properties");
+  for (unsigned long i = 0; i < settings; ++i) {
+    if (lines.take("a planner setting").find(" = ") == std::string::npos) lines.fail("expected a setting 'name = value'");
+  }
+  const auto properties = lines.takeCount("properties for each run");
+  for (unsigned long i = 0; i < properties; ++i) {
+    if (lines.take("a run property name").find(' ') == std::string::npos) lines.fail("expected a property 'name TYPE'");
+  }
+  const auto runs = lines.takeCount("runs");
+  if (expected.runs != 0 && runs != expected.runs) {
+    lines.fail(std::to_string(runs) + " runs, expected " + std::to_string(expected.runs));
+  }
+  for (unsigned long run = 0; run < runs; ++run) {
+    if (lines.atEnd()) {
+      lines.fail(std::to_string(run) + " of " + std::to_string(runs) + " runs, then the file ends");
+    }
+    const std::string& values = lines.take("a run");
+    std::size_t separators = 0;
+    for (auto at = values.find("; "); at != std::string::npos; at = values.find("; ", at + 2)) ++separators;
+    if (separators != properties || values.size() < 2 || values.compare(values.size() - 2, 2, "; ") != 0) {
+      lines.fail("run " + std::to_string(run + 1) + " of " + std::to_string(runs) + " has " + std::to_string(separators) +
+                 " of " + std::to_string(properties) + " values (cut short or garbled)");
+    }
+  }
+  if (!lines.atEnd() && lines.peek() != ".") {
+    const auto progress = lines.takeCount("progress properties for each run");
+    for (unsigned long i = 0; i < progress; ++i) lines.take("a progress property name");
+    const auto series = lines.takeCount("runs");
+    for (unsigned long i = 0; i < series; ++i) lines.take("a run's progress data");
+  }
+  if (lines.take("'.' (the end of the planner)") != ".") lines.fail("expected '.' (the end of the planner)");
+}
+
+void checkLog(LogLines& lines, const LogExpectation& expected) {
+  if (lines.lineCount() == 0) lines.fail("the file is empty");
+  if (lines.peek().find(" version") != std::string::npos && lines.peek().rfind("Experiment ", 0) != 0) lines.take("");
+  std::string experiment;
+  takePrefixed(lines, "Experiment ", &experiment);
+  if (!expected.experiment.empty() && experiment != expected.experiment) {
+    lines.fail("experiment '" + experiment + "', expected '" + expected.experiment + "'");
+  }
+  if (lines.nextEndsWith(" experiment properties")) {
+    const auto count = lines.takeCount("experiment properties");
+    for (unsigned long i = 0; i < count; ++i) {
+      if (lines.take("an experiment property").find(" = ") == std::string::npos) lines.fail("expected 'name TYPE = value'");
+    }
+  }
+  takePrefixed(lines, "Running on ");
+  takePrefixed(lines, "Starting at ");
+  takeBlock(lines);
+  if (!lines.atEnd() && lines.peek().rfind("<<<|", 0) == 0) takeBlock(lines);
+  lines.takeValue("is the random seed");
+  lines.takeValue("seconds per run");
+  lines.takeValue("MB per run");
+  if (lines.nextEndsWith(" runs per planner")) {
+    const auto runs = lines.takeCount("runs per planner");
+    if (expected.runs != 0 && runs != expected.runs) {
+      lines.fail(std::to_string(runs) + " runs per planner, expected " + std::to_string(expected.runs));
+    }
+  }
+  lines.takeValue("seconds spent to collect the data");
+  if (lines.nextEndsWith(" enum type") || lines.nextEndsWith(" enum types")) {
+    const auto enums = lines.takeCount(lines.nextEndsWith(" enum type") ? "enum type" : "enum types");
+    for (unsigned long i = 0; i < enums; ++i) {
+      if (lines.take("an enum").find('|') == std::string::npos) lines.fail("expected an enum 'name|value|...'");
+    }
+  }
+  const auto planners = lines.takeCount("planners");
+  if (planners == 0) lines.fail("the log has no planner");
+  if (!expected.planner.empty() && planners != 1) lines.fail(std::to_string(planners) + " planners, expected 1");
+  for (unsigned long i = 0; i < planners; ++i) checkPlanner(lines, expected);
+  if (lines.lastLineCut()) lines.fail("the last line has no newline (the file was cut short)");
+  while (!lines.atEnd()) {
+    if (!lines.take("").empty()) lines.fail("text after the end of the log");
+  }
+}
+
 }  // namespace
+
+std::optional<std::string> benchmarkLogProblem(const std::filesystem::path& log, const LogExpectation& expected) {
+  std::ifstream in(log, std::ios::binary);
+  if (!in) return "cannot be read";
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return "cannot be read";
+  const std::string content = text.str();
+  if (content.find('\0') != std::string::npos) return "contains NUL bytes (a block the file system never wrote)";
+  LogLines lines(content);
+  try {
+    checkLog(lines, expected);
+  } catch (const LogDefect& defect) {
+    return defect.message;
+  }
+  return std::nullopt;
+}
 
 std::filesystem::path findBenchmarkStatisticsScript() {
   if (const char* chosen = std::getenv("ARCPLAN_OMPL_BENCHMARK_STATISTICS"); chosen != nullptr && *chosen != '\0') {
@@ -64,6 +251,17 @@ std::vector<std::filesystem::path> findLogs(const std::vector<std::filesystem::p
 
 void buildBenchmarkDatabase(const std::vector<std::filesystem::path>& logs, const std::filesystem::path& database) {
   if (logs.empty()) throw Error("no OMPL benchmark logs to put into " + database.string());
+  std::vector<std::string> badLogs;
+  for (const auto& log : logs) {
+    if (const auto problem = benchmarkLogProblem(log)) badLogs.push_back(log.string() + ": " + *problem);
+  }
+  if (!badLogs.empty()) {
+    std::string message = std::to_string(badLogs.size()) + " incomplete or corrupt OMPL log(s), not given to "
+                          "ompl_benchmark_statistics (" + database.string() + " is unchanged):";
+    for (std::size_t i = 0; i < std::min(badLogs.size(), kBadLogsNamed); ++i) message += "\n  " + badLogs[i];
+    if (badLogs.size() > kBadLogsNamed) message += "\n  ... and " + std::to_string(badLogs.size() - kBadLogsNamed) + " more";
+    throw Error(message + "\nrerun the campaign that wrote them (it runs their jobs again) or leave them out");
+  }
   const auto script = findBenchmarkStatisticsScript();
   if (database.has_parent_path()) {
     std::error_code ec;
@@ -75,7 +273,10 @@ void buildBenchmarkDatabase(const std::vector<std::filesystem::path>& logs, cons
   std::error_code ignored;
   std::filesystem::remove(temporary, ignored);
   for (std::size_t first = 0; first < logs.size(); first += kLogsPerCall) {
-    std::vector<std::string> argv{script.string(), "-d", temporary.string()};
+    // setpriv (util-linux, always on Debian) makes the kernel kill the script when this process dies:
+    // a script outliving a killed campaign would go on writing its temporary database after the
+    // resumed campaign removed it.
+    std::vector<std::string> argv{"setpriv", "--pdeathsig", "KILL", "--", script.string(), "-d", temporary.string()};
     if (first > 0) argv.emplace_back("-a");
     const auto last = std::min(logs.size(), first + kLogsPerCall);
     for (std::size_t i = first; i < last; ++i) argv.push_back(logs[i].string());

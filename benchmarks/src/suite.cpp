@@ -199,8 +199,8 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
   const SuiteReader reader{file};
   if (!root || !root.IsMap()) throw Error(file.string() + ": a suite must be a YAML map (name, runs, problems, planners)");
   reader.expectKeys(root,
-                    {"name", "description", "runs", "time_limit", "v_max", "clearance", "problems", "generate", "planners",
-                     "plots"},
+                    {"name", "description", "runs", "time_limit", "budget", "v_max", "clearance", "problems", "generate",
+                     "planners", "plots"},
                     "suite");
 
   Suite suite;
@@ -209,6 +209,9 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
   if (root["description"]) suite.description = reader.text(root, "description", "suite");
   if (root["runs"]) suite.runs = static_cast<unsigned>(reader.count(root, "runs", "suite", 1, kMaximumRuns));
   if (root["time_limit"]) suite.timeLimit = reader.positive(root, "time_limit", "suite");
+  if (root["budget"]) {
+    suite.iterationBudget = static_cast<unsigned>(reader.count(root, "budget", "suite", 1, kMaximumIterationBudget));
+  }
   if (root["v_max"]) suite.vMax = reader.positive(root, "v_max", "suite");
   if (root["clearance"]) suite.clearance = reader.distance(root, "clearance", "suite");
 

@@ -8,6 +8,7 @@
 
 #include <signal.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -34,6 +35,11 @@ PoolResult runInProcess(std::size_t jobCount, const JobFunction& job, const std:
     } catch (const JobInterrupted&) {
       result.interrupted = true;
       return result;
+    } catch (const OutputWriteError& e) {
+      display.report({ProgressEvent::Kind::JobFailed, i, 0, false, 0});
+      result.failures.push_back(label(i) + ": " + e.what());
+      result.outputFailure = e.what();
+      return result;
     } catch (const Error& e) {
       display.report({ProgressEvent::Kind::JobFailed, i, 0, false, 0});
       result.failures.push_back(label(i) + ": " + e.what());
@@ -44,7 +50,7 @@ PoolResult runInProcess(std::size_t jobCount, const JobFunction& job, const std:
 
 // Messages from worker processes; small enough that each write() to the pipe is atomic (PIPE_BUF).
 struct WorkerMessage {
-  enum Kind : std::int32_t { RunFinished, JobFinished, JobFailed };
+  enum Kind : std::int32_t { RunFinished, JobFinished, JobFailed, OutputFailed };
   std::int32_t kind = RunFinished;
   std::uint32_t job = 0;
   std::uint32_t run = 0;
@@ -59,6 +65,7 @@ constexpr int kWorkerInterrupted = 2;  // exit code of a worker that stopped on 
 struct SharedCounters {
   std::atomic<std::size_t> nextJob{0};
   std::atomic<bool> stop{false};
+  std::atomic<bool> outputFailed{false};
 };
 static_assert(std::atomic<std::size_t>::is_always_lock_free && std::atomic<bool>::is_always_lock_free,
               "process-shared atomics must be lock-free");
@@ -83,6 +90,7 @@ WorkerMessage messageAbout(WorkerMessage::Kind kind, std::size_t job) {
       exitCode = kWorkerInterrupted;
       break;
     }
+    if (shared.outputFailed) break;
     const std::size_t i = shared.nextJob.fetch_add(1);
     if (i >= jobCount) break;
     try {
@@ -97,6 +105,12 @@ WorkerMessage messageAbout(WorkerMessage::Kind kind, std::size_t job) {
       send(fd, message);
     } catch (const JobInterrupted&) {
       exitCode = kWorkerInterrupted;
+      break;
+    } catch (const OutputWriteError& e) {
+      shared.outputFailed = true;  // no other worker takes a new job
+      auto message = messageAbout(WorkerMessage::OutputFailed, i);
+      std::strncpy(message.text, e.what(), sizeof message.text - 1);
+      send(fd, message);
       break;
     } catch (const std::exception& e) {
       auto message = messageAbout(WorkerMessage::JobFailed, i);
@@ -136,8 +150,10 @@ void collectMessages(int fd, SharedCounters& shared, const std::function<std::st
         ++result.completed;
         break;
       case WorkerMessage::JobFailed:
+      case WorkerMessage::OutputFailed:
         display.report({ProgressEvent::Kind::JobFailed, message.job, 0, false, 0});
         result.failures.push_back(label(message.job) + ": " + message.text);
+        if (message.kind == WorkerMessage::OutputFailed) result.outputFailure = message.text;
         break;
     }
   }
@@ -173,9 +189,15 @@ PoolResult runInWorkers(std::size_t jobCount, unsigned workers, const JobFunctio
   std::cout.flush();
   std::cerr.flush();
   std::vector<pid_t> children;
+  const pid_t parent = ::getpid();
   for (unsigned w = 0; w < workers; ++w) {
     const pid_t pid = ::fork();
     if (pid == 0) {
+      // A worker outliving a killed campaign would go on writing into an output directory that a
+      // resumed campaign owns: the kernel kills it with its parent (checked after, in case the
+      // parent died before the request).
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (::getppid() != parent) _exit(kWorkerInterrupted);
       ::close(fds[0]);
       workerMain(jobCount, job, *shared, fds[1]);
     }

@@ -21,10 +21,13 @@ struct PoolResult {
   std::size_t completed = 0;
   std::vector<std::string> failures;  // "<job label>: <why>"
   bool interrupted = false;
+  std::string outputFailure;  // set when a job could not write its output: the pool stopped early
 };
 
 // Runs jobs 0..jobCount-1 with at most `workers` processes (1: in this process). Stops between runs
-// when an interrupt is requested. `label(i)` names job i in failure messages.
+// when an interrupt is requested, and hands out no further job once one failed to write its output
+// (OutputWriteError: a full disk fails every job). `label(i)` names job i in failure messages. Workers
+// die with the campaign process (PR_SET_PDEATHSIG), so a killed campaign leaves none running.
 PoolResult runJobs(std::size_t jobCount, unsigned workers, const JobFunction& job,
                    const std::function<std::string(std::size_t)>& label, ProgressDisplay& display);
 

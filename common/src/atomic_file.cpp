@@ -1,5 +1,7 @@
 #include "arcplan/common/atomic_file.h"
 
+#include <cerrno>
+#include <cstring>
 #include <system_error>
 #include <unistd.h>
 
@@ -17,7 +19,9 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path target) : target_(std::
   temporary_ = target_;
   temporary_ += ".tmp." + std::to_string(::getpid());
   stream_.open(temporary_, std::ios::out | std::ios::trunc | std::ios::binary);
-  if (!stream_) throw Error("cannot write " + target_.string() + " (temporary " + temporary_.string() + ")");
+  if (!stream_) {
+    throw Error("cannot write " + target_.string() + " (temporary " + temporary_.string() + "): " + std::strerror(errno));
+  }
 }
 
 AtomicOutputFile::~AtomicOutputFile() {
@@ -29,9 +33,11 @@ AtomicOutputFile::~AtomicOutputFile() {
 }
 
 void AtomicOutputFile::commit() {
+  // errno still holds the reason of the write that failed (a full disk, a file size limit).
   stream_.flush();
-  if (!stream_) throw Error("writing " + target_.string() + " failed");
+  if (!stream_) throw Error("writing " + target_.string() + " failed: " + std::strerror(errno));
   stream_.close();
+  if (stream_.fail()) throw Error("writing " + target_.string() + " failed on close: " + std::strerror(errno));
   std::error_code ec;
   std::filesystem::rename(temporary_, target_, ec);
   if (ec) throw Error("cannot move " + temporary_.string() + " to " + target_.string() + ": " + ec.message());

@@ -42,12 +42,20 @@ struct GeneratorSettings {
   int deepShelves = 0;     // shelves 0.38-0.45 m deep (the usual ones: 0.25-0.35)
 };
 
+// Largest iteration budget of a suite or --budget (OMPL's IterationTerminationCondition counts in
+// an unsigned int; more iterations than this would not end within any sensible safety time cap).
+constexpr unsigned kMaximumIterationBudget = 1000000000;
+
 struct Suite {
   std::string name;  // [A-Za-z0-9_-]
   std::string description;
   std::filesystem::path sourceFile;
   unsigned runs = 10;
-  double timeLimit = 1.0;  // s per run
+  double timeLimit = 1.0;  // s per run; with an iteration budget only a safety cap
+  // Iterations per run (times the planner asks OMPL's termination condition whether to stop, as
+  // ompl::base::IterationTerminationCondition counts them): a run ends after this many whatever the
+  // machine's load, so single-threaded planners give the same runs everywhere (docs/reproducibility.md).
+  std::optional<unsigned> iterationBudget;
   double vMax = 0.25;      // TCP speed limit of the time scaling, m/s
   // m every planner's states and motions keep from obstacles and between links (the validity checker
   // and motion validator of every job); a run whose executed path comes closer is not a success.
