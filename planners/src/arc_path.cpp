@@ -92,26 +92,17 @@ Eigen::Vector3d avoidanceDirection(const Eigen::Vector3d& lineDirection, double 
 }
 
 ArcPath::ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, std::vector<Detour> detours)
-    : start_(start), goal_(goal), detours_(std::move(detours)) {
+    : TcpPath(start, goal), start_(start), goal_(goal), detours_(std::move(detours)) {
   const Eigen::Vector3d a = start.translation(), b = goal.translation();
   straightLength_ = (b - a).norm();
   if (straightLength_ > kLengthTolerance) lineDirection_ = (b - a) / straightLength_;
-  setEndOrientations(start, goal);
 
   if (!detours_.empty() && straightLength_ <= kLengthTolerance) {
     throw Error("an arc detour needs distinct start and goal TCP positions (|AB| = 0)");
   }
   double lineStart = 0.0;  // arc length on the straight line where the current straight piece begins
-  length_ = 0.0;
   const auto addLine = [&](double from, double to) {
-    if (to - from <= kLengthTolerance) return;
-    Piece piece;
-    piece.startArcLength = length_;
-    piece.length = to - from;
-    piece.origin = a + from * lineDirection_;
-    piece.axisX = lineDirection_;
-    pieces_.push_back(piece);
-    length_ += piece.length;
+    if (to - from > kLengthTolerance) appendLine(a + from * lineDirection_, a + to * lineDirection_);
   };
   for (std::size_t i = 0; i < detours_.size(); ++i) {
     const Detour& detour = detours_[i];
@@ -142,75 +133,18 @@ ArcPath::ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, 
     addLine(lineStart, entry);
     const Eigen::Vector3d obstaclePoint = a + detour.position * lineDirection_;
     const Eigen::Vector3d away = avoidanceDirection(lineDirection_, detour.planeAngle);
-    const double spanStart = length_;
+    const double spanStart = length();
+    // The avoidance plane's coordinates (x along A→B, z away) in 3D.
+    const auto inSpace = [&](const Eigen::Vector2d& planar) { return planar.x() * lineDirection_ + planar.y() * away; };
     for (const PlanarArc& arc : profile.arcs) {
-      Piece piece;
-      piece.startArcLength = length_;
-      piece.length = arc.length();
-      piece.isArc = true;
-      piece.origin = obstaclePoint;
-      piece.axisX = lineDirection_;
-      piece.axisZ = away;
-      piece.arc = arc;
-      pieces_.push_back(piece);
-      length_ += piece.length;
+      const Eigen::Vector2d radial(std::cos(arc.startAngle), std::sin(arc.startAngle));
+      appendArc(obstaclePoint + inSpace(arc.center), arc.radius, inSpace(radial), inSpace(arc.tangent(0.0)),
+                std::abs(arc.sweep));
     }
-    detourSpans_.emplace_back(spanStart, length_);
+    detourSpans_.emplace_back(spanStart, length());
     lineStart = exit;
   }
   addLine(lineStart, straightLength_);
-}
-
-const ArcPath::Piece& ArcPath::pieceAt(double arcLength) const {
-  const auto after = std::upper_bound(pieces_.begin(), pieces_.end(), arcLength,
-                                      [](double s, const Piece& piece) { return s < piece.startArcLength; });
-  return after == pieces_.begin() ? pieces_.front() : *(after - 1);
-}
-
-Eigen::Vector3d ArcPath::piecePoint(const Piece& piece, double fraction) const {
-  if (!piece.isArc) return piece.origin + (fraction * piece.length) * piece.axisX;
-  const Eigen::Vector2d planar = piece.arc.point(fraction);
-  return piece.origin + planar.x() * piece.axisX + planar.y() * piece.axisZ;
-}
-
-Eigen::Vector3d ArcPath::position(double arcLength) const {
-  if (pieces_.empty()) return start_.translation();
-  const Piece& piece = pieceAt(arcLength);
-  const double fraction = std::clamp((arcLength - piece.startArcLength) / piece.length, 0.0, 1.0);
-  return piecePoint(piece, fraction);
-}
-
-Eigen::Vector3d ArcPath::tangent(double arcLength) const {
-  if (pieces_.empty()) return lineDirection_;
-  const Piece& piece = pieceAt(arcLength);
-  if (!piece.isArc) return piece.axisX;
-  const double fraction = std::clamp((arcLength - piece.startArcLength) / piece.length, 0.0, 1.0);
-  const Eigen::Vector2d planar = piece.arc.tangent(fraction);
-  return planar.x() * piece.axisX + planar.y() * piece.axisZ;
-}
-
-Eigen::Quaterniond ArcPath::orientation(double arcLength) const { return orientationAt(arcLength); }
-
-Eigen::Isometry3d ArcPath::pose(double arcLength) const {
-  Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
-  result.linear() = orientation(arcLength).toRotationMatrix();
-  result.translation() = position(arcLength);
-  return result;
-}
-
-std::vector<double> ArcPath::junctions() const {
-  std::vector<double> result;
-  for (const Piece& piece : pieces_) result.push_back(piece.startArcLength);
-  result.push_back(length_);
-  return result;
-}
-
-std::vector<PathSample> ArcPath::sample(double resolution) const {
-  std::vector<std::pair<double, double>> spans;
-  for (const Piece& piece : pieces_) spans.emplace_back(piece.startArcLength, piece.length);
-  return sampleEvenly(
-      resolution, spans, [this](std::size_t i, double fraction) { return piecePoint(pieces_[i], fraction); },
-      start_.translation(), goal_.translation());
 }
 
 }  // namespace arcplan::planners

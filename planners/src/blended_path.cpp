@@ -29,7 +29,7 @@ double BlendedPath::maxBlend(const std::vector<Eigen::Vector3d>& points, std::si
 
 BlendedPath::BlendedPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal,
                          std::vector<Eigen::Vector3d> vias, std::vector<double> blends)
-    : start_(start), goal_(goal), blends_(std::move(blends)) {
+    : TcpPath(start, goal), blends_(std::move(blends)) {
   if (vias.size() != blends_.size()) throw Error("blended path: one blend per via point expected");
   points_.push_back(start.translation());
   points_.insert(points_.end(), vias.begin(), vias.end());
@@ -41,7 +41,6 @@ BlendedPath::BlendedPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d
       throw Error(message.str());
     }
   }
-  setEndOrientations(start, goal);
 
   Eigen::Vector3d lineStart = points_.front();
   for (std::size_t i = 0; i < blends_.size(); ++i) {
@@ -57,83 +56,21 @@ BlendedPath::BlendedPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d
     const Eigen::Vector3d in = (v - points_[corner - 1]).normalized(), out = (points_[corner + 1] - v).normalized();
     const double phi = turningAngle(points_, corner);
     if (phi < kStraightOn) {  // straight on: the lines simply continue
-      addLine(lineStart, v);
-      blendSpans_.emplace_back(length_, length_);
+      appendLine(lineStart, v);
+      blendSpans_.emplace_back(length(), length());
       lineStart = v;
       continue;
     }
     const Eigen::Vector3d entry = v - t * in, exit = v + t * out;
-    addLine(lineStart, entry);
-    Piece arc;
-    arc.isArc = true;
-    arc.startArcLength = length_;
-    arc.radius = t / std::tan(0.5 * phi);
-    arc.sweep = phi;
-    arc.length = arc.radius * phi;
+    appendLine(lineStart, entry);
+    const double radius = t / std::tan(0.5 * phi);
     const Eigen::Vector3d inward = (out - out.dot(in) * in).normalized();  // from the arc start toward the centre
-    arc.origin = entry + arc.radius * inward;
-    arc.axisX = (entry - arc.origin).normalized();
-    arc.axisY = in;
-    pieces_.push_back(arc);
-    blendSpans_.emplace_back(length_, length_ + arc.length);
-    length_ += arc.length;
+    const double blendStart = length();
+    appendArc(entry + radius * inward, radius, -inward, in, phi);
+    blendSpans_.emplace_back(blendStart, length());
     lineStart = exit;
   }
-  addLine(lineStart, points_.back());
-}
-
-void BlendedPath::addLine(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-  const double length = (to - from).norm();
-  if (length <= kLengthTolerance) return;
-  Piece piece;
-  piece.startArcLength = length_;
-  piece.length = length;
-  piece.origin = from;
-  piece.axisX = (to - from) / length;
-  pieces_.push_back(piece);
-  length_ += length;
-}
-
-const BlendedPath::Piece& BlendedPath::pieceAt(double arcLength) const {
-  const auto after = std::upper_bound(pieces_.begin(), pieces_.end(), arcLength,
-                                      [](double s, const Piece& piece) { return s < piece.startArcLength; });
-  return after == pieces_.begin() ? pieces_.front() : *(after - 1);
-}
-
-Eigen::Vector3d BlendedPath::piecePoint(const Piece& piece, double distance) const {
-  if (!piece.isArc) return piece.origin + distance * piece.axisX;
-  const double angle = distance / piece.radius;
-  return piece.origin + piece.radius * (std::cos(angle) * piece.axisX + std::sin(angle) * piece.axisY);
-}
-
-Eigen::Vector3d BlendedPath::position(double arcLength) const {
-  if (pieces_.empty()) return points_.front();
-  const Piece& piece = pieceAt(arcLength);
-  return piecePoint(piece, std::clamp(arcLength - piece.startArcLength, 0.0, piece.length));
-}
-
-Eigen::Vector3d BlendedPath::tangent(double arcLength) const {
-  if (pieces_.empty()) return Eigen::Vector3d::Zero();
-  const Piece& piece = pieceAt(arcLength);
-  if (!piece.isArc) return piece.axisX;
-  const double angle = std::clamp(arcLength - piece.startArcLength, 0.0, piece.length) / piece.radius;
-  return -std::sin(angle) * piece.axisX + std::cos(angle) * piece.axisY;
-}
-
-Eigen::Isometry3d BlendedPath::pose(double arcLength) const {
-  Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
-  result.linear() = orientationAt(arcLength).toRotationMatrix();
-  result.translation() = position(arcLength);
-  return result;
-}
-
-std::vector<PathSample> BlendedPath::sample(double resolution) const {
-  std::vector<std::pair<double, double>> spans;
-  for (const Piece& piece : pieces_) spans.emplace_back(piece.startArcLength, piece.length);
-  return sampleEvenly(
-      resolution, spans,
-      [this](std::size_t i, double fraction) { return piecePoint(pieces_[i], fraction * pieces_[i].length); },
-      points_.front(), points_.back());
+  appendLine(lineStart, points_.back());
 }
 
 }  // namespace arcplan::planners

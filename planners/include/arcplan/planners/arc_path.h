@@ -80,7 +80,8 @@ Eigen::Vector3d avoidanceDirection(const Eigen::Vector3d& lineDirection, double 
 class ArcPath : public TcpPath {
  public:
   // Throws arcplan::Error for invalid shapes, detours out of order, overlapping, or not fitting
-  // between A and B (bx2 <= |AO|, bx3 <= |OB|), and detours on a zero-length line.
+  // between A and B (bx2 <= |AO|, bx3 <= |OB|), and detours on a zero-length line. Its length() is
+  // |AB| + the extra length of every detour.
   ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, std::vector<Detour> detours = {});
 
   const Eigen::Isometry3d& start() const { return start_; }
@@ -89,39 +90,14 @@ class ArcPath : public TcpPath {
   // Unit A→B (zero vector when A = B).
   const Eigen::Vector3d& lineDirection() const { return lineDirection_; }
   double straightLength() const { return straightLength_; }
-  // Analytic length: |AB| + the extra length of every detour.
-  double length() const override { return length_; }
-
-  Eigen::Vector3d position(double arcLength) const;
-  Eigen::Vector3d tangent(double arcLength) const;  // unit; the line direction at a junction's far side
-  Eigen::Quaterniond orientation(double arcLength) const;
-  Eigen::Isometry3d pose(double arcLength) const override;
-
-  // Arc lengths of A, every junction between pieces, and B, ascending.
-  std::vector<double> junctions() const;
   // Arc lengths where detour i leaves the line and where it rejoins it.
   std::pair<double, double> detourSpan(std::size_t i) const { return detourSpans_.at(i); }
-  std::vector<PathSample> sample(double resolution) const override;
 
  private:
-  struct Piece {
-    double startArcLength = 0.0;
-    double length = 0.0;
-    bool isArc = false;
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // line: start point; arc: centre
-    Eigen::Vector3d axisX = Eigen::Vector3d::Zero();   // line: direction; arc: plane x (along A→B)
-    Eigen::Vector3d axisZ = Eigen::Vector3d::Zero();   // arc: plane z (away)
-    PlanarArc arc;
-  };
-  const Piece& pieceAt(double arcLength) const;
-  Eigen::Vector3d piecePoint(const Piece& piece, double fraction) const;
-
   Eigen::Isometry3d start_, goal_;
   std::vector<Detour> detours_;
   Eigen::Vector3d lineDirection_ = Eigen::Vector3d::Zero();
   double straightLength_ = 0.0;
-  double length_ = 0.0;
-  std::vector<Piece> pieces_;
   std::vector<std::pair<double, double>> detourSpans_;
 };
 

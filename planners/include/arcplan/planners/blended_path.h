@@ -25,10 +25,6 @@ class BlendedPath : public TcpPath {
   // Turning angle (rad) of the corner at points[i] (0 = straight on).
   static double turningAngle(const std::vector<Eigen::Vector3d>& points, std::size_t i);
 
-  double length() const override { return length_; }
-  Eigen::Isometry3d pose(double arcLength) const override;
-  std::vector<PathSample> sample(double resolution) const override;
-
   // Start, vias and goal positions.
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
   const std::vector<double>& blends() const { return blends_; }
@@ -36,30 +32,11 @@ class BlendedPath : public TcpPath {
   std::pair<double, double> blendSpan(std::size_t i) const { return blendSpans_.at(i); }
   // Arc length where leg k (points[k] -> points[k+1]) begins: 0, or where the previous corner's blend ends.
   double legStart(std::size_t k) const { return k == 0 ? 0.0 : blendSpans_.at(k - 1).second; }
-  Eigen::Vector3d position(double arcLength) const;
-  Eigen::Vector3d tangent(double arcLength) const;  // unit
 
  private:
-  struct Piece {
-    double startArcLength = 0.0;
-    double length = 0.0;
-    bool isArc = false;
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // line: start point; arc: centre
-    Eigen::Vector3d axisX = Eigen::Vector3d::Zero();   // line: direction; arc: centre -> arc start, unit
-    Eigen::Vector3d axisY = Eigen::Vector3d::Zero();   // arc: tangent at the arc start, unit
-    double radius = 0.0;
-    double sweep = 0.0;  // arc: turning angle
-  };
-  const Piece& pieceAt(double arcLength) const;
-  Eigen::Vector3d piecePoint(const Piece& piece, double distance) const;
-  void addLine(const Eigen::Vector3d& from, const Eigen::Vector3d& to);
-
-  Eigen::Isometry3d start_, goal_;
   std::vector<Eigen::Vector3d> points_;
   std::vector<double> blends_;
-  std::vector<Piece> pieces_;
   std::vector<std::pair<double, double>> blendSpans_;
-  double length_ = 0.0;
 };
 
 }  // namespace arcplan::planners
