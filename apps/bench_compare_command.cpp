@@ -13,6 +13,7 @@
 #include "arcplan/benchmarks/progress.h"
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/error.h"
+#include "arcplan/report/comparison_report.h"
 #include "cli_support.h"
 #include "commands.h"
 #include "exit_codes.h"
@@ -24,6 +25,7 @@ struct ComparisonFlags {
   benchmarks::ComparisonOptions options;
   std::string out;
   std::string json;
+  std::string html;
   bool all = false;
 };
 
@@ -67,13 +69,20 @@ void addComparisonOptions(CLI::App& command, ComparisonFlags& flags) {
       ->default_str("execution_time_s,tcp_path_length_m,solve_time_s,min_clearance_m,peak_tcp_speed_mps");
   command.add_option("--out", flags.out, "write comparison.md, comparison.json and comparison.csv to this folder");
   command.add_option("--json", flags.json, "write the comparison as JSON to this file ('-' for stdout)");
+  command.add_option("--html", flags.html,
+                     "also write the comparison as one self-contained HTML page (verdicts, table, side-by-side box plots)");
   command.add_flag("--all", flags.all, "print every row, also those with verdict \"same\"");
 }
 
 // Prints and writes the comparison; exit code 1 when a row is worse.
-void reportComparison(const benchmarks::CampaignComparison& comparison, const ComparisonFlags& flags) {
+void reportComparison(const benchmarks::CampaignComparison& comparison, const benchmarks::CampaignResults& base,
+                      const benchmarks::CampaignResults& current, const ComparisonFlags& flags) {
   if (!flags.out.empty()) benchmarks::writeComparison(comparison, flags.out);
   if (!flags.json.empty()) writeJson(flags.json, benchmarks::comparisonJson(comparison));
+  if (!flags.html.empty()) {
+    report::writeComparisonReport(flags.html, comparison, base, current);
+    std::cerr << "bench: comparison page " << flags.html << " (open it in a web browser)\n";
+  }
   if (flags.json != "-") std::cout << benchmarks::comparisonMarkdown(comparison, !flags.all);
   if (!flags.out.empty()) {
     std::cerr << "bench: comparison written to " << (std::filesystem::path(flags.out) / "comparison.{md,json,csv}").string() << "\n";
@@ -98,7 +107,7 @@ void runCompare(const CompareOptions& options) {
   checkOptions(options.flags.options);
   const auto base = benchmarks::loadCampaignResults(options.base);
   const auto current = benchmarks::loadCampaignResults(options.current);
-  reportComparison(benchmarks::compareCampaigns(base, current, options.flags.options), options.flags);
+  reportComparison(benchmarks::compareCampaigns(base, current, options.flags.options), base, current, options.flags);
 }
 
 void runBaselineSave(const BaselineSaveOptions& options) {
@@ -142,10 +151,10 @@ void runBaselineCheck(const BaselineCheckOptions& options) {
   std::cerr << "bench baseline: campaign done in " << benchmarks::formatDuration(result.wallTime) << "\n";
   auto current = benchmarks::loadCampaignResults(campaign.outDirectory);
   if (temporary) current.source = "re-run of " + options.file;
-  const auto comparison = benchmarks::compareCampaigns(benchmarks::baselineResults(baseline, options.file), current,
-                                                       options.flags.options);
+  const auto base = benchmarks::baselineResults(baseline, options.file);
+  const auto comparison = benchmarks::compareCampaigns(base, current, options.flags.options);
   if (temporary) std::filesystem::remove_all(campaign.outDirectory);
-  reportComparison(comparison, options.flags);
+  reportComparison(comparison, base, current, options.flags);
 }
 
 }  // namespace

@@ -77,9 +77,12 @@ WebAssets loadWebAssets(ReportKind kind) {
     assets.libraries.push_back(
         {"three.js OrbitControls", readText(three / "examples" / "js" / "controls" / "OrbitControls.js", "three.js OrbitControls", threeHint)});
   }
-  const std::vector<std::string> scripts = kind == ReportKind::Campaign
-                                               ? std::vector<std::string>{"common.js", "robot_view.js", "campaign.js"}
-                                               : std::vector<std::string>{"common.js", "model.js"};
+  std::vector<std::string> scripts{"common.js"};
+  switch (kind) {
+    case ReportKind::Campaign: scripts.insert(scripts.end(), {"robot_view.js", "campaign.js"}); break;
+    case ReportKind::ModelSession: scripts.push_back("model.js"); break;
+    case ReportKind::Comparison: scripts.push_back("comparison.js"); break;
+  }
   for (const auto& script : scripts) {
     assets.pageScripts.push_back({script, readText(page / script, "report script", pageHint)});
   }

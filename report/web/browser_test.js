@@ -5,6 +5,7 @@
 //
 //   node browser_test.js --report R.html --kind campaign --planners 3 --speed-problems 2 [--arm]
 //   node browser_test.js --report R.html --kind model --channels 6 --history-traces 2 --diagnosis-rows 12
+//   node browser_test.js --report R.html --kind comparison --rows 36 --worse 1 --metrics 5
 //   [--screenshot page.png] [--chromium /usr/bin/chromium]
 // Exits 0 when every check passes; prints one line per check.
 "use strict";
@@ -22,7 +23,7 @@ function parseArguments(argv) {
     if (name === "arm") options.arm = true;
     else options[name] = argv[++i];
   }
-  if (!options.report || !options.kind) throw new Error("give --report FILE and --kind campaign|model");
+  if (!options.report || !options.kind) throw new Error("give --report FILE and --kind campaign|model|comparison");
   return options;
 }
 
@@ -154,6 +155,26 @@ async function checkModel(page, options) {
   }
 }
 
+async function checkComparison(page, options) {
+  const rows = await page.$$eval("#comparison-table tbody tr", trs => trs.length);
+  check("verdict table has every row", rows === Number(options.rows), rows + " rows");
+  const verdicts = await page.$$eval("#comparison-table tbody tr .verdict", spans => spans.map(s => s.textContent));
+  const worse = verdicts.filter(v => v === "worse").length;
+  check("worse rows as expected", worse === Number(options.worse), worse + " worse");
+  const summary = await page.$eval("#verdict-summary", dl => dl.textContent);
+  check("summary counts the worse rows", summary.includes(options.worse + " worse"), summary.slice(0, 200));
+  // Sorting by verdict keeps every row.
+  await page.evaluate(() => [...document.querySelectorAll("#comparison-table thead th")].find(th => th.textContent === "verdict").click());
+  const sorted = await page.$$eval("#comparison-table tbody tr .verdict", spans => spans.map(s => s.textContent));
+  check("sorting by verdict orders the rows", JSON.stringify(sorted) === JSON.stringify(verdicts.slice().sort((a, b) => a.localeCompare(b))),
+        sorted.slice(0, 3).join(", "));
+  const boxes = await page.$$eval(".comparison-boxplot", plots => plots.map(p => ({id: p.id, traces: (p.data || []).map(t => t.name),
+                                                                                  points: (p.data || []).map(t => t.y.length)})));
+  check("one side-by-side box plot per compared metric", boxes.length === Number(options.metrics), boxes.length + " plots");
+  check("each has a base and a new trace with runs", boxes.every(b => b.traces.join() === "base,new" && b.points.every(n => n > 0)),
+        JSON.stringify(boxes[0]));
+}
+
 async function main() {
   const options = parseArguments(process.argv.slice(2));
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), "arcplan-chromium-"));
@@ -176,6 +197,7 @@ async function main() {
     await page.waitForFunction(() => window.arcplanReport && window.arcplanReport.ready, {timeout: 60000}).catch(() => {});
     check("page finished building", await page.evaluate(() => Boolean(window.arcplanReport && window.arcplanReport.ready)));
     if (options.kind === "campaign") await checkCampaign(page, options);
+    else if (options.kind === "comparison") await checkComparison(page, options);
     else await checkModel(page, options);
     if (options.screenshot) await page.screenshot({path: options.screenshot, fullPage: false});
     check("no console errors", errors.length === 0, errors.slice(0, 3).join(" | "));

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The HTML reports in a real browser: builds a small thesis campaign (3 planners, 3 runs), a plain
-# OMPL database (no arcplan columns) and a model session (simulated log with a hidden load-friction
-# effect), writes their reports with arcplan and checks each in headless Chromium
-# (report/web/browser_test.js). Expected counts come from what this script asked for.
+# The HTML reports in a real browser: builds a small thesis campaign (3 planners, 3 runs), its
+# comparison page against an edited baseline (bench compare --html), a plain OMPL database (no
+# arcplan columns) and a model session (simulated log with a hidden load-friction effect), writes
+# their reports with arcplan and checks each in headless Chromium (report/web/browser_test.js).
+# Expected counts come from what this script asked for.
 # Usage: browser_reports.sh ARCPLAN_EXECUTABLE SOURCE_DIR
 set -euo pipefail
 arcplan="$1"
@@ -24,6 +25,22 @@ size=$(stat -c %s "$work/campaign/report.html")
 echo "campaign report: $size bytes"
 [ "$size" -lt 5000000 ]
 browser_test --report "$work/campaign/report.html" --kind campaign --planners 3 --speed-problems 2 --arm
+
+echo "== comparison page: the campaign against a baseline of itself whose arc path was 1 mm shorter"
+"$arcplan" bench baseline save "$work/campaign" "$work/baseline.json" 2> /dev/null
+python3 - "$work/baseline.json" <<'PY'
+import json, sys
+baseline = json.load(open(sys.argv[1]))
+for result in baseline["results"]:
+    if result["planner"] == "arc-h0.50r" and result["problem"] == "thesis/obstacle":
+        result["metrics"]["tcp_path_length_m"]["value"] -= 0.001
+json.dump(baseline, open(sys.argv[1], "w"))
+PY
+status=0
+"$arcplan" bench compare "$work/baseline.json" "$work/campaign" --html "$work/comparison.html" > /dev/null 2>&1 || status=$?
+[ "$status" -eq 1 ]  # the 1 mm is worse
+# 3 planners x 2 problems x (success rate + 5 metrics) rows; 5 metrics compared, one box plot each.
+browser_test --report "$work/comparison.html" --kind comparison --rows 36 --worse 1 --metrics 5
 
 echo "== plain OMPL database: no arcplan columns, no path data"
 mkdir -p "$work/plain"

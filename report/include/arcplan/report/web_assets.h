@@ -18,10 +18,10 @@ struct WebAssets {
   std::string pageTemplate;               // page.html with the {{...}} slots
   std::string style;                      // report.css
   std::vector<InlinedScript> libraries;   // in load order
-  std::vector<InlinedScript> pageScripts; // common.js, then robot_view.js + campaign.js or model.js
+  std::vector<InlinedScript> pageScripts; // common.js, then robot_view.js + campaign.js, model.js or comparison.js
 };
 
-enum class ReportKind { Campaign, ModelSession };
+enum class ReportKind { Campaign, ModelSession, Comparison };  // Comparison: bench compare --html
 
 // $ARCPLAN_REPORT_PAGE_DIR, else share/arcplan/report installed next to the data, else the source
 // tree's report/web/page.
