@@ -13,6 +13,7 @@
 #include "arcplan/benchmarks/progress.h"
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/error.h"
+#include "arcplan/common/text_formatting.h"
 #include "arcplan/report/comparison_report.h"
 #include "cli_support.h"
 #include "commands.h"
@@ -66,7 +67,7 @@ void addComparisonOptions(CLI::App& command, ComparisonFlags& flags) {
   command.add_option("--metrics", flags.options.metrics,
                      "metric keys to compare besides the success rate, comma-separated (docs/metrics.md)")
       ->delimiter(',')
-      ->default_str("execution_time_s,tcp_path_length_m,solve_time_s,min_clearance_m,peak_tcp_speed_mps");
+      ->default_str(joinText(benchmarks::defaultComparedMetrics(), ","));
   command.add_option("--out", flags.out, "write comparison.md, comparison.json and comparison.csv to this folder");
   command.add_option("--json", flags.json, "write the comparison as JSON to this file ('-' for stdout)");
   command.add_option("--html", flags.html,
@@ -117,15 +118,31 @@ void runBaselineSave(const BaselineSaveOptions& options) {
             << options.campaign << " saved to " << options.file << "\n";
 }
 
-// A fresh folder for the re-run campaign (a folder with an earlier campaign would be resumed).
-std::filesystem::path temporaryCampaignDirectory() {
-  std::random_device device;
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    const auto candidate = std::filesystem::temp_directory_path() / ("arcplan-baseline-check-" + std::to_string(device()));
-    if (std::filesystem::create_directory(candidate)) return candidate;
+// A fresh folder for the re-run campaign (a folder with an earlier campaign would be resumed),
+// removed when the check ends unless kept.
+class TemporaryCampaignDirectory {
+public:
+  TemporaryCampaignDirectory() {
+    std::random_device device;
+    for (int attempt = 0; attempt < 100 && path_.empty(); ++attempt) {
+      const auto candidate = std::filesystem::temp_directory_path() / ("arcplan-baseline-check-" + std::to_string(device()));
+      if (std::filesystem::create_directory(candidate)) path_ = candidate;
+    }
+    if (path_.empty()) throw Error("cannot create a temporary folder under " + std::filesystem::temp_directory_path().string());
   }
-  throw Error("cannot create a temporary folder under " + std::filesystem::temp_directory_path().string());
-}
+  TemporaryCampaignDirectory(const TemporaryCampaignDirectory&) = delete;
+  TemporaryCampaignDirectory& operator=(const TemporaryCampaignDirectory&) = delete;
+  ~TemporaryCampaignDirectory() {
+    std::error_code ignored;  // best effort: a leftover folder in the temp directory harms nothing
+    if (!kept_) std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+  void keep() { kept_ = true; }
+
+private:
+  std::filesystem::path path_;
+  bool kept_ = false;
+};
 
 void runBaselineCheck(const BaselineCheckOptions& options) {
   if (options.workers < 1) throw UsageError("--workers must be at least 1");
@@ -137,7 +154,9 @@ void runBaselineCheck(const BaselineCheckOptions& options) {
 
   benchmarks::CampaignOptions campaign;
   const bool temporary = options.campaignOut.empty();
-  campaign.outDirectory = temporary ? temporaryCampaignDirectory() : std::filesystem::path(options.campaignOut);
+  std::optional<TemporaryCampaignDirectory> temporaryDirectory;
+  if (temporary) temporaryDirectory.emplace();
+  campaign.outDirectory = temporary ? temporaryDirectory->path() : std::filesystem::path(options.campaignOut);
   campaign.workers = options.workers;
   campaign.plots = false;
   campaign.showProgress = !options.quiet;
@@ -145,7 +164,9 @@ void runBaselineCheck(const BaselineCheckOptions& options) {
             << suite.planners.size() << " planners, " << suite.runs << " runs) -> " << campaign.outDirectory.string() << "\n";
   const auto result = benchmarks::runCampaign(suite, campaign);
   if (result.interrupted) {
-    std::cerr << "bench baseline: interrupted; the partial campaign is in " << campaign.outDirectory.string() << "\n";
+    if (temporaryDirectory) temporaryDirectory->keep();
+    std::cerr << "bench baseline: interrupted; the partial campaign is kept in " << campaign.outDirectory.string()
+              << " (resume: the same command with --campaign-out " << campaign.outDirectory.string() << ")\n";
     throw CLI::RuntimeError(toInt(ExitCode::Interrupted));
   }
   std::cerr << "bench baseline: campaign done in " << benchmarks::formatDuration(result.wallTime) << "\n";
@@ -153,7 +174,6 @@ void runBaselineCheck(const BaselineCheckOptions& options) {
   if (temporary) current.source = "re-run of " + options.file;
   const auto base = benchmarks::baselineResults(baseline, options.file);
   const auto comparison = benchmarks::compareCampaigns(base, current, options.flags.options);
-  if (temporary) std::filesystem::remove_all(campaign.outDirectory);
   reportComparison(comparison, base, current, options.flags);
 }
 

@@ -103,6 +103,9 @@ public:
     count(campaign, "runs", "campaign", 1);
     number(campaign, "time_limit_s", "campaign");
     number(campaign, "vmax_mps", "campaign");
+    if (campaign.contains("iteration_budget") && !campaign["iteration_budget"].is_null()) {
+      count(campaign, "iteration_budget", "campaign", 1);
+    }
     const auto& problems = array(campaign, "problems", "campaign");
     for (std::size_t i = 0; i < problems.size(); ++i) {
       if (!problems[i].is_string()) fail("campaign.problems[" + std::to_string(i) + "]", "a problem name");
@@ -220,6 +223,9 @@ Suite suiteForBaseline(const nlohmann::json& baseline, const std::optional<std::
   suite.runs = campaign.at("runs").get<unsigned>();
   suite.timeLimit = campaign.at("time_limit_s").get<double>();
   suite.vMax = campaign.at("vmax_mps").get<double>();
+  // Campaigns from before iteration budgets existed have none.
+  const auto budget = campaign.value("iteration_budget", nlohmann::json(nullptr));
+  suite.iterationBudget = budget.is_null() ? std::nullopt : std::optional<unsigned>(budget.get<unsigned>());
   return suite;
 }
 

@@ -34,8 +34,8 @@ bool isBaselineFile(const std::filesystem::path& file);
 CampaignResults baselineResults(const nlohmann::json& baseline, const std::string& source);
 
 // The suite to run again for `check`: the baseline's suite (by its recorded name, or `suiteFile`
-// when given) restricted to the baseline's planners and problems, with its runs, time limit and
-// TCP speed limit. Throws arcplan::Error when the suite lacks one of the baseline's problems.
+// when given) restricted to the baseline's planners and problems, with its runs, time limit, TCP
+// speed limit and iteration budget. Throws arcplan::Error when the suite lacks one of the baseline's problems.
 Suite suiteForBaseline(const nlohmann::json& baseline, const std::optional<std::filesystem::path>& suiteFile);
 
 }  // namespace arcplan::benchmarks
