@@ -1,10 +1,12 @@
 #pragma once
 // A benchmark campaign: every (problem, planner) job of a suite, each run through ompl::tools::Benchmark
 // and saved as its own OMPL log, so campaigns shard over machines (--shard K/N), resume after Ctrl-C
-// or a crash (a job whose log exists is done), and merge with ompl_benchmark_statistics.
+// or a crash (a job whose log is complete is done), and merge with ompl_benchmark_statistics.
+// docs/reproducibility.md: what survives a crash, a full disk or a second campaign, what repeats.
 //
 // Output directory layout:
 //   campaign.json                 suite settings; a resumed or sharded run must match them
+//   campaign-K-of-N.lock          held by the running campaign of shard K/N (pid, host)
 //   logs/<problem>/<planner>.log  one OMPL benchmark log per job (experiment "<suite>/<problem>")
 //   scenes/<problem>.yaml         generated problems as scene files (arcplan plan --scene ... works)
 //   paths/<problem>/...           median run per planner (TCP speed profile, TCP path) for plots
@@ -64,8 +66,11 @@ struct CampaignResult {
 };
 
 // Runs the shard's pending jobs and, once the whole campaign is done, builds benchmark.db, the
-// ranking and the plots. Throws arcplan::Error for bad settings (before any job runs) or when the
-// output directory holds a campaign with other settings.
+// ranking and the plots. Notes on what it found in the output directory (a stale lock taken over,
+// temporaries of killed processes removed, incomplete logs run again) go to stderr at once. Throws
+// arcplan::Error for bad settings (before any job runs), when the output directory holds a campaign
+// with other settings or is locked by a campaign sharing jobs with this shard, or when an output file
+// cannot be written (the campaign stops, completed logs stay).
 CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options);
 
 struct ReportOptions {
