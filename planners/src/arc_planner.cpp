@@ -185,8 +185,8 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
   if (ik_.branchOf(start) != ik_.branchOf(goal)) {
     // No TCP path joins two IK branches without passing a singularity: only the fallback can help.
     std::ostringstream message;
-    message << "branch change: the start configuration is on IK branch " << ik_.branchOf(start)
-            << ", the goal on branch " << ik_.branchOf(goal)
+    message << "branch change: start and goal are on different IK branches: "
+            << describeBranchChange(ik_.branchOf(start), ik_.branchOf(goal))
             << "; a TCP path keeps its branch (choose a goal seed on the start's branch)";
     result_.reason = message.str();
   } else {

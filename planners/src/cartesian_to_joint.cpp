@@ -68,7 +68,7 @@ class Converter {
     const int arrivalBranch = ik_.branchOf(arrival);
     if (arrivalBranch != branch_) {
       std::ostringstream message;
-      message << "the path leaves the start configuration's IK branch " << branch_ << " (arrives on " << arrivalBranch
+      message << "the path leaves the start configuration's IK branch (" << describeBranchChange(branch_, arrivalBranch)
               << "): it passes a singularity";
       return fail(ConversionStatus::BranchChange, arcLength, message.str());
     }
@@ -76,9 +76,9 @@ class Converter {
     const int goalBranch = ik_.branchOf(*goal_);
     if (arrivalBranch != goalBranch) {
       std::ostringstream message;
-      message << "the path stays on IK branch " << arrivalBranch
-              << " of the start, but the goal configuration is on branch " << goalBranch
-              << " (a TCP path cannot change branch; give a goal on the start's branch)";
+      message << "the path stays on the start's IK branch, but the goal configuration is on another ("
+              << describeBranchChange(arrivalBranch, goalBranch)
+              << "; a TCP path cannot change branch: give a goal on the start's branch)";
       return fail(ConversionStatus::BranchChange, arcLength, message.str());
     }
     const double difference = (arrival - *goal_).cwiseAbs().maxCoeff();
@@ -111,6 +111,33 @@ class Converter {
 };
 
 }  // namespace
+
+std::string describeBranchChange(int from, int to) {
+  const auto describe = [](int branch) {
+    std::ostringstream text;
+    text << "branch " << branch << " (shoulder solution " << (branch & 1) << ", sin q5 "
+         << ((branch & 2) != 0 ? "< 0" : ">= 0") << ", sin q3 " << ((branch & 4) != 0 ? "< 0" : ">= 0") << ")";
+    return text.str();
+  };
+  // The bits of UrInverseKinematics::branchOf and the singularity between their two values.
+  struct Bit {
+    int mask;
+    const char* part;
+    const char* singularity;
+  };
+  static const Bit bits[] = {{1, "shoulder", "the wrist centre crossing the base axis"},
+                             {2, "wrist", "q5 = 0, wrist axes 4 and 6 aligned"},
+                             {4, "elbow", "q3 = 0, the arm stretched"}};
+  std::ostringstream text;
+  text << "IK " << describe(from) << " and " << describe(to) << " differ in";
+  bool first = true;
+  for (const Bit& bit : bits) {
+    if (((from ^ to) & bit.mask) == 0) continue;
+    text << (first ? " the " : "; the ") << bit.part << " (only through the singularity " << bit.singularity << ")";
+    first = false;
+  }
+  return text.str();
+}
 
 const char* toString(ConversionStatus status) {
   switch (status) {

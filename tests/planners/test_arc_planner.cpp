@@ -369,6 +369,8 @@ TEST(ArcPlanner, GoalOnAnotherBranchGoesToTheFallbackOrIsReported) {
   EXPECT_EQ(status, ob::PlannerStatus::TIMEOUT);
   const std::string& reason = arcOf(planner).lastResult().reason;
   EXPECT_NE(reason.find("branch change"), std::string::npos) << reason;
+  // The goal was made by flipping the wrist bit (^ 2): the reason names that part and its singularity.
+  EXPECT_NE(reason.find("differ in the wrist (only through the singularity q5 = 0"), std::string::npos) << reason;
   EXPECT_NE(reason.find("the joint-space fallback found no path"), std::string::npos) << reason;
   EXPECT_EQ(arcOf(planner).lastResult().mode(), "");
   const auto [strict, strictStatus] = solve(flippedProblem, "arc", {{"fallback", "0"}});

@@ -133,4 +133,16 @@ TEST(CartesianToJoint, PartOfThePathStartsFromItsSeed) {
   EXPECT_NEAR(part.arcLengths.back(), junctions[4], 1e-12);
 }
 
+TEST(CartesianToJoint, BranchChangeNamesTheBranchesAndTheirDifference) {
+  // Branch bits (UrInverseKinematics::branchOf): 1 shoulder, 2 wrist (sin q5 < 0), 4 elbow (sin q3 < 0).
+  const std::string elbow = arcplan::planners::describeBranchChange(1, 5);
+  EXPECT_NE(elbow.find("branch 1 (shoulder solution 1, sin q5 >= 0, sin q3 >= 0)"), std::string::npos) << elbow;
+  EXPECT_NE(elbow.find("branch 5 (shoulder solution 1, sin q5 >= 0, sin q3 < 0)"), std::string::npos) << elbow;
+  EXPECT_NE(elbow.find("differ in the elbow (only through the singularity q3 = 0"), std::string::npos) << elbow;
+  EXPECT_EQ(elbow.find("the wrist"), std::string::npos) << elbow;
+  EXPECT_EQ(elbow.find("the shoulder"), std::string::npos) << elbow;
+  const std::string all = arcplan::planners::describeBranchChange(0, 7);
+  for (const char* part : {"the shoulder", "the wrist", "the elbow"}) EXPECT_NE(all.find(part), std::string::npos) << all;
+}
+
 }  // namespace

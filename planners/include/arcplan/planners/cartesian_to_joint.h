@@ -42,6 +42,11 @@ struct JointWaypoints {
   bool ok() const { return status == ConversionStatus::Success; }
 };
 
+// "IK branch 1 (shoulder 1, sin q5 >= 0, sin q3 >= 0) and branch 5 (...) differ in the elbow (sin q3
+// changes sign only through the stretched-arm singularity q3 = 0)": which of the branch bits of
+// UrInverseKinematics::branchOf differ, and the singularity a continuous path would have to pass.
+std::string describeBranchChange(int from, int to);
+
 // Called for each new waypoint (not the seed) as soon as it is computed, with the previous waypoint;
 // returning false stops the conversion with status Rejected (that waypoint is not appended).
 using WaypointCheck =
