@@ -177,7 +177,9 @@ ComparisonRow metricRow(const std::string& problem, const std::string& planner, 
     return row;
   }
   row.method = ComparisonMethod::MannWhitney;
-  row.pValue = mannWhitneyU(currentValues, baseValues).pValue;
+  const auto test = mannWhitneyU(currentValues, baseValues);
+  row.pValue = test.pValue;
+  row.rankBiserial = test.rankBiserial;
   return row;
 }
 
@@ -475,6 +477,7 @@ nlohmann::json comparisonJson(const CampaignComparison& comparison) {
                     {"effect", row.method == ComparisonMethod::None ? nlohmann::json(nullptr) : jsonNumber(row.effect)},
                     {"p", jsonNumber(row.pValue)},
                     {"p_holm", jsonNumber(row.adjustedPValue)},
+                    {"rank_biserial", jsonNumber(row.rankBiserial)},
                     {"verdict", verdictName(row.verdict)},
                     {"note", row.note}});
   }

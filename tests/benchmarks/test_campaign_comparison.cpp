@@ -205,6 +205,7 @@ TEST(CampaignComparison, AKnownShiftOfAStochasticPlannerIsFlaggedBothWays) {
   EXPECT_EQ(time.verdict, Verdict::Worse);
   EXPECT_LT(time.adjustedPValue, 0.01);
   EXPECT_GT(time.effect, 0.1);
+  EXPECT_GT(time.rankBiserial, 0.5);  // most new runs slower than most base runs
   EXPECT_EQ(rowOf(worse, "RRT", "min_clearance_m").verdict, Verdict::Worse);  // clearance: higher is better
   EXPECT_EQ(rowOf(worse, "RRT", "peak_tcp_speed_mps").verdict, Verdict::Same);  // not shifted
   const auto better = benchmarks::compareCampaigns(base, faster);

@@ -74,6 +74,9 @@ struct ComparisonRow {
   double effect = 0.0;
   double pValue = std::numeric_limits<double>::quiet_NaN();          // stochastic tests only
   double adjustedPValue = std::numeric_limits<double>::quiet_NaN();  // Holm over every stochastic row
+  // Mann-Whitney rows: rank-biserial correlation of new against base, in [-1, 1] (+1: every new value
+  // above every base value), the effect size of the rank test.
+  double rankBiserial = std::numeric_limits<double>::quiet_NaN();
   Verdict verdict = Verdict::NotComparable;
   std::string note;  // why not comparable, or where the paths first differ
 };
