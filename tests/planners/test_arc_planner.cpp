@@ -14,6 +14,7 @@
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/common/error.h"
 #include "arcplan/planners/arc_planner.h"
+#include "arcplan/planners/blended_path.h"
 #include "arcplan/planners/cartesian_to_joint.h"
 #include "planners/planner_test_support.h"
 
@@ -472,6 +473,56 @@ TEST(ArcPlanner, FallbackGivesTheSamePathWhateverRanBefore) {
   const auto [reseeded, reseededStatus] = solve(problem, "arc", {{"seed", "7"}});
   ASSERT_EQ(reseededStatus, ob::PlannerStatus::EXACT_SOLUTION);
   EXPECT_NE(solutionJoints(problem), firstJoints);
+}
+
+// A shelf unit (back, two sides, bottom, middle and top panels, 2 cm thick, turned -59 degrees about z)
+// between start and goal, from the generated suite (shelf-003): the tool must go round its side,
+// and dozens of candidate routes fail at the same panel edge.
+TEST(ArcPlanner, ShelfIsPassedWithTheClearanceOnASmoothPath) {
+  auto scene = std::make_shared<arcplan::collision::Scene>(*loadTestScene("thesis_free"));
+  const Eigen::Matrix3d yaw = Eigen::AngleAxisd(-1.03088228752451, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const double depth = 0.310129750493969, width = 0.409913369894675, height = 0.555941355155275;
+  const auto panel = [&](const std::string& name, const Eigen::Vector3d& centre, const Eigen::Vector3d& size) {
+    auto obstacle = box(name, centre, size);
+    obstacle.pose.linear() = yaw;
+    return obstacle;
+  };
+  scene->obstacles.push_back(panel("shelf_back", {0.593562317513646, 0.204946690382173, 0.277970677577637}, {0.02, width, height}));
+  scene->obstacles.push_back(panel("shelf_left", {0.686214596587107, 0.429596378159771, 0.277970677577637}, {depth, 0.02, height}));
+  scene->obstacles.push_back(panel("shelf_right", {0.351765283065967, 0.22915662983659, 0.277970677577637}, {depth, 0.02, height}));
+  for (const auto& [name, z] : {std::pair<std::string, double>{"shelf_bottom", 0.01}, {"shelf_middle", 0.277970677577637},
+                                {"shelf_top", 0.545941355155275}}) {
+    scene->obstacles.push_back(panel(name, {0.518989939826537, 0.329376503998181, z}, {depth, width, 0.02}));
+  }
+  arcplan::robot::Vector6 start, goal;
+  start << 1.07367532533337, -1.13982038660424, 1.82961550243109, -2.26059144262175, -1.57079632679489, 1.07367532533337;
+  goal << -0.391086349463711, -1.19936884167989, 1.8551187017125, -2.2265461868275, -1.5707963267949, -0.391086349463711;
+  scene->queries[0].start = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, start};
+  scene->queries[0].goal = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, goal};
+  auto problem = arcplan::planners::makePlanningProblem(scene);
+
+  const auto [planner, status] = solve(problem, "arc");
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+  const ArcPlannerResult& result = arcOf(planner).lastResult();
+  EXPECT_EQ(result.mode(), "arc");
+  EXPECT_FALSE(result.viaPoints.empty());
+  EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);
+  // C¹: the blended path through the reported via points has one position and one tangent at every
+  // junction, and every waypoint lies on it (forward kinematics), the tool held down.
+  const auto poses = tcpPoses(arcplan::collision::waypointsOf(problem.setup->getSolutionPath()));
+  const arcplan::planners::BlendedPath path(poses.front(), poses.back(), result.viaPoints, result.blends);
+  const auto& pieces = path.pieces();
+  for (std::size_t k = 1; k < pieces.size(); ++k) {
+    const auto& before = pieces[k - 1];
+    EXPECT_LT((before.point(before.length) - pieces[k].point(0.0)).norm(), 1e-9) << "junction " << k;
+    EXPECT_LT((before.tangent(before.length) - pieces[k].tangent(0.0)).norm(), 1e-9) << "junction " << k;
+  }
+  ASSERT_EQ(result.waypointArcLengths.size(), poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_LT((poses[i].translation() - path.position(result.waypointArcLengths[i])).norm(), 1e-6) << "waypoint " << i;
+    EXPECT_LE(arcplan::robot::rotationDistance(poses[i].linear(), poses.front().linear()), 1e-6) << "waypoint " << i;
+  }
+  EXPECT_NEAR(result.tcpPathLength, path.length(), 1e-12);
 }
 
 }  // namespace

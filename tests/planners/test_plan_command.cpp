@@ -89,6 +89,33 @@ TEST(PlanCommand, FailedPlanSaysWhyWritesJsonAndNoPath) {
   }
 }
 
+// RRT with steps of 1e-4 rad cannot reach a goal about 2 rad away in 0.05 s (that needs > 20000
+// tree extensions): it returns its best approximate path, which is refused unless asked for.
+TEST(PlanCommand, ApproximatePathNeedsAllowApproximate) {
+  const auto dir = freshTempDirectory("plan_approximate");
+  const auto json = dir / "plan.json", csv = dir / "path.csv";
+  const std::vector<std::string> arguments{"plan", "--scene", scene("thesis_free"), "--planner", "RRT", "--param",
+                                           "range=0.0001", "--time", "0.05", "--seed", "1", "--json", json.string(),
+                                           "--path-csv", csv.string()};
+  const auto refused = runArcplan(arguments);
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_NE(refused.err.find("found only an approximate path (--allow-approximate accepts it)"), std::string::npos)
+      << refused.err;
+  EXPECT_EQ(nlohmann::json::parse(readFile(json))["status"], "approximate");
+  EXPECT_FALSE(std::filesystem::exists(csv));
+
+  auto accepting = arguments;
+  accepting.push_back("--allow-approximate");
+  const auto accepted = runArcplan(accepting);
+  EXPECT_EQ(accepted.exitCode, 0) << accepted.err;
+  EXPECT_NE(accepted.err.find("warning: RRT returned an approximate path"), std::string::npos) << accepted.err;
+  const auto document = nlohmann::json::parse(readFile(json));
+  EXPECT_EQ(document["status"], "approximate");
+  EXPECT_NE(document["reason"].get<std::string>().find("from the goal"), std::string::npos);
+  ASSERT_TRUE(std::filesystem::exists(csv));
+  EXPECT_EQ(arcplan::trajectory::readJointPathCsv(csv).size(), document["waypoints"].get<std::size_t>());
+}
+
 TEST(PlanCommand, BadInputIsRejectedWithAClearMessage) {
   const struct {
     std::vector<std::string> arguments;

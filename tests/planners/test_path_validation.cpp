@@ -1,0 +1,99 @@
+// PathValidator: a walk's certifier never carries over to the next walk (a failed route or detour
+// candidate followed by a valid one), and the one-configuration test behind the route probes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/planners/arc_path.h"
+#include "arcplan/planners/path_validation.h"
+#include "planners/planner_test_support.h"
+
+namespace {
+
+using namespace arcplan::testing;
+using arcplan::planners::ArcPath;
+using arcplan::planners::ConversionStatus;
+using arcplan::planners::PathValidator;
+
+constexpr double kMargin = 0.01;
+
+PathValidator certifyingValidator(const arcplan::planners::PlanningProblem& problem,
+                                  const arcplan::robot::UrInverseKinematics& ik) {
+  return PathValidator(*problem.collisionModel, ik, {}, kMargin, true, [](const arcplan::robot::Vector6&) { return true; },
+                       [] { return false; });
+}
+
+arcplan::planners::JointWaypoints startOnly(const arcplan::robot::Vector6& start) {
+  arcplan::planners::JointWaypoints prefix;
+  prefix.joints.push_back(start);
+  prefix.arcLengths.push_back(0.0);
+  return prefix;
+}
+
+// The smallest robot distance along every motion of a joint path, sampled at 0.002 rad.
+double closestApproach(const arcplan::planners::PlanningProblem& problem, const std::vector<arcplan::robot::Vector6>& joints) {
+  arcplan::collision::CollisionData data(*problem.collisionModel);
+  double closest = INFINITY;
+  for (std::size_t i = 1; i < joints.size(); ++i) {
+    const int samples = static_cast<int>(std::ceil((joints[i] - joints[i - 1]).cwiseAbs().maxCoeff() / 2e-3)) + 1;
+    for (int k = 0; k <= samples; ++k) {
+      const arcplan::robot::Vector6 q = joints[i - 1] + (joints[i] - joints[i - 1]) * (double(k) / samples);
+      closest = std::min(closest, arcplan::collision::distance(*problem.collisionModel, data, q).minimum());
+    }
+  }
+  return closest;
+}
+
+TEST(PathValidation, AFailedWalkDoesNotAffectTheNextOne) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
+  const Eigen::Isometry3d a = tcpPoses({problem.start})[0], b = tcpPoses({problem.goal})[0];
+  // The thesis' detour with h = 0.5 r around the particle (valid: thesis regression), and the
+  // straight line through the particle (invalid).
+  const double o = 0.375 * (b.translation() - a.translation()).norm();
+  const ArcPath detour(a, b, {{o, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+  const ArcPath line(a, b);
+
+  PathValidator fresh = certifyingValidator(problem, ik);
+  const auto alone = fresh.walk(detour, startOnly(problem.start), problem.goal);
+  ASSERT_TRUE(alone.ok()) << alone.reason;
+
+  PathValidator reused = certifyingValidator(problem, ik);
+  const auto failed = reused.walk(line, startOnly(problem.start), problem.goal);
+  ASSERT_EQ(failed.status, ConversionStatus::Rejected);
+  EXPECT_TRUE(reused.rejection().involves("particle"));
+  const auto after = reused.walk(detour, startOnly(problem.start), problem.goal);
+  ASSERT_TRUE(after.ok()) << after.reason;
+  // The same waypoints as a validator that never saw the failure, and the margin really kept.
+  ASSERT_EQ(after.joints.size(), alone.joints.size());
+  for (std::size_t i = 0; i < alone.joints.size(); ++i) EXPECT_EQ(after.joints[i], alone.joints[i]) << "waypoint " << i;
+  EXPECT_GE(closestApproach(problem, after.joints), kMargin - 1e-6);
+}
+
+TEST(PathValidation, KeepsMarginTestsOneConfigurationAndExplainsARejection) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
+  PathValidator validator = certifyingValidator(problem, ik);
+  arcplan::collision::CollisionData data(*problem.collisionModel);
+  EXPECT_TRUE(validator.keepsMargin(problem.start));
+  // The tool at the particle (on the line, 0.375 of the way from A): in contact.
+  const Eigen::Isometry3d a = tcpPoses({problem.start})[0], b = tcpPoses({problem.goal})[0];
+  Eigen::Isometry3d atParticle = a;
+  atParticle.translation() = a.translation() + 0.375 * (b.translation() - a.translation());
+  const auto q = ik.solveBranch(atParticle, ik.branchOf(problem.start), problem.start[5]);
+  ASSERT_TRUE(q);
+  ASSERT_LT(arcplan::collision::distance(*problem.collisionModel, data, *q).minimum(), kMargin);
+  EXPECT_FALSE(validator.keepsMargin(*q));
+  const auto rejection = validator.rejection();
+  EXPECT_TRUE(rejection.involves("particle"));
+  // 3 cm above the start: farther than the margin from everything (checked independently).
+  Eigen::Isometry3d lifted = a;
+  lifted.translation().z() += 0.03;
+  const auto free = ik.solveBranch(lifted, ik.branchOf(problem.start), problem.start[5]);
+  ASSERT_TRUE(free);
+  ASSERT_GE(arcplan::collision::distance(*problem.collisionModel, data, *free).minimum(), kMargin);
+  EXPECT_TRUE(validator.keepsMargin(*free));
+}
+
+}  // namespace
