@@ -196,11 +196,16 @@ void registerBenchCompareCommands(CLI::App& bench) {
 
   CLI::App* baseline = bench.add_subcommand("baseline", "Save a campaign as a compact baseline file, or check against one (CI)");
   baseline->require_subcommand(1);
+  baseline->footer(
+      "A baseline is one JSON file holding a campaign's settings and, per problem and planner, the exact values of "
+      "deterministic results and 21 quantiles of stochastic ones. Commit it; in CI `check` runs the campaign again "
+      "and compares (exit 1 if anything is worse). See docs/benchmarks.md, \"Comparing campaigns\".");
 
   auto saveOptions = std::make_shared<BaselineSaveOptions>();
   CLI::App* save = baseline->add_subcommand("save", "Write the baseline of a finished campaign folder (JSON, to commit)");
   save->add_option("DIR", saveOptions->campaign, "finished campaign folder (campaign.json, benchmark.db)")->required();
   save->add_option("FILE", saveOptions->file, "baseline file to write")->required();
+  save->footer("The folder must hold a finished campaign (campaign.json and benchmark.db). The file is written atomically.");
   save->callback([saveOptions] { runBaselineSave(*saveOptions); });
 
   auto checkOptions = std::make_shared<BaselineCheckOptions>();
@@ -214,6 +219,10 @@ void registerBenchCompareCommands(CLI::App& bench) {
   check->add_option("-j,--workers", checkOptions->workers, "worker processes running jobs in parallel (default: all cores)")
       ->capture_default_str();
   check->add_flag("--quiet", checkOptions->quiet, "no progress output");
+  check->footer(
+      "Runs the baseline's suite, planners and problems with its runs, time limit, v_max and iteration budget, then "
+      "compares the baseline (BASE) with the new runs (NEW) as `bench compare` does. Exit codes: 0 nothing worse, 1 "
+      "something worse or bad input, 2 usage error, 130 interrupted.");
   addComparisonOptions(*check, checkOptions->flags);
   check->callback([checkOptions] { runBaselineCheck(*checkOptions); });
 }
