@@ -13,15 +13,27 @@
 namespace arcplan::model {
 namespace {
 
-std::string readWholeFile(const std::filesystem::path& file) {
-  if (!std::filesystem::exists(file)) throw Error("log file " + file.string() + " does not exist");
-  if (std::filesystem::is_directory(file)) throw Error("log file " + file.string() + " is a directory");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("cannot read log file " + file.string());
-  std::ostringstream content;
-  content << in.rdbuf();
-  return content.str();
-}
+// Reads a log line by line: a one-hour 500 Hz log is gigabytes of text, so it is never held whole.
+class LineReader {
+public:
+  explicit LineReader(const std::filesystem::path& file) {
+    if (!std::filesystem::exists(file)) throw Error("log file " + file.string() + " does not exist");
+    if (std::filesystem::is_directory(file)) throw Error("log file " + file.string() + " is a directory");
+    in_.open(file, std::ios::binary);
+    if (!in_) throw Error("cannot read log file " + file.string());
+  }
+  // The next line without its '\n'; false at the end of the file.
+  bool next(std::string& line) {
+    if (!std::getline(in_, line)) return false;
+    ++lineNumber_;
+    return true;
+  }
+  std::size_t lineNumber() const { return lineNumber_; }  // 1-based number of the line last read
+
+private:
+  std::ifstream in_;
+  std::size_t lineNumber_ = 0;
+};
 
 bool isKnownVector(const std::string& name) {
   const auto& known = knownVectorSignals();
@@ -123,18 +135,6 @@ std::vector<ColumnSource> sourcesFromMap(const ColumnMap& map) {
     }
   }
   return sources;
-}
-
-std::vector<std::string_view> splitLines(const std::string& content) {
-  std::vector<std::string_view> lines;
-  std::string_view rest(content);
-  while (!rest.empty()) {
-    const auto end = rest.find('\n');
-    lines.push_back(rest.substr(0, end));
-    if (end == std::string_view::npos) break;
-    rest.remove_prefix(end + 1);
-  }
-  return lines;
 }
 
 bool isBlank(std::string_view line) { return trim(line).empty(); }
@@ -275,15 +275,13 @@ std::pair<std::size_t, std::size_t> parseLineRange(const std::string& text, cons
 }
 
 Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
-  const std::string content = readWholeFile(file);
-  const auto lines = splitLines(content);
-  std::size_t headerIndex = 0;
-  while (headerIndex < lines.size() && (isBlank(lines[headerIndex]) || trim(lines[headerIndex]).front() == '#')) {
-    ++headerIndex;
-  }
-  if (headerIndex == lines.size()) throw Error(file.string() + " is empty: no header and no data rows");
+  LineReader reader(file);
+  std::string firstLine;
+  bool found = false;
+  while (!found && reader.next(firstLine)) found = !isBlank(firstLine) && trim(firstLine).front() != '#';
+  if (!found) throw Error(file.string() + " is empty: no header and no data rows");
+  const std::size_t firstLineNumber = reader.lineNumber();
 
-  const std::string_view firstLine = lines[headerIndex];
   const char separator = firstLine.find(',') != std::string_view::npos ? ',' : ' ';
   const auto firstFields = splitFields(firstLine, separator);
   const bool hasHeader = std::any_of(firstFields.begin(), firstFields.end(), [](std::string_view f) {
@@ -292,11 +290,9 @@ Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
 
   std::vector<ColumnSource> sources;
   std::size_t expectedFields = 0;  // header logs: exactly the header width; headerless: at least the map width
-  std::size_t firstDataIndex = headerIndex;
   if (hasHeader) {
     sources = mapHeader(firstFields, file);
     expectedFields = firstFields.size();
-    firstDataIndex = headerIndex + 1;
   } else {
     if (!options.columns) {
       throw Error(file.string() + " has no header row; give a column map (--columns), e.g. 'ur10e_real' or "
@@ -306,7 +302,7 @@ Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
     expectedFields = static_cast<std::size_t>(options.columns->width());
     if (firstFields.size() < expectedFields) {
       throw Error(file.string() + ": the column map uses column " + std::to_string(expectedFields) +
-                  " but the first row (line " + std::to_string(headerIndex + 1) + ") has only " +
+                  " but the first row (line " + std::to_string(firstLineNumber) + ") has only " +
                   std::to_string(firstFields.size()) + " columns: unknown column");
     }
   }
@@ -322,13 +318,16 @@ Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
   }
   double lastTime = -std::numeric_limits<double>::infinity();
   std::vector<double> row(sources.size());
-  for (std::size_t index = firstDataIndex; index < lines.size(); ++index) {
-    const std::size_t lineNumber = index + 1;
-    if (isBlank(lines[index])) continue;
+  // A headerless log's first line is already its first data row.
+  std::string line = hasHeader ? std::string() : firstLine;
+  bool haveLine = !hasHeader;
+  for (; haveLine || reader.next(line); haveLine = false) {
+    const std::size_t lineNumber = reader.lineNumber();
+    if (isBlank(line)) continue;
     if (options.firstLine > 0 && lineNumber < options.firstLine) continue;
     if (options.lastLine > 0 && lineNumber > options.lastLine) break;
     ++dataRows;
-    const auto fields = splitFields(lines[index], separator);
+    const auto fields = splitFields(line, separator);
     if (hasHeader ? fields.size() != expectedFields : fields.size() < expectedFields) {
       dropped.add(fields.size() < expectedFields ? "short row" : "too many fields", lineNumber);
       continue;
@@ -382,6 +381,7 @@ Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
     } else {
       log.vectors[sources[s].signal].col(sources[s].joint) = column;
     }
+    std::vector<double>().swap(values[s]);  // release each column once copied: big logs never hold two copies
   }
   return log;
 }

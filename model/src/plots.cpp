@@ -15,8 +15,13 @@ void appendNumber(std::string& out, double value) {
   out.append(buffer, result.ptr);
 }
 
-// One row per channel and sample: measured, predicted, the kind's base prediction (the ideal ratio
-// for gearbox data) and the signals a residual is plotted against.
+// A plot is about a thousand pixels wide: a longer log is written as every k-th sample, which keeps the
+// series file (and the plot script reading it) small for hour-long logs instead of gigabytes.
+constexpr Eigen::Index kMaxSeriesSamples = 20000;
+
+// One row per channel and sample (every k-th beyond kMaxSeriesSamples; `index` is the sample's own):
+// measured, predicted, the kind's base prediction (the ideal ratio for gearbox data) and the signals a
+// residual is plotted against.
 void writeSeries(const FittedModel& model, const Dataset& data, const std::filesystem::path& file) {
   const auto predictions = predictAll(model, data);
   const std::vector<std::string> signals{"q", "qd", "qdd", "tau", "temperature"};
@@ -25,7 +30,9 @@ void writeSeries(const FittedModel& model, const Dataset& data, const std::files
   text += "\n";
   for (int c = 0; c < data.channelCount(); ++c) {
     const auto& time = data.signal("time", c);
-    for (Eigen::Index k = 0; k < data.samples(c); ++k) {
+    const Eigen::Index samples = data.samples(c);
+    const Eigen::Index stride = (samples + kMaxSeriesSamples - 1) / kMaxSeriesSamples;
+    for (Eigen::Index k = 0; k < samples; k += stride) {
       text += data.channelName(c) + "," + std::to_string(k) + ",";
       appendNumber(text, time[k]);
       text += ",";

@@ -1,15 +1,24 @@
 // Error metrics and where-it-fails analysis, against numbers computed here.
 #include <cmath>
+#include <fstream>
+#include <map>
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include "arcplan/model/compare.h"
+#include "arcplan/model/fitting.h"
+#include "arcplan/model/plots.h"
 #include "model/model_test_support.h"
+#include "support/command.h"
 
 namespace {
 
 using namespace arcplan::model;
+
+ModelSpec modelWithoutEffects() {
+  return parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: []\n", "m.yaml");
+}
 
 Dataset syntheticDataset(int samples, double rate) {
   auto motion = arcplan::testing::makeMotionLog(samples, rate);
@@ -19,8 +28,7 @@ Dataset syntheticDataset(int samples, double rate) {
   for (Eigen::Index k = 0; k < current.rows(); ++k) {
     for (int j = 0; j < 6; ++j) current(k, j) = std::sin(0.3 * k + j) + 0.1 * noise(random);
   }
-  const auto spec = parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: []\n", "m.yaml");
-  return makeJointDataset(motion.log, spec);
+  return makeJointDataset(motion.log, modelWithoutEffects());
 }
 
 TEST(Compare, ErrorMetricsMatchTheirDefinitions) {
@@ -121,6 +129,28 @@ TEST(Compare, ResidualCorrelationsNameTheSignalTheResidualFollows) {
   EXPECT_EQ(correlations.front().channel, "actual_current_4");
   EXPECT_EQ(correlations.front().signal, "abs(qd)");
   EXPECT_NEAR(correlations.front().correlation, 1.0, 1e-9);
+}
+
+TEST(Compare, SeriesOfALongLogIsWrittenAsEveryKthSample) {
+  // 20 001 samples are more than a plot can show (20 000 per channel): every 2nd sample is written,
+  // ceil(20001 / 2) = 10 001 rows per channel, each with its own sample index 0, 2, ..., 20 000.
+  const Dataset data = syntheticDataset(20001, 500.0);
+  const auto model = fitModel(modelWithoutEffects(), data);
+  const auto directory = arcplan::testing::freshTempDirectory("compare_long_series");
+  plotComparison(model, data, directory, "compare_data");
+  std::ifstream series(directory / "compare_data_series.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(series, line));
+  std::map<std::string, std::vector<long>> indices;
+  while (std::getline(series, line)) {
+    const auto comma = line.find(',');
+    indices[line.substr(0, comma)].push_back(std::stol(line.substr(comma + 1)));
+  }
+  ASSERT_EQ(indices.size(), 6u);
+  for (const auto& [channel, written] : indices) {
+    ASSERT_EQ(written.size(), 10001u) << channel;
+    for (std::size_t row = 0; row < written.size(); ++row) ASSERT_EQ(written[row], static_cast<long>(2 * row)) << channel;
+  }
 }
 
 }  // namespace

@@ -72,6 +72,20 @@ TEST(Measurements, ReadsHeaderlessLogsThroughAColumnMap) {
   EXPECT_DOUBLE_EQ(log.vector("target_moment")(1, 5), 131.0);   // column 31
 }
 
+TEST(Measurements, LineNumbersCountTheCommentsAndBlankLinesBeforeTheFirstRow) {
+  // A headerless log after a comment and a blank line, the last row without its newline: the first
+  // row is line 3, the unparseable one line 4, the last line 5.
+  const auto file = writeText("commented.csv", "# recorded on the real arm\n\n0.0,1\n0.1,x\n0.2,3");
+  LogReadOptions options;
+  options.columns = parseColumnMap("timestamp=1, actual_q=2");
+  const auto log = readLog(file, options);
+  ASSERT_EQ(log.rows(), 2u);
+  EXPECT_EQ(log.lines, (std::vector<std::size_t>{3, 5}));
+  EXPECT_DOUBLE_EQ(log.vector("actual_q")(0, 0), 1.0);
+  EXPECT_DOUBLE_EQ(log.vector("actual_q")(1, 0), 3.0);
+  EXPECT_EQ(log.quality.summary(), "kept 2 of 3 rows; dropped 1 (unparseable value: 1, line 4)");
+}
+
 TEST(Measurements, DropsAndReportsRowsThatCannotBeTrusted) {
   const auto file = writeText("bad.csv",
                               "timestamp,actual_q_0,actual_current_0\n"  // line 1
