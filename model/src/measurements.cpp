@@ -395,13 +395,17 @@ void writeLog(const Log& log, const std::filesystem::path& file, CsvStyle style)
   for (const auto& [name, values] : log.vectors) {
     if (std::find(vectorOrder.begin(), vectorOrder.end(), name) == vectorOrder.end()) vectorOrder.push_back(name);
   }
+  AtomicOutputFile out(file);
   std::string text = "timestamp";
   for (const auto& name : vectorOrder) {
     for (Eigen::Index j = 0; j < log.vectors.at(name).cols(); ++j) text += separator + name + "_" + std::to_string(j);
   }
   for (const auto& [name, values] : log.scalars) text += separator + name;
   text += '\n';
+  out.stream() << text;
+  // Row by row: an hour at 500 Hz is gigabytes of text, never built whole.
   for (std::size_t r = 0; r < log.rows(); ++r) {
+    text.clear();
     appendNumber(text, log.time[static_cast<Eigen::Index>(r)]);
     for (const auto& name : vectorOrder) {
       const auto& matrix = log.vectors.at(name);
@@ -415,8 +419,9 @@ void writeLog(const Log& log, const std::filesystem::path& file, CsvStyle style)
       appendNumber(text, values[static_cast<Eigen::Index>(r)]);
     }
     text += '\n';
+    out.stream() << text;
   }
-  writeFileAtomically(file, text);
+  out.commit();
 }
 
 }  // namespace arcplan::model
