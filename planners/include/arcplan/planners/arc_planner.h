@@ -11,9 +11,9 @@
 //     thesis' three-arc detour with exactly the given h, r, R2, R3 and plane angle (arc_path.h);
 //   - auto (default): lines through via points with blended corners (blended_path.h), the via points
 //     from the obstacles' geometry (via_points.h), the fastest route found by a lazy search
-//     (route_search.h); where no such route exists, the joint-space fallback: RRTConnect on the same
-//     SpaceInformation, simplified, each of its segments replaced by a straight TCP line where that
-//     validates. lastResult().mode says which ("arc" or "fallback"), cartesianFraction how much of
+//     (route_search.h); where no such route exists, the joint-space fallback: RRTConnect on a
+//     SpaceInformation keeping the planner's margin, its random draws seeded by `seed`, simplified,
+//     each of its segments replaced by a straight TCP line where that validates. lastResult().mode says which ("arc" or "fallback"), cartesianFraction how much of
 //     the TCP path is lines and arcs.
 // A path keeps `clearance` (or the motion validator's margin if larger) everywhere, except that a
 // start or goal closer than that to an obstacle lowers it to its own clearance.
