@@ -1,4 +1,7 @@
 // arcplan: planning, collision checking, time scaling, benchmarks and model validation for the UR10e.
+#include <malloc.h>
+
+#include <climits>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -21,6 +24,12 @@ std::string exitCodeFooter() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The model commands allocate and free matrices of tens of MB per candidate effect on long logs. glibc
+  // serves blocks that big with mmap and unmaps them on free, so each new one page-faults again: on a
+  // 1.8 M-row log that was two thirds of `model diagnose`'s CPU time (docs/model.md, "Big logs").
+  // Keeping them in the heap, never trimmed, reuses the pages; the peak stays the same.
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, INT_MAX);
   CLI::App app{"arcplan — arc obstacle-avoidance planning, FCL collision checking and TCP-speed time scaling "
                "for the UR10e, OMPL benchmarks, and robot models checked against measurements",
                "arcplan"};
