@@ -10,8 +10,22 @@
 namespace arcplan {
 
 AtomicOutputFile::AtomicOutputFile(std::filesystem::path target) : target_(std::move(target)) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(target_, ec);  // follows symbolic links
+  if (!ec && std::filesystem::is_directory(status)) {
+    throw Error("cannot write " + target_.string() + ": it is a directory, expected a file name");
+  }
+  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    inPlace_ = true;
+    stream_.open(target_, std::ios::out | std::ios::binary);
+    if (!stream_) throw Error("cannot write " + target_.string() + ": " + std::strerror(errno));
+    return;
+  }
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(target_, ec))) {
+    const auto resolved = std::filesystem::canonical(target_, ec);
+    if (!ec) target_ = resolved;
+  }
   if (target_.has_parent_path()) {
-    std::error_code ec;
     std::filesystem::create_directories(target_.parent_path(), ec);
     if (ec) throw Error("cannot create directory " + target_.parent_path().string() + ": " + ec.message());
   }
@@ -25,7 +39,7 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path target) : target_(std::
 }
 
 AtomicOutputFile::~AtomicOutputFile() {
-  if (!committed_) {
+  if (!committed_ && !inPlace_) {
     stream_.close();
     std::error_code ignored;
     std::filesystem::remove(temporary_, ignored);
@@ -38,6 +52,10 @@ void AtomicOutputFile::commit() {
   if (!stream_) throw Error("writing " + target_.string() + " failed: " + std::strerror(errno));
   stream_.close();
   if (stream_.fail()) throw Error("writing " + target_.string() + " failed on close: " + std::strerror(errno));
+  if (inPlace_) {
+    committed_ = true;
+    return;
+  }
   std::error_code ec;
   std::filesystem::rename(temporary_, target_, ec);
   if (ec) throw Error("cannot move " + temporary_.string() + " to " + target_.string() + ": " + ec.message());

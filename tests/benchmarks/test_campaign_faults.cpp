@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <csignal>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <thread>
@@ -210,6 +211,53 @@ TEST(CampaignFaults, FileSizeLimitStopsTheCampaignWithAClearErrorAndKeepsComplet
   EXPECT_TRUE(temporaryFilesBelow(out).empty()) << temporaryFilesBelow(out).front();
   EXPECT_FALSE(std::filesystem::exists(out / "benchmark.db"));
   expectResumeEqualsReference(out);
+}
+
+// tmpfs allocates whole pages per file.
+std::uintmax_t pagesOf(std::uintmax_t bytes) { return (bytes + 4095) / 4096; }
+
+// A real full disk: --out on a tmpfs with room for the settings, the scenes and about half of the logs.
+// Mounting needs root (CI runs as root); as another user the test fails saying so, it is not skipped.
+TEST(CampaignFaults, FullDiskStopsTheCampaignWithAClearErrorAndKeepsOnlyCompleteLogs) {
+  ASSERT_EQ(::geteuid(), 0u) << "this test mounts a small tmpfs as --out and needs root (CI runs as root); "
+                                "run scripts/test as root";
+  ASSERT_EQ(reference().result.exitCode, 0) << reference().result.err;
+  std::uintmax_t pagesBeforeLogs = 2;  // the lock, slack
+  for (const auto& file : filesBelow(reference().out)) {
+    const auto name = file.lexically_relative(reference().out).string();
+    const bool writtenAfterTheLogs = name.rfind("logs/", 0) == 0 || name.rfind("benchmark.db", 0) == 0 ||
+                                     name.rfind("ranking.", 0) == 0 || name.rfind("plots/", 0) == 0;
+    if (!writtenAfterTheLogs) pagesBeforeLogs += pagesOf(std::filesystem::file_size(file));
+  }
+  std::uintmax_t logPages = 0;
+  for (const auto& log : filesBelow(reference().out / "logs", ".log")) logPages += pagesOf(std::filesystem::file_size(log));
+  ASSERT_GE(logPages, 6u);
+  const auto disk = freshTempDirectory("faults_full_disk") / "disk";
+  std::filesystem::create_directories(disk);
+  const std::string size = std::to_string((pagesBeforeLogs + logPages / 2) * 4) + "k";
+  ASSERT_EQ(std::system(("mount -t tmpfs -o size=" + size + " arcplan-full-disk " + disk.string()).c_str()), 0);
+  struct Unmount {
+    std::filesystem::path point;
+    ~Unmount() { (void)std::system(("umount " + point.string()).c_str()); }
+  } unmount{disk};
+
+  const auto out = disk / "out";
+  const auto full = runArcplan(benchArguments(reference().suite, out, {"-j", "1"}));
+  EXPECT_EQ(full.exitCode, 1) << full.err;
+  EXPECT_NE(full.err.find("arcplan: error: the campaign stopped: writing " + out.string()), std::string::npos) << full.err;
+  EXPECT_NE(full.err.find("No space left on device"), std::string::npos) << full.err;
+  const auto kept = filesBelow(out / "logs", ".log");
+  EXPECT_LT(kept.size(), 6u);
+  EXPECT_TRUE(temporaryFilesBelow(out).empty()) << temporaryFilesBelow(out).front();
+  EXPECT_FALSE(std::filesystem::exists(out / "benchmark.db"));
+
+  // Given room, the same command resumes: every kept log is complete (none is reported and re-run).
+  const auto roomy = freshTempDirectory("faults_full_disk_resumed") / "out";
+  std::filesystem::copy(out, roomy, std::filesystem::copy_options::recursive);
+  const auto resumed = runArcplan(benchArguments(reference().suite, roomy, {"-j", "2"}));
+  ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+  EXPECT_EQ(resumed.err.find("is incomplete"), std::string::npos) << resumed.err;
+  EXPECT_EQ(deterministicRuns(roomy / "benchmark.db"), reference().runs);
 }
 
 TEST(CampaignFaults, DatabaseThatCannotBeWrittenLeavesCompleteLogsAndNoHalfDatabase) {

@@ -1,6 +1,9 @@
 #pragma once
 // Output files are written to a temporary file next to the target and renamed into place only
 // when complete, so an interrupted or failing command never leaves a half-written result.
+// A target that exists and is not a regular file (/dev/null, /dev/stdout, a FIFO) is written in
+// place: renaming onto it would replace the device itself (as root, /dev/null became a plain file).
+// A symbolic link to a file is followed, so the link stays and the file it names is replaced.
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -22,6 +25,7 @@ private:
   std::filesystem::path target_;
   std::filesystem::path temporary_;
   std::ofstream stream_;
+  bool inPlace_ = false;  // a device or pipe: no temporary, no rename
   bool committed_ = false;
 };
 
