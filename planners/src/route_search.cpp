@@ -1,5 +1,7 @@
 #include "arcplan/planners/route_search.h"
 
+#include <algorithm>
+
 namespace arcplan::planners {
 namespace {
 
@@ -62,6 +64,52 @@ void RouteSearch::legFailed(const Route& route, std::size_t leg, const std::vect
                           route.margins.end());
     push(std::move(detour));
   }
+}
+
+Eigen::Vector3d towardChord(const Eigen::Vector3d& prev, const Eigen::Vector3d& via, const Eigen::Vector3d& next,
+                            double distance) {
+  const Eigen::Vector3d chord = next - prev;
+  const double along = chord.squaredNorm() > 0.0 ? std::clamp((via - prev).dot(chord) / chord.squaredNorm(), 0.0, 1.0) : 0.0;
+  const Eigen::Vector3d toChord = prev + along * chord - via;
+  const double gap = toChord.norm();
+  return via + (gap <= distance ? 1.0 : distance / gap) * toChord;
+}
+
+BlendedPath shortenRoute(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, const BlendedPath& validated,
+                         const std::vector<double>& margins, int maxTrials,
+                         const std::function<bool(const BlendedPath&)>& validates) {
+  // Below this a leg leaves no room for a blend (m). A trial must gain at least kLeastGain (m): a
+  // walk costs about as much as the whole search on a simple query, and a smaller fraction of the
+  // margin gains less, so the bisection stops paying walks there.
+  constexpr double kShortestLeg = 0.008, kLeastGain = 0.002;
+  const std::vector<Eigen::Vector3d>& original = validated.points();
+  const std::size_t viaCount = original.size() - 2;
+  BlendedPath best = validated;
+  if (viaCount == 0) return best;
+  // Every via point moves the same fraction of its margin: the whole margin first (each via point as
+  // close as the clearance alone would put it), then bisected between what was kept and what was not.
+  double kept = 0.0, refused = 2.0;
+  for (int trial = 0; trial < maxTrials; ++trial) {
+    const double fraction = std::min(1.0, 0.5 * (kept + refused));
+    std::vector<Eigen::Vector3d> points = original;
+    bool legsFit = true;
+    for (std::size_t i = 1; i <= viaCount; ++i) {
+      points[i] = towardChord(points[i - 1], original[i], original[i + 1], fraction * margins.at(i - 1));
+      legsFit = legsFit && (points[i] - points[i - 1]).norm() >= kShortestLeg;
+    }
+    legsFit = legsFit && (points[viaCount + 1] - points[viaCount]).norm() >= kShortestLeg;
+    std::vector<double> blends = validated.blends();
+    for (std::size_t j = 0; legsFit && j < viaCount; ++j) blends[j] = std::min(blends[j], BlendedPath::maxBlend(points, j));
+    const bool accepted = legsFit && [&] {
+      const BlendedPath candidate(start, goal, std::vector<Eigen::Vector3d>(points.begin() + 1, points.end() - 1), blends);
+      if (candidate.length() > best.length() - kLeastGain || !validates(candidate)) return false;
+      best = candidate;
+      return true;
+    }();
+    if (accepted && fraction >= 1.0) break;
+    (accepted ? kept : refused) = fraction;
+  }
+  return best;
 }
 
 }  // namespace arcplan::planners

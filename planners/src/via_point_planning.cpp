@@ -23,6 +23,8 @@ constexpr std::size_t kMaxViaPoints = 4;
 constexpr int kMaxRoutes = 300;
 // Blends shrink by halves down to this tangent length (m); below it the corner counts as failed.
 constexpr double kSmallestBlend = 0.004;
+// Trials spent shortening the route that validated (each at most one walk, ~0.1 ms).
+constexpr int kMaxShorteningTrials = 3;
 
 // The blend a corner starts with: the largest that fits, but whose arc does not cut the corner by more
 // than half the margin its via point keeps (t·tan(φ/4) inside the corner).
@@ -137,10 +139,24 @@ JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result) {
         if (walked.status == ConversionStatus::Rejected && !known) suspects.push_back({rejectedAt, kSuspectReach});
       }
       if (walked.ok()) {
+        // The margins come in steps: where a via point can come closer, the path gets shorter. Each
+        // trial is checked like a route (via points, probes, then the certified walk).
+        const BlendedPath shortest = shortenRoute(query.a, query.b, path, route->margins, kMaxShorteningTrials,
+                                                  [&](const BlendedPath& candidate) {
+          if (query.ptc()) return false;  // out of time: the route that validated is the answer
+          for (std::size_t i = 0; i + 2 < candidate.points().size(); ++i) {
+            if (orientationHeld && !viaPointClear(query, candidate.points()[i + 1])) return false;
+          }
+          if (failingProbe(query, candidate, suspects)) return false;
+          JointWaypoints candidateWalk = query.validator.walk(candidate, query.startOnly(), query.goal);
+          if (!candidateWalk.ok()) return false;
+          walked = std::move(candidateWalk);
+          return true;
+        });
         result.kind = vias.empty() ? ArcPlannerResult::Kind::StraightLine : ArcPlannerResult::Kind::ViaPoints;
-        result.viaPoints = vias;
-        result.blends = blends;
-        result.tcpPathLength = path.length();
+        result.viaPoints.assign(shortest.points().begin() + 1, shortest.points().end() - 1);
+        result.blends = shortest.blends();
+        result.tcpPathLength = shortest.length();
         return walked;
       }
       if (query.ptc()) break;

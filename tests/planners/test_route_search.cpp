@@ -1,6 +1,8 @@
 // The lazy route search: shortest route first, failed legs pruned from every route, bounded depth.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "arcplan/planners/route_search.h"
 
 namespace {
@@ -52,6 +54,65 @@ TEST(RouteSearch, RoutesStopGrowingAtTheViaPointBound) {
   EXPECT_EQ(single->points.size(), 3u);
   search.legFailed(*single, 0, {{{Vector3d(0.2, 0, 0.3)}, 0.02}});
   EXPECT_FALSE(search.next().has_value());
+}
+
+TEST(RouteSearch, TowardChordStopsOnTheSegmentBetweenTheNeighbours) {
+  const Vector3d prev(0, 0, 0), next(2, 0, 0), via(1, 1, 0);
+  EXPECT_TRUE(towardChord(prev, via, next, 0.5).isApprox(Vector3d(1, 0.5, 0), 1e-15));
+  EXPECT_TRUE(towardChord(prev, via, next, 3.0).isApprox(Vector3d(1, 0, 0), 1e-15));  // not past the chord
+  // Beyond the segment's end the nearest point is that end: (3, 1) moves along (-1, -1)/√2.
+  const Vector3d moved = towardChord(prev, Vector3d(3, 1, 0), next, std::sqrt(0.5));
+  EXPECT_TRUE(moved.isApprox(Vector3d(2.5, 0.5, 0), 1e-15));
+}
+
+// The start (0,0,0) and goal (1,0,0) with a ball of radius 0.1 at (0.5,0,0) between them and a clearance of
+// 1 cm: a path is valid where all of it keeps 0.11 m from the centre (checked every 0.5 mm).
+const Vector3d kBallCentre(0.5, 0, 0);
+constexpr double kKeptDistance = 0.11;
+
+double closestApproach(const BlendedPath& path) {
+  double closest = std::numeric_limits<double>::infinity();
+  const int samples = static_cast<int>(std::ceil(path.length() / 0.0005));
+  for (int k = 0; k <= samples; ++k) closest = std::min(closest, (path.position(path.length() * k / samples) - kBallCentre).norm());
+  return closest;
+}
+
+// The shortest way round the ball in a plane through the line: tangent, arc of the kept radius, tangent.
+double shortestWayRound() {
+  const double d = 0.5, r = kKeptDistance;
+  return 2.0 * std::sqrt(d * d - r * r) + r * (M_PI - 2.0 * std::acos(r / d));
+}
+
+TEST(RouteSearch, ShorteningNeverLengthensAndKeepsTheClearance) {
+  const Eigen::Isometry3d start{Eigen::Translation3d(kStart)}, goal{Eigen::Translation3d(kGoal)};
+  const auto keepsClearance = [](const BlendedPath& path) { return closestApproach(path) >= kKeptDistance; };
+  // An apex 22 cm above the smallest that clears the ball with straight legs (0.1128 m), and an over pair.
+  const std::vector<std::pair<std::vector<Vector3d>, std::vector<double>>> routes = {
+      {{Vector3d(0.5, 0, 0.3328)}, {0.22}},
+      {{Vector3d(0.35, 0, 0.31), Vector3d(0.65, 0, 0.31)}, {0.2, 0.2}},
+      {{Vector3d(0.5, 0.1, 0.2)}, {0.05}},
+  };
+  for (const auto& [vias, margins] : routes) {
+    std::vector<double> blends;
+    for (std::size_t i = 0; i < vias.size(); ++i) blends.push_back(0.05);
+    const BlendedPath validated(start, goal, vias, blends);
+    ASSERT_TRUE(keepsClearance(validated));
+    int calls = 0;
+    const BlendedPath shortened = shortenRoute(start, goal, validated, margins, 8, [&](const BlendedPath& path) {
+      ++calls;
+      return keepsClearance(path);
+    });
+    EXPECT_LE(calls, 8);
+    EXPECT_LT(shortened.length(), validated.length() - 0.01) << vias.size() << " via points";
+    EXPECT_GE(shortened.length(), shortestWayRound());
+    EXPECT_GE(closestApproach(shortened), kKeptDistance);
+    EXPECT_TRUE(shortened.points().front().isApprox(kStart) && shortened.points().back().isApprox(kGoal));
+  }
+  // Nothing validates: the route is returned as it was.
+  const BlendedPath validated(start, goal, {Vector3d(0.5, 0, 0.3328)}, {0.05});
+  const BlendedPath unchanged = shortenRoute(start, goal, validated, {0.22}, 8, [](const BlendedPath&) { return false; });
+  EXPECT_EQ(unchanged.points(), validated.points());
+  EXPECT_EQ(unchanged.length(), validated.length());
 }
 
 }  // namespace

@@ -10,12 +10,14 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <queue>
 #include <set>
 #include <utility>
 #include <vector>
 
+#include "arcplan/planners/blended_path.h"
 #include "arcplan/planners/via_points.h"
 
 namespace arcplan::planners {
@@ -55,5 +57,21 @@ class RouteSearch {
   std::size_t maxViaPoints_;
   std::size_t tried_ = 0, queued_ = 0;
 };
+
+// `via` moved up to `distance` toward the nearest point of the segment prev–next (never past it). The
+// polyline prev → via → next gets no longer: the sum of distances to prev and next is convex and least
+// on their segment, so it does not grow along the way there.
+Eigen::Vector3d towardChord(const Eigen::Vector3d& prev, const Eigen::Vector3d& via, const Eigen::Vector3d& next,
+                            double distance);
+
+// A route that validated, made shorter where it still validates: the search's margins come in steps,
+// so every via point is moved toward the chord of its neighbours by the same fraction of its margin —
+// the whole margin first (the clearance-only position), then bisected — blends kept where they still
+// fit. A change is kept only if the blended path gets shorter and `validates` accepts it; at most
+// `maxTrials` trials. Returns the shortest path accepted (the given one if none).
+// `validated` runs from `start` to `goal` (the poses it was built with).
+BlendedPath shortenRoute(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, const BlendedPath& validated,
+                         const std::vector<double>& margins, int maxTrials,
+                         const std::function<bool(const BlendedPath&)>& validates);
 
 }  // namespace arcplan::planners
