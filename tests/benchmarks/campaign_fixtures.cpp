@@ -9,12 +9,12 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "support/command.h"
+#include "support/database_rows.h"
 
 namespace arcplan::testing {
 namespace {
@@ -22,25 +22,6 @@ namespace {
 // Columns whose values depend on the machine and its load, not on the planner's decisions.
 const std::set<std::string> kMeasuredColumns{"id", "experimentid", "plannerid", "time", "memory", "simplification_time",
                                              "solve_time"};
-
-std::vector<std::vector<std::string>> rowsOf(sqlite3* db, const std::string& sql) {
-  std::vector<std::vector<std::string>> rows;
-  sqlite3_stmt* statement = nullptr;
-  if (sqlite3_prepare_v2(db, sql.c_str(), -1, &statement, nullptr) != SQLITE_OK) {
-    ADD_FAILURE() << sql << ": " << sqlite3_errmsg(db);
-    return rows;
-  }
-  while (sqlite3_step(statement) == SQLITE_ROW) {
-    std::vector<std::string> row;
-    for (int c = 0; c < sqlite3_column_count(statement); ++c) {
-      const auto* text = sqlite3_column_text(statement, c);
-      row.emplace_back(text == nullptr ? "NULL" : reinterpret_cast<const char*>(text));
-    }
-    rows.push_back(std::move(row));
-  }
-  sqlite3_finalize(statement);
-  return rows;
-}
 
 }  // namespace
 
@@ -152,20 +133,14 @@ pid_t deadPid() {
 
 std::vector<std::string> deterministicRuns(const std::filesystem::path& database) {
   std::vector<std::string> runs;
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(database.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
-    ADD_FAILURE() << "cannot open " << database;
-    sqlite3_close(db);
-    return runs;
-  }
   // By name: ompl_benchmark_statistics adds columns in the order it meets them.
   std::set<std::string> names;
-  for (const auto& row : rowsOf(db, "PRAGMA table_info(runs)")) {
+  for (const auto& row : databaseRows(database, "PRAGMA table_info(runs)")) {
     if (kMeasuredColumns.count(row[1]) == 0) names.insert(row[1]);
   }
   std::string columns;
   for (const auto& name : names) columns += ", r." + name;
-  const auto rows = rowsOf(db, "SELECT e.name, p.name" + columns +
+  const auto rows = databaseRows(database, "SELECT e.name, p.name" + columns +
                                    " FROM runs r JOIN experiments e ON e.id = r.experimentid"
                                    " JOIN plannerConfigs p ON p.id = r.plannerid ORDER BY e.name, p.name, r.id");
   for (const auto& row : rows) {
@@ -173,7 +148,6 @@ std::vector<std::string> deterministicRuns(const std::filesystem::path& database
     for (const auto& value : row) text += value + "|";
     runs.push_back(text);
   }
-  sqlite3_close(db);
   return runs;
 }
 

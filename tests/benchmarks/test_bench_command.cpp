@@ -10,11 +10,11 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <sqlite3.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "support/command.h"
+#include "support/database_rows.h"
 
 namespace arcplan::testing {
 namespace {
@@ -22,28 +22,7 @@ namespace {
 using Rows = std::vector<std::vector<std::string>>;
 
 // Every row of a query, values as text ("" for NULL).
-Rows query(const std::filesystem::path& database, const std::string& sql) {
-  sqlite3* db = nullptr;
-  EXPECT_EQ(sqlite3_open_v2(database.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK) << database;
-  sqlite3_stmt* statement = nullptr;
-  Rows rows;
-  if (sqlite3_prepare_v2(db, sql.c_str(), -1, &statement, nullptr) != SQLITE_OK) {
-    ADD_FAILURE() << sql << ": " << sqlite3_errmsg(db);
-    sqlite3_close(db);
-    return rows;
-  }
-  while (sqlite3_step(statement) == SQLITE_ROW) {
-    std::vector<std::string> row;
-    for (int c = 0; c < sqlite3_column_count(statement); ++c) {
-      const auto* text = sqlite3_column_text(statement, c);
-      row.emplace_back(text == nullptr ? "" : reinterpret_cast<const char*>(text));
-    }
-    rows.push_back(std::move(row));
-  }
-  sqlite3_finalize(statement);
-  sqlite3_close(db);
-  return rows;
-}
+Rows query(const std::filesystem::path& database, const std::string& sql) { return databaseRows(database, sql, ""); }
 
 std::set<std::string> columnsOf(const std::filesystem::path& database, const std::string& table) {
   std::set<std::string> columns;

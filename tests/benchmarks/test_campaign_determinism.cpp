@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <sqlite3.h>
 
 #include "benchmarks/campaign_fixtures.h"
 #include "support/command.h"
+#include "support/database_rows.h"
 
 namespace arcplan::testing {
 namespace {
@@ -21,19 +21,7 @@ const std::vector<std::string> kPlanners{"RRT", "RRTConnect", "RRTstar", "BiTRRT
 // One column of every run, in the database's run order.
 std::vector<std::string> column(const std::filesystem::path& database, const std::string& name) {
   std::vector<std::string> values;
-  sqlite3* db = nullptr;
-  sqlite3_open_v2(database.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
-  sqlite3_stmt* statement = nullptr;
-  if (sqlite3_prepare_v2(db, ("SELECT " + name + " FROM runs ORDER BY id").c_str(), -1, &statement, nullptr) == SQLITE_OK) {
-    while (sqlite3_step(statement) == SQLITE_ROW) {
-      const auto* text = sqlite3_column_text(statement, 0);
-      values.emplace_back(text == nullptr ? "NULL" : reinterpret_cast<const char*>(text));
-    }
-  } else {
-    ADD_FAILURE() << name << ": " << sqlite3_errmsg(db);
-  }
-  sqlite3_finalize(statement);
-  sqlite3_close(db);
+  for (const auto& row : databaseRows(database, "SELECT " + name + " FROM runs ORDER BY id")) values.push_back(row[0]);
   return values;
 }
 
