@@ -3,6 +3,7 @@
 // from the registry, and reading a solution back as joints and TCP poses.
 #include <ompl/geometric/PathGeometric.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/joint_states.h"
 #include "arcplan/collision/scene.h"
 #include "arcplan/planners/planning_problem.h"
@@ -59,6 +61,26 @@ inline const Eigen::Vector3d& thesisA() {
 inline const Eigen::Vector3d& thesisB() {
   static const Eigen::Vector3d b(0.5, 0.4, 0.46);
   return b;
+}
+
+// Smallest robot distance (obstacles and self) along a joint path, every motion sampled at 2 mrad:
+// a second measurement, independent of the certified check the planner used.
+inline double closestApproach(const planners::PlanningProblem& problem, const std::vector<robot::Vector6>& joints) {
+  collision::CollisionData data(*problem.collisionModel);
+  double closest = INFINITY;
+  for (std::size_t i = 1; i < joints.size(); ++i) {
+    const int samples = static_cast<int>(std::ceil((joints[i] - joints[i - 1]).cwiseAbs().maxCoeff() / 2e-3)) + 1;
+    for (int k = 0; k <= samples; ++k) {
+      const robot::Vector6 q = joints[i - 1] + (joints[i] - joints[i - 1]) * (double(k) / samples);
+      closest = std::min(closest, collision::distance(*problem.collisionModel, data, q).minimum());
+    }
+  }
+  return closest;
+}
+
+// The same along the problem's solution path.
+inline double closestApproach(const planners::PlanningProblem& problem) {
+  return closestApproach(problem, collision::waypointsOf(problem.setup->getSolutionPath()));
 }
 
 }  // namespace arcplan::testing

@@ -259,22 +259,6 @@ TEST(ArcPlanner, SolidObstacleIsAvoidedAroundItsBoundingBall) {
   EXPECT_TRUE(problem.setup->getSolutionPath().check());
 }
 
-// Smallest robot distance (obstacles and self) along the joint path, every motion sampled at 2 mrad:
-// a second measurement, independent of the certified check the planner used.
-double closestApproach(const arcplan::planners::PlanningProblem& problem) {
-  arcplan::collision::CollisionData data(*problem.collisionModel);
-  const auto joints = arcplan::collision::waypointsOf(problem.setup->getSolutionPath());
-  double closest = INFINITY;
-  for (std::size_t i = 1; i < joints.size(); ++i) {
-    const int samples = static_cast<int>(std::ceil((joints[i] - joints[i - 1]).cwiseAbs().maxCoeff() / 2e-3)) + 1;
-    for (int k = 0; k <= samples; ++k) {
-      const arcplan::robot::Vector6 q = joints[i - 1] + (joints[i] - joints[i - 1]) * (double(k) / samples);
-      closest = std::min(closest, arcplan::collision::distance(*problem.collisionModel, data, q).minimum());
-    }
-  }
-  return closest;
-}
-
 TEST(ArcPlanner, AutoFindsAShorterValidPathThanTheThesisShapes) {
   auto problem = thesisProblem("thesis_obstacle");
   const auto [planner, status] = solve(problem, "arc");

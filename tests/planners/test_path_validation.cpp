@@ -31,20 +31,6 @@ arcplan::planners::JointWaypoints startOnly(const arcplan::robot::Vector6& start
   return prefix;
 }
 
-// The smallest robot distance along every motion of a joint path, sampled at 0.002 rad.
-double closestApproach(const arcplan::planners::PlanningProblem& problem, const std::vector<arcplan::robot::Vector6>& joints) {
-  arcplan::collision::CollisionData data(*problem.collisionModel);
-  double closest = INFINITY;
-  for (std::size_t i = 1; i < joints.size(); ++i) {
-    const int samples = static_cast<int>(std::ceil((joints[i] - joints[i - 1]).cwiseAbs().maxCoeff() / 2e-3)) + 1;
-    for (int k = 0; k <= samples; ++k) {
-      const arcplan::robot::Vector6 q = joints[i - 1] + (joints[i] - joints[i - 1]) * (double(k) / samples);
-      closest = std::min(closest, arcplan::collision::distance(*problem.collisionModel, data, q).minimum());
-    }
-  }
-  return closest;
-}
-
 TEST(PathValidation, AFailedWalkDoesNotAffectTheNextOne) {
   auto problem = thesisProblem("thesis_obstacle");
   const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
