@@ -151,22 +151,4 @@ std::vector<std::string> deterministicRuns(const std::filesystem::path& database
   return runs;
 }
 
-std::vector<std::filesystem::path> filesBelow(const std::filesystem::path& root, const std::string& extension) {
-  std::vector<std::filesystem::path> files;
-  if (!std::filesystem::exists(root)) return files;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
-    if (entry.is_regular_file() && (extension.empty() || entry.path().extension() == extension)) files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-std::vector<std::filesystem::path> temporaryFilesBelow(const std::filesystem::path& root) {
-  std::vector<std::filesystem::path> temporaries;
-  for (const auto& file : filesBelow(root)) {
-    if (file.filename().string().find(".tmp") != std::string::npos) temporaries.push_back(file);
-  }
-  return temporaries;
-}
-
 }  // namespace arcplan::testing

@@ -51,7 +51,5 @@ pid_t deadPid();
 // simplification_time, solve_time) and the row ids.
 std::vector<std::string> deterministicRuns(const std::filesystem::path& database);
 
-std::vector<std::filesystem::path> filesBelow(const std::filesystem::path& root, const std::string& extension = "");
-std::vector<std::filesystem::path> temporaryFilesBelow(const std::filesystem::path& root);  // names with ".tmp"
 
 }  // namespace arcplan::testing

@@ -30,23 +30,6 @@ std::set<std::string> columnsOf(const std::filesystem::path& database, const std
   return columns;
 }
 
-std::vector<std::filesystem::path> filesUnder(const std::filesystem::path& root, const std::string& extension = "") {
-  std::vector<std::filesystem::path> files;
-  if (!std::filesystem::exists(root)) return files;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
-    if (entry.is_regular_file() && (extension.empty() || entry.path().extension() == extension)) files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-bool hasTemporaryFiles(const std::filesystem::path& root) {
-  for (const auto& file : filesUnder(root)) {
-    if (file.filename().string().find(".tmp") != std::string::npos) return true;
-  }
-  return false;
-}
-
 const std::vector<std::string> kPlanners{"arc-h1.00r", "arc-h0.50r", "arc-auto", "RRTConnect", "PRM"};
 
 std::vector<std::string> campaignArguments(const std::filesystem::path& out, const std::string& runs = "2") {
@@ -74,7 +57,7 @@ const double kStraightLength = std::sqrt(0.1 * 0.1 + 0.8 * 0.8 + 0.21 * 0.21);  
 TEST(BenchCommand, ThesisCampaignWritesLogsDatabaseAndRanking) {
   const auto& campaign = thesisCampaign();
   ASSERT_EQ(campaign.result.exitCode, 0) << campaign.result.err;
-  const auto logs = filesUnder(campaign.out / "logs", ".log");
+  const auto logs = filesBelow(campaign.out / "logs", ".log");
   EXPECT_EQ(logs.size(), 10u);
   for (const auto& log : logs) {
     std::ifstream in(log);
@@ -92,7 +75,7 @@ TEST(BenchCommand, ThesisCampaignWritesLogsDatabaseAndRanking) {
   }
   EXPECT_TRUE(std::filesystem::exists(campaign.out / "paths" / "thesis" / "straight" / "scene.json"));
   EXPECT_FALSE(std::filesystem::exists(campaign.out / "plots"));  // --no-plots
-  EXPECT_FALSE(hasTemporaryFiles(campaign.out));
+  EXPECT_TRUE(temporaryFilesBelow(campaign.out).empty());
   // The terminal shows the ranking table and, without a terminal, one progress line per job.
   EXPECT_NE(campaign.result.out.find("| rank | planner |"), std::string::npos);
   EXPECT_NE(campaign.result.err.find("obstacle · RRTConnect: 2/2 runs solved · elapsed"), std::string::npos)
@@ -246,13 +229,13 @@ TEST(BenchCommand, RankDrawsBoxPlotsSpeedProfilesAndTcpPaths) {
     EXPECT_EQ(readFile(file).substr(1, 3), "PNG") << plot;
   }
   EXPECT_FALSE(std::filesystem::exists(out / "plots" / "speed_thesis_straight.png"));  // no data copied
-  EXPECT_FALSE(hasTemporaryFiles(out));
+  EXPECT_TRUE(temporaryFilesBelow(out).empty());
 }
 
 TEST(BenchCommand, ResumingSkipsCompletedJobsAndKeepsTheirLogs) {
   const auto& campaign = thesisCampaign();
   std::map<std::filesystem::path, std::string> before;
-  for (const auto& log : filesUnder(campaign.out / "logs", ".log")) before[log] = readFile(log);
+  for (const auto& log : filesBelow(campaign.out / "logs", ".log")) before[log] = readFile(log);
   const auto result = runArcplan(campaignArguments(campaign.out));
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.err.find("0 job(s) run, 10 already done"), std::string::npos) << result.err;
@@ -266,7 +249,7 @@ TEST(BenchCommand, OtherSettingsInAnExistingCampaignDirectoryAreRefused) {
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_NE(result.err.find("other settings (runs"), std::string::npos) << result.err;
   EXPECT_EQ(readFile(campaign.out / "campaign.json"), manifest);
-  EXPECT_EQ(filesUnder(campaign.out / "logs", ".log").size(), 10u);
+  EXPECT_EQ(filesBelow(campaign.out / "logs", ".log").size(), 10u);
 }
 
 TEST(BenchCommand, ShardsRunWithGnuParallelMergeToTheJobsOfOneRun) {
@@ -277,7 +260,7 @@ TEST(BenchCommand, ShardsRunWithGnuParallelMergeToTheJobsOfOneRun) {
                               " --shard {}/2 --out " + (dir / "shard{}").string() + " ::: 1 2 > " +
                               (dir / "parallel.out").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << readFile(dir / "parallel.out");
-  const auto shard1 = filesUnder(dir / "shard1" / "logs", ".log"), shard2 = filesUnder(dir / "shard2" / "logs", ".log");
+  const auto shard1 = filesBelow(dir / "shard1" / "logs", ".log"), shard2 = filesBelow(dir / "shard2" / "logs", ".log");
   EXPECT_EQ(shard1.size(), 3u);
   EXPECT_EQ(shard2.size(), 3u);
   EXPECT_FALSE(std::filesystem::exists(dir / "shard1" / "benchmark.db"));  // a shard alone is not the campaign
@@ -324,7 +307,7 @@ pid_t startArcplan(const std::vector<std::string>& arguments, const std::filesys
 bool waitForLogs(const std::filesystem::path& logs, std::size_t count, double seconds) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   while (std::chrono::steady_clock::now() < deadline) {
-    if (filesUnder(logs, ".log").size() >= count) return true;
+    if (filesBelow(logs, ".log").size() >= count) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return false;
@@ -347,8 +330,8 @@ TEST(BenchCommand, CtrlCKeepsCompletedJobLogsWritesNothingHalfDoneAndResumes) {
   kill(pid, SIGINT);
   EXPECT_EQ(exitCodeOf(pid), 130) << readFile(dir / "stderr");
   EXPECT_NE(readFile(dir / "stderr").find("interrupted"), std::string::npos);
-  EXPECT_EQ(filesUnder(out / "logs", ".log").size(), 1u);
-  EXPECT_FALSE(hasTemporaryFiles(out));
+  EXPECT_EQ(filesBelow(out / "logs", ".log").size(), 1u);
+  EXPECT_TRUE(temporaryFilesBelow(out).empty());
   EXPECT_FALSE(std::filesystem::exists(out / "benchmark.db"));
   EXPECT_FALSE(std::filesystem::exists(out / "ranking.md"));
 
@@ -369,8 +352,8 @@ TEST(BenchCommand, InterruptingTheParentStopsItsWorkerProcesses) {
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   kill(pid, SIGINT);
   EXPECT_EQ(exitCodeOf(pid), 130) << readFile(dir / "stderr");
-  EXPECT_LT(filesUnder(out / "logs", ".log").size(), 4u);
-  EXPECT_FALSE(hasTemporaryFiles(out));
+  EXPECT_LT(filesBelow(out / "logs", ".log").size(), 4u);
+  EXPECT_TRUE(temporaryFilesBelow(out).empty());
   EXPECT_FALSE(std::filesystem::exists(out / "benchmark.db"));
 }
 

@@ -14,19 +14,13 @@ namespace {
 
 using arcplan::testing::CommandResult;
 using arcplan::testing::freshTempDirectory;
+using arcplan::testing::temporaryFilesBelow;
 using arcplan::testing::readFile;
 using arcplan::testing::runArcplan;
 
 void write(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
 
 nlohmann::json readJson(const std::filesystem::path& file) { return nlohmann::json::parse(readFile(file)); }
-
-bool hasTemporaryFiles(const std::filesystem::path& dir) {
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
-    if (entry.path().filename().string().find(".tmp.") != std::string::npos) return true;
-  }
-  return false;
-}
 
 class ModelCommand : public ::testing::Test {
 protected:
@@ -202,7 +196,7 @@ protected:
     EXPECT_NE(result.err.find("arcplan: error:"), std::string::npos);
     EXPECT_FALSE(std::filesystem::exists(json));
     EXPECT_FALSE(std::filesystem::exists(saved));
-    EXPECT_FALSE(hasTemporaryFiles(out));
+    EXPECT_TRUE(temporaryFilesBelow(out).empty());
   }
 };
 

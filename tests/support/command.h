@@ -23,6 +23,12 @@ std::filesystem::path freshTempDirectory(const std::string& name);
 
 std::string readFile(const std::filesystem::path& file);
 
+// Regular files below `root` (recursively; none if it does not exist), sorted; only those ending in
+// `extension` when it is given.
+std::vector<std::filesystem::path> filesBelow(const std::filesystem::path& root, const std::string& extension = "");
+// Files below `root` with ".tmp" in their name: what an interrupted atomic write leaves.
+std::vector<std::filesystem::path> temporaryFilesBelow(const std::filesystem::path& root);
+
 // $ARCPLAN_SHARED_DATA or the configured ../shared/data; empty if it does not exist.
 std::filesystem::path sharedDataDirectory();
 
