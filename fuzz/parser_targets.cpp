@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <unistd.h>
 
+#include "arcplan/benchmarks/baseline.h"
+#include "arcplan/benchmarks/statistics_database.h"
 #include "arcplan/benchmarks/suite.h"
 #include "arcplan/collision/allowed_collisions.h"
 #include "arcplan/collision/scene.h"
@@ -56,6 +58,14 @@ void parseForceTransfer(const std::string& input) { model::readForceTransferData
 void parseModel(const std::string& input) { model::parseModelYaml(input, "fuzz_model.yaml"); }
 void parseSuite(const std::string& input) { benchmarks::loadSuite(writeInput(input, ".yaml")); }
 void parseNumbers(const std::string& input) { parseNumberList(input, "--joints"); }
+// The completeness check of campaign logs says what is wrong instead of throwing; a defect counts as rejected.
+void parseOmplLog(const std::string& input) {
+  if (const auto defect = benchmarks::benchmarkLogProblem(writeInput(input, ".log"))) throw Error(*defect);
+}
+void parseBaseline(const std::string& input) {
+  const auto file = writeInput(input, ".json");
+  benchmarks::baselineResults(benchmarks::readBaseline(file), file.string());
+}
 
 }  // namespace
 
@@ -72,6 +82,8 @@ const std::vector<ParserTarget>& parserTargets() {
       {"model", ".yaml", parseModel},
       {"suite", ".yaml", parseSuite},
       {"number_list", "", parseNumbers},
+      {"ompl_log", ".log", parseOmplLog},
+      {"baseline", ".json", parseBaseline},
   };
   return targets;
 }

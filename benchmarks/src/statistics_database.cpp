@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -66,7 +67,10 @@ public:
                      [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; })) {
       fail("expected 'N " + suffix + "', found '" + shortened(line) + "'");
     }
-    return std::stoul(line.substr(0, space));
+    unsigned long count = 0;
+    const auto [end, error] = std::from_chars(line.data(), line.data() + space, count);
+    if (error != std::errc() || end != line.data() + space) fail("the count in '" + shortened(line) + "' is too large");
+    return count;
   }
 
   // A line "<value> <suffix>" (the seed, the limits, the total time).

@@ -12,6 +12,7 @@
 namespace {
 
 const std::filesystem::path kData = ARCPLAN_TEST_DATA_DIR;
+const std::filesystem::path kSeeds = std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / ".." / "tests" / "fuzz" / "seeds";
 const std::filesystem::path kSuites = std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / ".." / "benchmarks" / "suites";
 
 std::string rtdeLog(char separator) {
@@ -59,6 +60,9 @@ std::vector<std::string> seedsFor(const std::string& target) {
   // Not generated.yaml: every valid variant of it would generate its 50 problems (seconds each).
   if (target == "suite") return {readFile(kSuites / "thesis.yaml")};
   if (target == "number_list") return {"0.1,-0.2,0.3,1e-3,-4,5"};
+  // A campaign log and a baseline of a tiny thesis campaign (RRTConnect and arc-auto, 2 runs).
+  if (target == "ompl_log") return {readFile(kSeeds / "ompl_benchmark.log")};
+  if (target == "baseline") return {readFile(kSeeds / "baseline.json")};
   return {};
 }
 
@@ -156,6 +160,6 @@ TEST_P(ParserFuzz, MutatedInputsParseOrGiveAnArcplanError) {
 INSTANTIATE_TEST_SUITE_P(Parsers, ParserFuzz,
                          ::testing::Values("urdf", "scene", "allowed_collisions", "joint_path", "rtde_log",
                                            "headerless_log", "column_map", "force_transfer", "model", "suite",
-                                           "number_list"));
+                                           "number_list", "ompl_log", "baseline"));
 
 }  // namespace
