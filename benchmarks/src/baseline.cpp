@@ -56,10 +56,11 @@ public:
     if (!value.is_string()) fail(join(field, key), "a string");
     return value.get<std::string>();
   }
-  long long count(const nlohmann::json& object, const std::string& key, const std::string& field, long long minimum) const {
+  long long count(const nlohmann::json& object, const std::string& key, const std::string& field, long long minimum,
+                  long long maximum = kMaximumRuns) const {
     const auto& value = member(object, key, field);
-    if (!value.is_number_integer() || value.get<long long>() < minimum) {
-      fail(join(field, key), "a whole number of at least " + std::to_string(minimum));
+    if (!value.is_number_integer() || value.get<long long>() < minimum || value.get<long long>() > maximum) {
+      fail(join(field, key), "a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum));
     }
     return value.get<long long>();
   }
@@ -74,8 +75,9 @@ public:
     return value;
   }
 
-  void checkMetric(const nlohmann::json& summary, const std::string& field) const {
-    count(summary, "count", field, 1);
+  // `runs`: the result's runs; a summary of more values than runs is not one of this campaign.
+  void checkMetric(const nlohmann::json& summary, const std::string& field, long long runs) const {
+    count(summary, "count", field, 1, runs);
     const bool exact = summary.contains("value"), distribution = summary.contains("quantiles");
     if (exact == distribution) fail(field, "either \"value\" or \"quantiles\"");
     if (exact) {
@@ -104,7 +106,7 @@ public:
     number(campaign, "time_limit_s", "campaign");
     number(campaign, "vmax_mps", "campaign");
     if (campaign.contains("iteration_budget") && !campaign["iteration_budget"].is_null()) {
-      count(campaign, "iteration_budget", "campaign", 1);
+      count(campaign, "iteration_budget", "campaign", 1, kMaximumIterationBudget);
     }
     const auto& problems = array(campaign, "problems", "campaign");
     for (std::size_t i = 0; i < problems.size(); ++i) {
@@ -125,7 +127,7 @@ public:
       }
       const auto& metrics = member(results[i], "metrics", field);
       if (!metrics.is_object()) fail(field + ".metrics", "an object");
-      for (const auto& [key, summary] : metrics.items()) checkMetric(summary, field + ".metrics." + key);
+      for (const auto& [key, summary] : metrics.items()) checkMetric(summary, field + ".metrics." + key, runs);
     }
   }
 

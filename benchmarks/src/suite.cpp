@@ -16,7 +16,6 @@ namespace arcplan::benchmarks {
 namespace {
 
 // Bounds that keep a typo from starting a campaign of months or generating problems for hours.
-constexpr long long kMaximumRuns = 100000;
 constexpr long long kMaximumGeneratedPerKind = 1000;
 
 // Reading context for messages: "suites/x.yaml:12: field 'runs': ..."

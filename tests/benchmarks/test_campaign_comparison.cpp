@@ -452,6 +452,15 @@ TEST(CampaignComparison, BadInputNamesTheFileAndTheField) {
                                                                "finite numbers in increasing order"),
             std::string::npos)
       << broken;
+  // More summarised values than runs (a count of 10^12 would otherwise be expanded into that many values).
+  auto inflated = benchmarks::makeBaseline(folder);
+  inflated["results"][0]["metrics"]["execution_time_s"]["count"] = 1000000000000LL;
+  std::ofstream(directory / "inflated.json") << inflated.dump();
+  const auto tooMany = errorMessageOf([&] { benchmarks::readBaseline(directory / "inflated.json"); });
+  EXPECT_NE(tooMany.find("results[0].metrics.execution_time_s.count: expected a whole number from 1 to " +
+                         inflated["results"][0]["runs"].dump()),
+            std::string::npos)
+      << tooMany;
   std::ofstream(directory / "truncated.json") << baseline.dump().substr(0, 100);
   EXPECT_NE(errorMessageOf([&] { benchmarks::readBaseline(directory / "truncated.json"); }).find("not valid JSON"),
             std::string::npos);

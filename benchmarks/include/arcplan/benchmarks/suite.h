@@ -45,6 +45,8 @@ struct GeneratorSettings {
 // Largest iteration budget of a suite or --budget (OMPL's IterationTerminationCondition counts in
 // an unsigned int; more iterations than this would not end within any sensible safety time cap).
 constexpr unsigned kMaximumIterationBudget = 1000000000;
+// Runs per (problem, planner) a suite (and a baseline) may ask for.
+constexpr long long kMaximumRuns = 100000;
 
 struct Suite {
   std::string name;  // [A-Za-z0-9_-]
