@@ -52,7 +52,8 @@ void printNotes(const std::vector<std::string>& notes) {
 void printOutputs(const std::filesystem::path& directory, const std::filesystem::path& database) {
   std::cout << "\ndatabase  " << database.string() << "\nranking   " << (directory / "ranking.md").string() << ", "
             << (directory / "ranking.json").string() << ", " << (directory / "ranking.csv").string() << "\n";
-  if (std::filesystem::exists(directory / "plots")) std::cout << "plots     " << (directory / "plots").string() << "/\n";
+  if (std::filesystem::exists(directory / "plots"))
+    std::cout << "plots     " << (directory / "plots").string() << "/\n";
 }
 
 void runBench(const BenchOptions& options) {
@@ -76,13 +77,15 @@ void runBench(const BenchOptions& options) {
     suite.iterationBudget = static_cast<unsigned>(*options.budget);
   }
   if (options.vMax) {
-    if (!(*options.vMax > 0.0) || !std::isfinite(*options.vMax)) throw UsageError("--vmax must be a positive TCP speed in m/s");
+    if (!(*options.vMax > 0.0) || !std::isfinite(*options.vMax))
+      throw UsageError("--vmax must be a positive TCP speed in m/s");
     suite.vMax = *options.vMax;
   }
   if (options.workers < 1) throw UsageError("--workers must be at least 1");
 
   benchmarks::CampaignOptions campaign;
-  campaign.outDirectory = options.out.empty() ? std::filesystem::path("results") / suite.name : std::filesystem::path(options.out);
+  campaign.outDirectory =
+      options.out.empty() ? std::filesystem::path("results") / suite.name : std::filesystem::path(options.out);
   try {
     campaign.shard = benchmarks::parseShard(options.shard);
   } catch (const Error& e) {
@@ -176,9 +179,10 @@ void registerBenchCommand(CLI::App& app) {
       "PCHIP scaling at the TCP speed limit, and plots. Resumable (completed jobs are skipped) and shardable.");
   command->add_option("--suite", options->suite, "built-in suite name (thesis, generated) or a suite YAML file")
       ->capture_default_str();
-  command->add_option("--planners", options->planners,
-                      "only these planner configurations of the suite, comma-separated (a name the suite does not "
-                      "configure is taken as a registry planner with default parameters)")
+  command
+      ->add_option("--planners", options->planners,
+                   "only these planner configurations of the suite, comma-separated (a name the suite does not "
+                   "configure is taken as a registry planner with default parameters)")
       ->delimiter(',');
   command->add_option("--runs", options->runs, "runs per planner and problem (default: the suite's)");
   command->add_option("--time", options->time, "time limit per run [s] (default: the suite's)");
@@ -186,18 +190,22 @@ void registerBenchCommand(CLI::App& app) {
                       "iterations per run (default: the suite's `budget`, else none): runs end after this many "
                       "whatever the machine's load, so they repeat exactly; --time becomes a safety cap "
                       "(docs/reproducibility.md)");
-  command->add_option("--vmax", options->vMax, "TCP speed limit of the time scaling [m/s] (default: the suite's, 0.25)");
+  command->add_option("--vmax", options->vMax,
+                      "TCP speed limit of the time scaling [m/s] (default: the suite's, 0.25)");
   command->add_option("--out", options->out, "output directory (default: results/<suite>)");
-  command->add_option("--shard", options->shard,
-                      "run shard K of N (K = 1..N): a deterministic 1/N share of the (problem, planner) jobs, e.g. "
-                      "--shard $SLURM_ARRAY_TASK_ID/N")
+  command
+      ->add_option("--shard", options->shard,
+                   "run shard K of N (K = 1..N): a deterministic 1/N share of the (problem, planner) jobs, e.g. "
+                   "--shard $SLURM_ARRAY_TASK_ID/N")
       ->capture_default_str();
-  command->add_option("-j,--workers", options->workers, "worker processes running jobs in parallel (default: all cores)")
+  command
+      ->add_option("-j,--workers", options->workers, "worker processes running jobs in parallel (default: all cores)")
       ->capture_default_str();
   command->add_flag("--no-plots", options->noPlots, "do not draw the PNG plots");
   command->add_flag("--quiet", options->quiet, "no progress output");
   command->add_option("--json", options->json, "write the campaign summary and ranking as JSON ('-' for stdout)");
-  command->add_option("--html", options->html, "also write the campaign's self-contained HTML report to this file (docs/report.md)");
+  command->add_option("--html", options->html,
+                      "also write the campaign's self-contained HTML report to this file (docs/report.md)");
 
   auto rankOptions = std::make_shared<RankOptions>();
   CLI::App* rank = command->add_subcommand(
@@ -212,7 +220,8 @@ void registerBenchCommand(CLI::App& app) {
   rank->add_option("--out", rankOptions->out, "folder for ranking.{md,json,csv} and plots/ (default: the database's)");
   rank->add_flag("--no-plots", rankOptions->noPlots, "do not draw the PNG plots");
   rank->add_option("--json", rankOptions->json, "write the ranking as JSON ('-' for stdout)");
-  rank->add_option("--html", rankOptions->html, "also write the self-contained HTML report of the database to this file");
+  rank->add_option("--html", rankOptions->html,
+                   "also write the self-contained HTML report of the database to this file");
   rank->callback([rankOptions] { runRank(*rankOptions); });
 
   registerBenchCompareCommands(*command);

@@ -51,27 +51,33 @@ struct BaselineCheckOptions {
 };
 
 void addComparisonOptions(CLI::App& command, ComparisonFlags& flags) {
-  command.add_option("--alpha", flags.options.alpha,
-                     "family-wise error rate of the stochastic tests after Holm's correction, in (0, 1)")
+  command
+      .add_option("--alpha", flags.options.alpha,
+                  "family-wise error rate of the stochastic tests after Holm's correction, in (0, 1)")
       ->capture_default_str();
-  command.add_option("--min-effect", flags.options.minEffect,
-                     "smallest change flagged for stochastic planners: relative median change, or success-rate "
-                     "difference (0.05 = 5 %, 5 percentage points)")
+  command
+      .add_option("--min-effect", flags.options.minEffect,
+                  "smallest change flagged for stochastic planners: relative median change, or success-rate "
+                  "difference (0.05 = 5 %, 5 percentage points)")
       ->capture_default_str();
-  command.add_option("--tolerance", flags.options.tolerance,
-                     "exact comparison of zero-variance results, in the metric's unit (m, s, ...)")
+  command
+      .add_option("--tolerance", flags.options.tolerance,
+                  "exact comparison of zero-variance results, in the metric's unit (m, s, ...)")
       ->capture_default_str();
-  command.add_option("--solve-time-floor", flags.options.solveTimeFloor,
-                     "solve-time changes of the median below this many seconds are never flagged (wall-clock noise)")
+  command
+      .add_option("--solve-time-floor", flags.options.solveTimeFloor,
+                  "solve-time changes of the median below this many seconds are never flagged (wall-clock noise)")
       ->capture_default_str();
-  command.add_option("--metrics", flags.options.metrics,
-                     "metric keys to compare besides the success rate, comma-separated (docs/metrics.md)")
+  command
+      .add_option("--metrics", flags.options.metrics,
+                  "metric keys to compare besides the success rate, comma-separated (docs/metrics.md)")
       ->delimiter(',')
       ->default_str(joinText(benchmarks::defaultComparedMetrics(), ","));
   command.add_option("--out", flags.out, "write comparison.md, comparison.json and comparison.csv to this folder");
   command.add_option("--json", flags.json, "write the comparison as JSON to this file ('-' for stdout)");
-  command.add_option("--html", flags.html,
-                     "also write the comparison as one self-contained HTML page (verdicts, table, side-by-side box plots)");
+  command.add_option(
+      "--html", flags.html,
+      "also write the comparison as one self-contained HTML page (verdicts, table, side-by-side box plots)");
   command.add_flag("--all", flags.all, "print every row, also those with verdict \"same\"");
 }
 
@@ -86,7 +92,8 @@ void reportComparison(const benchmarks::CampaignComparison& comparison, const be
   }
   if (flags.json != "-") std::cout << benchmarks::comparisonMarkdown(comparison, !flags.all);
   if (!flags.out.empty()) {
-    std::cerr << "bench: comparison written to " << (std::filesystem::path(flags.out) / "comparison.{md,json,csv}").string() << "\n";
+    std::cerr << "bench: comparison written to "
+              << (std::filesystem::path(flags.out) / "comparison.{md,json,csv}").string() << "\n";
   }
   const int worse = comparison.count(benchmarks::Verdict::Worse);
   if (worse > 0) {
@@ -125,10 +132,12 @@ public:
   TemporaryCampaignDirectory() {
     std::random_device device;
     for (int attempt = 0; attempt < 100 && path_.empty(); ++attempt) {
-      const auto candidate = std::filesystem::temp_directory_path() / ("arcplan-baseline-check-" + std::to_string(device()));
+      const auto candidate =
+          std::filesystem::temp_directory_path() / ("arcplan-baseline-check-" + std::to_string(device()));
       if (std::filesystem::create_directory(candidate)) path_ = candidate;
     }
-    if (path_.empty()) throw Error("cannot create a temporary folder under " + std::filesystem::temp_directory_path().string());
+    if (path_.empty())
+      throw Error("cannot create a temporary folder under " + std::filesystem::temp_directory_path().string());
   }
   TemporaryCampaignDirectory(const TemporaryCampaignDirectory&) = delete;
   TemporaryCampaignDirectory& operator=(const TemporaryCampaignDirectory&) = delete;
@@ -161,7 +170,8 @@ void runBaselineCheck(const BaselineCheckOptions& options) {
   campaign.plots = false;
   campaign.showProgress = !options.quiet;
   std::cerr << "bench baseline: running suite " << suite.name << " again (" << suite.problems.size() << " problems x "
-            << suite.planners.size() << " planners, " << suite.runs << " runs) -> " << campaign.outDirectory.string() << "\n";
+            << suite.planners.size() << " planners, " << suite.runs << " runs) -> " << campaign.outDirectory.string()
+            << "\n";
   const auto result = benchmarks::runCampaign(suite, campaign);
   if (result.interrupted) {
     if (temporaryDirectory) temporaryDirectory->keep();
@@ -182,19 +192,24 @@ void runBaselineCheck(const BaselineCheckOptions& options) {
 void registerBenchCompareCommands(CLI::App& bench) {
   auto compareOptions = std::make_shared<CompareOptions>();
   CLI::App* compare = bench.add_subcommand(
-      "compare", "Compare two campaigns planner by planner: better / same / worse per metric; exit code 1 if any is worse");
+      "compare",
+      "Compare two campaigns planner by planner: better / same / worse per metric; exit code 1 if any is worse");
   compare->footer(
       "BASE and NEW are campaign folders, benchmark databases or baseline files. Runs are matched by problem and "
       "planner configuration name. Zero-variance results (the arc planner) are compared exactly; stochastic ones with "
       "Fisher's exact test (success) and the Mann-Whitney U test (metrics), Holm-corrected. Exit codes: 0 nothing "
       "worse, 1 something worse or bad input, 2 usage error. See docs/benchmarks.md, \"Comparing campaigns\".");
-  compare->add_option("BASE", compareOptions->base, "the reference: campaign folder, benchmark.db or baseline file")->required();
-  compare->add_option("NEW", compareOptions->current, "the campaign to judge: campaign folder, benchmark.db or baseline file")
+  compare->add_option("BASE", compareOptions->base, "the reference: campaign folder, benchmark.db or baseline file")
+      ->required();
+  compare
+      ->add_option("NEW", compareOptions->current,
+                   "the campaign to judge: campaign folder, benchmark.db or baseline file")
       ->required();
   addComparisonOptions(*compare, compareOptions->flags);
   compare->callback([compareOptions] { runCompare(*compareOptions); });
 
-  CLI::App* baseline = bench.add_subcommand("baseline", "Save a campaign as a compact baseline file, or check against one (CI)");
+  CLI::App* baseline =
+      bench.add_subcommand("baseline", "Save a campaign as a compact baseline file, or check against one (CI)");
   baseline->require_subcommand(1);
   baseline->footer(
       "A baseline is one JSON file holding a campaign's settings and, per problem and planner, the exact values of "
@@ -202,10 +217,12 @@ void registerBenchCompareCommands(CLI::App& bench) {
       "and compares (exit 1 if anything is worse). See docs/benchmarks.md, \"Comparing campaigns\".");
 
   auto saveOptions = std::make_shared<BaselineSaveOptions>();
-  CLI::App* save = baseline->add_subcommand("save", "Write the baseline of a finished campaign folder (JSON, to commit)");
+  CLI::App* save =
+      baseline->add_subcommand("save", "Write the baseline of a finished campaign folder (JSON, to commit)");
   save->add_option("DIR", saveOptions->campaign, "finished campaign folder (campaign.json, benchmark.db)")->required();
   save->add_option("FILE", saveOptions->file, "baseline file to write")->required();
-  save->footer("The folder must hold a finished campaign (campaign.json and benchmark.db). The file is written atomically.");
+  save->footer(
+      "The folder must hold a finished campaign (campaign.json and benchmark.db). The file is written atomically.");
   save->callback([saveOptions] { runBaselineSave(*saveOptions); });
 
   auto checkOptions = std::make_shared<BaselineCheckOptions>();
@@ -216,7 +233,9 @@ void registerBenchCompareCommands(CLI::App& bench) {
                     "suite file to run (default: the baseline's suite by name, as `bench --suite NAME` finds it)");
   check->add_option("--campaign-out", checkOptions->campaignOut,
                     "keep the new campaign in this folder (default: a temporary folder, removed afterwards)");
-  check->add_option("-j,--workers", checkOptions->workers, "worker processes running jobs in parallel (default: all cores)")
+  check
+      ->add_option("-j,--workers", checkOptions->workers,
+                   "worker processes running jobs in parallel (default: all cores)")
       ->capture_default_str();
   check->add_flag("--quiet", checkOptions->quiet, "no progress output");
   check->footer(

@@ -7,10 +7,10 @@ namespace arcplan::apps {
 
 enum class ExitCode : int {
   Success = 0,
-  BadInput = 1,      // a file or value arcplan cannot use, or a request it cannot carry out
-  Usage = 2,         // the command line itself is wrong (as most Unix tools)
-  Internal = 3,      // a bug: an exception that is not an arcplan::Error
-  Interrupted = 130, // Ctrl-C / SIGTERM (128 + SIGINT, as shells report it)
+  BadInput = 1,       // a file or value arcplan cannot use, or a request it cannot carry out
+  Usage = 2,          // the command line itself is wrong (as most Unix tools)
+  Internal = 3,       // a bug: an exception that is not an arcplan::Error
+  Interrupted = 130,  // Ctrl-C / SIGTERM (128 + SIGINT, as shells report it)
 };
 
 struct ExitCodeDescription {

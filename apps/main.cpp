@@ -30,9 +30,10 @@ int main(int argc, char** argv) {
   // Keeping them in the heap, never trimmed, reuses the pages; the peak stays the same.
   mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, INT_MAX);
-  CLI::App app{"arcplan — arc obstacle-avoidance planning, FCL collision checking and TCP-speed time scaling "
-               "for the UR10e, OMPL benchmarks, and robot models checked against measurements",
-               "arcplan"};
+  CLI::App app{
+      "arcplan — arc obstacle-avoidance planning, FCL collision checking and TCP-speed time scaling "
+      "for the UR10e, OMPL benchmarks, and robot models checked against measurements",
+      "arcplan"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(ARCPLAN_VERSION));
   app.footer(exitCodeFooter());

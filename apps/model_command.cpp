@@ -37,7 +37,8 @@ void addKeepParameters(CLI::App& command, ModelOptions& o, const std::string& wh
 
 // The report shows the session kept in --out, so --html needs it.
 void addHtmlOption(CLI::App& command, ModelOptions& o, CLI::Option* out) {
-  command.add_option("--html", o.html, "also write the session's self-contained HTML report (of --out DIR) to this file")
+  command
+      .add_option("--html", o.html, "also write the session's self-contained HTML report (of --out DIR) to this file")
       ->needs(out);
 }
 
@@ -56,7 +57,8 @@ void addDataOptions(CLI::App& command, ModelOptions& o) {
                      "(1-based columns)");
   command.add_option("--rows", o.rows, "use only these 1-based file lines of --data, e.g. 355-5090");
   command.add_option("--validate-rows", o.validateRows, "use only these 1-based file lines of --validate");
-  auto* out = command.add_option("--out", o.out, "directory for PNG plots, their data, and the session history (session.json)");
+  auto* out =
+      command.add_option("--out", o.out, "directory for PNG plots, their data, and the session history (session.json)");
   command.add_option("--json", o.json, "write the result as JSON to this file ('-' for stdout)");
   addHtmlOption(command, o, out);
 }
@@ -65,8 +67,10 @@ model::DataFiles dataFiles(const ModelOptions& o) {
   model::DataFiles files;
   files.data = o.data;
   files.validation = o.validate;
-  if (!o.columns.empty()) files.dataOptions.columns = files.validationOptions.columns = model::parseColumnMap(o.columns);
-  if (!o.rows.empty()) std::tie(files.dataOptions.firstLine, files.dataOptions.lastLine) = model::parseLineRange(o.rows, "--rows");
+  if (!o.columns.empty())
+    files.dataOptions.columns = files.validationOptions.columns = model::parseColumnMap(o.columns);
+  if (!o.rows.empty())
+    std::tie(files.dataOptions.firstLine, files.dataOptions.lastLine) = model::parseLineRange(o.rows, "--rows");
   if (!o.validateRows.empty()) {
     std::tie(files.validationOptions.firstLine, files.validationOptions.lastLine) =
         model::parseLineRange(o.validateRows, "--validate-rows");
@@ -98,8 +102,8 @@ void runCompare(const ModelOptions& o) {
   const auto spec = model::loadModelFile(o.model);
   const auto loaded = model::loadData(spec, dataFiles(o));
   printQuality(loaded);
-  const auto fitted = o.keepParameters ? model::modelFromParameters(spec, loaded.data, false)
-                                       : model::fitModel(spec, loaded.data);
+  const auto fitted =
+      o.keepParameters ? model::modelFromParameters(spec, loaded.data, false) : model::fitModel(spec, loaded.data);
   const auto comparison = model::compareModel(fitted, loaded.data, loaded.validationOrNull());
   std::cout << model::formatComparison(comparison) << "\n" << model::formatParameters(fitted);
   if (!o.json.empty()) writeJson(o.json, model::toJson(comparison, fitted, loaded.data));
@@ -112,7 +116,8 @@ void runCompare(const ModelOptions& o) {
     reportPlot(outcome, directory);
     model::appendSessionStep(directory / "session.json",
                              {"compare", effectNames(spec), comparison.data, comparison.validation});
-    writeJson(directory / "compare.json", model::toJson(comparison, fitted, loaded.data));  // worst windows for the report
+    writeJson(directory / "compare.json",
+              model::toJson(comparison, fitted, loaded.data));  // worst windows for the report
   }
   writeSessionReport(o);
 }
@@ -150,7 +155,8 @@ void runFit(const ModelOptions& o) {
     const std::filesystem::path directory = o.out;
     auto outcome = model::plotFitStep(step, directory);
     if (outcome.ok) outcome = model::plotComparison(step.after, loaded.data, directory, "fit_data");
-    if (outcome.ok && loaded.validation) outcome = model::plotComparison(step.after, *loaded.validation, directory, "fit_validation");
+    if (outcome.ok && loaded.validation)
+      outcome = model::plotComparison(step.after, *loaded.validation, directory, "fit_validation");
     reportPlot(outcome, directory);
     std::string command = "fit";
     for (const auto& a : step.added) command += " +" + a;
@@ -224,20 +230,23 @@ void registerModelCommand(CLI::App& app) {
   auto o = std::make_shared<ModelOptions>();
 
   auto* compare = modelCommand->add_subcommand(
-      "compare", "fit the model to --data and report RMSE, NRMSE, R² per channel (and on --validate), the worst time "
-                 "windows and the residual by regime");
+      "compare",
+      "fit the model to --data and report RMSE, NRMSE, R² per channel (and on --validate), the worst time "
+      "windows and the residual by regime");
   addDataOptions(*compare, *o);
   addKeepParameters(*compare, *o, "compare them with the data as they are");
   compare->callback([o] { runCompare(*o); });
 
   auto* diagnose = modelCommand->add_subcommand(
-      "diagnose", "fit every catalogue effect missing from the model, and terms from every joint's signals, to the "
-                  "residual, score them on held-out data (--validate, else time-blocked cross-validation) and rank "
-                  "the explanations");
+      "diagnose",
+      "fit every catalogue effect missing from the model, and terms from every joint's signals, to the "
+      "residual, score them on held-out data (--validate, else time-blocked cross-validation) and rank "
+      "the explanations");
   addDataOptions(*diagnose, *o);
   diagnose->add_option("--folds", o->folds, "cross-validation folds without --validate")->capture_default_str();
-  diagnose->add_option("--min-reduction", o->minimumReduction,
-                       "smallest fraction of a channel's held-out residual RMS an effect must remove")
+  diagnose
+      ->add_option("--min-reduction", o->minimumReduction,
+                   "smallest fraction of a channel's held-out residual RMS an effect must remove")
       ->capture_default_str();
   addKeepParameters(*diagnose, *o, "every candidate is fitted to what the kept model leaves");
   diagnose->add_flag("--no-discovery", o->noDiscovery,
@@ -247,7 +256,8 @@ void registerModelCommand(CLI::App& app) {
   auto* fit = modelCommand->add_subcommand(
       "fit", "add effects to the model, refit, and report the errors before and after on --data and --validate");
   addDataOptions(*fit, *o);
-  fit->add_option("--add", o->add, "effect to add, optionally on some joints: load_friction:1,2 (repeatable)")->required();
+  fit->add_option("--add", o->add, "effect to add, optionally on some joints: load_friction:1,2 (repeatable)")
+      ->required();
   fit->add_option("--save", o->save, "write the refitted model (with parameters and standard errors) to this file");
   addKeepParameters(*fit, *o, "only the added effects are fitted");
   fit->callback([o] { runFit(*o); });
@@ -260,20 +270,23 @@ void registerModelCommand(CLI::App& app) {
   history->callback([o] { runHistory(*o); });
 
   auto* simulate = modelCommand->add_subcommand(
-      "simulate", "write synthetic UR10e logs: an excitation (or given) trajectory, the controller's target_moment, and "
-                  "currents or positions from the model file's effects (its parameters, else typical UR10e values) "
-                  "plus noise");
+      "simulate",
+      "write synthetic UR10e logs: an excitation (or given) trajectory, the controller's target_moment, and "
+      "currents or positions from the model file's effects (its parameters, else typical UR10e values) "
+      "plus noise");
   simulate->add_option("--model", o->model, "the true model: kind, effects and optional parameters")->required();
   simulate->add_option("--data", o->data, "log file to write")->required();
   simulate->add_option("--validate", o->validate, "also write a second log (another trajectory and noise seed)");
-  simulate->add_option("--trajectory", o->trajectory,
-                       "'excitation' (Fourier series) or a CSV with t and q0..q5 (e.g. a planned and scaled path)")
+  simulate
+      ->add_option("--trajectory", o->trajectory,
+                   "'excitation' (Fourier series) or a CSV with t and q0..q5 (e.g. a planned and scaled path)")
       ->capture_default_str();
   simulate->add_option("--duration", o->duration, "excitation length [s]")->capture_default_str();
   simulate->add_option("--rate", o->rate, "sampling rate [Hz]")->capture_default_str();
   simulate->add_option("--harmonics", o->harmonics, "harmonics of the excitation")->capture_default_str();
   simulate->add_option("--seed", o->seed, "random seed of the trajectory and the noise")->capture_default_str();
-  simulate->add_option("--noise", o->noise, "noise standard deviation (default 0.05 A for currents, 2e-5 rad for positions)");
+  simulate->add_option("--noise", o->noise,
+                       "noise standard deviation (default 0.05 A for currents, 2e-5 rad for positions)");
   simulate->add_option("--format", o->format, "rtde (ur_rtde, comma-separated) or record (record.py, space-separated)")
       ->capture_default_str();
   simulate->add_option("--json", o->json, "write a summary as JSON to this file ('-' for stdout)");

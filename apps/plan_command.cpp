@@ -159,7 +159,8 @@ void runPlan(const PlanOptions& options) {
   // OMPL's seed is process-global and must be set before anything random exists.
   if (options.seed) ompl::RNG::setSeed(*options.seed);
   ompl::msg::setLogLevel(options.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
-  if (!(options.time > 0.0) || !std::isfinite(options.time)) throw UsageError("--time must be a positive number of seconds");
+  if (!(options.time > 0.0) || !std::isfinite(options.time))
+    throw UsageError("--time must be a positive number of seconds");
   if (options.maxTcpSpeed && (!(*options.maxTcpSpeed > 0.0) || !std::isfinite(*options.maxTcpSpeed))) {
     throw UsageError("--vmax must be a positive TCP speed in m/s");
   }
@@ -242,8 +243,8 @@ void runPlan(const PlanOptions& options) {
       return;
     }
     if (havePath) {
-      throw Error("planner " + plannerName + " found only an approximate path (--allow-approximate accepts it): " +
-                  reason);
+      throw Error("planner " + plannerName +
+                  " found only an approximate path (--allow-approximate accepts it): " + reason);
     }
     throw Error("planner " + plannerName + " found no path: " + reason);
   }

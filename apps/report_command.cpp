@@ -38,11 +38,15 @@ void registerReportCommand(CLI::App& app) {
   };
   auto options = std::make_shared<ReportOptions>();
   auto* command = app.add_subcommand(
-      "report", "one self-contained HTML file from a benchmark campaign (folder or benchmark.db) or a model session folder");
-  command->add_option("input", options->input, "campaign folder, benchmark.db, or model session folder (--out of arcplan model)")
+      "report",
+      "one self-contained HTML file from a benchmark campaign (folder or benchmark.db) or a model session folder");
+  command
+      ->add_option("input", options->input,
+                   "campaign folder, benchmark.db, or model session folder (--out of arcplan model)")
       ->required();
   command->add_option("-o,--out", options->out, "HTML file to write (default: report.html in the input folder)");
-  command->add_option("--json", options->json, "write {file, bytes, kind, missing} as JSON to this file ('-' for stdout)");
+  command->add_option("--json", options->json,
+                      "write {file, bytes, kind, missing} as JSON to this file ('-' for stdout)");
   command->callback([options] {
     const auto result = writeAndAnnounce(options->input, options->out);
     if (!options->json.empty()) {

@@ -32,7 +32,8 @@ void addRobotOptions(CLI::App& command, RobotOptions& options) {
 }
 
 robot::RobotModel loadModel(const RobotOptions& options) {
-  const std::filesystem::path urdf = options.urdf.empty() ? robot::ur10eUrdfPath() : std::filesystem::path(options.urdf);
+  const std::filesystem::path urdf =
+      options.urdf.empty() ? robot::ur10eUrdfPath() : std::filesystem::path(options.urdf);
   if (!std::filesystem::exists(urdf)) throw Error("URDF file " + urdf.string() + " does not exist");
   return robot::loadRobotModel(urdf, {"base_link", options.tip});
 }
@@ -52,8 +53,9 @@ Eigen::VectorXd parseJoints(const robot::RobotModel& model, const std::string& j
   for (int j = 0; j < model.dof(); ++j) {
     const auto& limits = model.joints()[j].limits;
     if (q[j] < limits.lower || q[j] > limits.upper) {
-      throw UsageError("--joints: joint " + std::to_string(j) + " (" + model.joints()[j].name + ") = " + std::to_string(q[j]) +
-                  " is outside its limits [" + std::to_string(limits.lower) + ", " + std::to_string(limits.upper) + "]");
+      throw UsageError("--joints: joint " + std::to_string(j) + " (" + model.joints()[j].name +
+                       ") = " + std::to_string(q[j]) + " is outside its limits [" + std::to_string(limits.lower) +
+                       ", " + std::to_string(limits.upper) + "]");
     }
   }
   return q;
@@ -86,7 +88,8 @@ void runInverseKinematics(const RobotOptions& options, const std::string& poseTe
   const auto model = loadModel(options);
   const robot::UrInverseKinematics ik(model);
   const auto values = parseVector(poseText, "--pose", 6);
-  const Eigen::Isometry3d target = robot::poseFromXyzRpy({values[0], values[1], values[2], values[3], values[4], values[5]});
+  const Eigen::Isometry3d target =
+      robot::poseFromXyzRpy({values[0], values[1], values[2], values[3], values[4], values[5]});
   const auto solutions = ik.solveAll(target);
   if (solutions.empty()) {
     throw Error("--pose: no inverse-kinematics solution: the pose is out of reach of " + model.name() +
@@ -138,12 +141,15 @@ nlohmann::json checkConfiguration(const collision::CollisionModel& model, const 
   collision::CollisionData data(model);
   const auto report = collision::collide(model, data, q);
   const auto distances = collision::distance(model, data, q);
-  const auto finiteOrNull = [](double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); };
+  const auto finiteOrNull = [](double value) {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+  };
   nlohmann::json collisions = nlohmann::json::array();
   for (const auto& [first, second] : report.collisions) collisions.push_back({first, second});
   std::cout << "  joints        " << std::setprecision(6) << q.transpose() << "\n"
             << "  valid         " << (report.valid ? "yes" : "no (in collision)") << "\n";
-  for (const auto& [first, second] : report.collisions) std::cout << "  collision     " << first << " - " << second << "\n";
+  for (const auto& [first, second] : report.collisions)
+    std::cout << "  collision     " << first << " - " << second << "\n";
   std::cout << std::fixed << std::setprecision(4);
   if (std::isfinite(distances.obstacleDistance)) {
     std::cout << "  obstacle      " << distances.obstacleDistance << " m (" << distances.obstaclePair.first << " - "
@@ -160,11 +166,13 @@ nlohmann::json checkConfiguration(const collision::CollisionModel& model, const 
           {"collisions", collisions},
           {"clearance_m", finiteOrNull(distances.minimum())},
           {"obstacle_distance_m", finiteOrNull(distances.obstacleDistance)},
-          {"obstacle_pair", distances.obstaclePair.first.empty() ? nlohmann::json()
-                                                                 : nlohmann::json{distances.obstaclePair.first, distances.obstaclePair.second}},
+          {"obstacle_pair", distances.obstaclePair.first.empty()
+                                ? nlohmann::json()
+                                : nlohmann::json{distances.obstaclePair.first, distances.obstaclePair.second}},
           {"self_distance_m", finiteOrNull(distances.selfDistance)},
-          {"self_pair", distances.selfPair.first.empty() ? nlohmann::json()
-                                                         : nlohmann::json{distances.selfPair.first, distances.selfPair.second}}};
+          {"self_pair", distances.selfPair.first.empty()
+                            ? nlohmann::json()
+                            : nlohmann::json{distances.selfPair.first, distances.selfPair.second}}};
 }
 
 void runCollisionCheck(const CheckOptions& options) {
@@ -220,16 +228,21 @@ void registerRobotCommand(CLI::App& app) {
 
   auto checkOptions = std::make_shared<CheckOptions>();
   auto* check = robotCommand->add_subcommand(
-      "check", "collision check of one configuration in a scene: validity, colliding pairs, clearance "
-               "(exit code 0 whether or not it collides; non-zero only for bad input)");
-  check->add_option("--scene", checkOptions->scene, "scene YAML (a path, or relative to arcplan's data folder, "
-                                                   "e.g. scenes/thesis_obstacle.yaml)")
+      "check",
+      "collision check of one configuration in a scene: validity, colliding pairs, clearance "
+      "(exit code 0 whether or not it collides; non-zero only for bad input)");
+  check
+      ->add_option("--scene", checkOptions->scene,
+                   "scene YAML (a path, or relative to arcplan's data folder, "
+                   "e.g. scenes/thesis_obstacle.yaml)")
       ->required();
   check->add_option("--joints", checkOptions->joints, "joint angles q0,...,q5 [rad]");
-  check->add_option("--query", checkOptions->query, "check the start and goal of this scene query instead "
-                                                   "(poses solved by IK nearest to their seed)");
-  check->add_option("--json", checkOptions->json, "write valid, collisions, clearance_m (and distances) as JSON to "
-                                                 "this file ('-' for stdout)");
+  check->add_option("--query", checkOptions->query,
+                    "check the start and goal of this scene query instead "
+                    "(poses solved by IK nearest to their seed)");
+  check->add_option("--json", checkOptions->json,
+                    "write valid, collisions, clearance_m (and distances) as JSON to "
+                    "this file ('-' for stdout)");
   check->callback([checkOptions] { runCollisionCheck(*checkOptions); });
 }
 

@@ -64,8 +64,9 @@ void plotTrajectory(const trajectory::TimedTrajectory& trajectory, const ScaleOp
   const std::filesystem::path csv =
       std::filesystem::temp_directory_path() / ("arcplan_scale_" + std::to_string(::getpid()) + ".csv");
   trajectory::writeTimedTrajectoryCsv(csv, trajectory);
-  std::vector<std::string> arguments{csv.string(), options.plot, "--vmax", formatNumber(trajectory.tcpSpeedLimit, 6),
-                                     "--title", std::filesystem::path(options.pathCsv).filename().string()};
+  std::vector<std::string> arguments{csv.string(), options.plot,
+                                     "--vmax",     formatNumber(trajectory.tcpSpeedLimit, 6),
+                                     "--title",    std::filesystem::path(options.pathCsv).filename().string()};
   for (int j = 0; j < 6; ++j) {
     arguments.insert(arguments.end(), {"--joint-limit", formatNumber(trajectory.jointSpeedLimits[j], 10)});
   }
@@ -96,11 +97,12 @@ void runScale(const ScaleOptions& options) {
   printMetrics(metrics, timed, path.size());
   if (!options.json.empty()) {
     nlohmann::json document = trajectory::toJson(metrics);
-    document["settings"] = {{"path_csv", options.pathCsv},
-                            {"vmax_mps", options.maxTcpSpeed},
-                            {"rise_time_s", options.maxTcpAcceleration ? nlohmann::json() : nlohmann::json(options.riseTime)},
-                            {"max_tcp_acceleration_mps2", options.maxTcpAcceleration ? nlohmann::json(*options.maxTcpAcceleration)
-                                                                                   : nlohmann::json()}};
+    document["settings"] = {
+        {"path_csv", options.pathCsv},
+        {"vmax_mps", options.maxTcpSpeed},
+        {"rise_time_s", options.maxTcpAcceleration ? nlohmann::json() : nlohmann::json(options.riseTime)},
+        {"max_tcp_acceleration_mps2",
+         options.maxTcpAcceleration ? nlohmann::json(*options.maxTcpAcceleration) : nlohmann::json()}};
     writeJson(options.json, document);
   }
   if (!options.trajectoryCsv.empty()) trajectory::writeTimedTrajectoryCsv(options.trajectoryCsv, timed);
@@ -126,7 +128,8 @@ void registerScaleCommand(CLI::App& app) {
   scale->add_option_function<double>(
       "--max-acc", [options](double value) { options->maxTcpAcceleration = value; },
       "TCP acceleration limit [m/s²] for the ramps, instead of --rise");
-  scale->add_option("--json", options->json, "write the metrics (docs/metrics.md keys) as JSON to this file ('-' for stdout)");
+  scale->add_option("--json", options->json,
+                    "write the metrics (docs/metrics.md keys) as JSON to this file ('-' for stdout)");
   scale->add_option("--traj-csv", options->trajectoryCsv,
                     "write the timed trajectory: t, q0..5, qd0..5, qdd0..5, tcp_speed, tcp_x/y/z every <= 2 ms");
   scale->add_option("--plot", options->plot, "PNG of the TCP speed profile, joint positions and velocities");

@@ -23,7 +23,8 @@ namespace {
 
 // File-based parsers get the input as a file; one per process, rewritten for every input.
 std::filesystem::path inputFile(const std::string& suffix) {
-  const std::filesystem::path base = std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
+  const std::filesystem::path base =
+      std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
   return base / ("arcplan_fuzz_" + std::to_string(::getpid()) + suffix);
 }
 

@@ -10,8 +10,8 @@
 namespace arcplan::fuzz {
 
 struct ParserTarget {
-  std::string name;          // "scene", "urdf", ...
-  std::string fileSuffix;    // file-based parsers read a temporary file with this suffix
+  std::string name;        // "scene", "urdf", ...
+  std::string fileSuffix;  // file-based parsers read a temporary file with this suffix
   void (*parse)(const std::string& input);
 };
 

@@ -40,9 +40,9 @@ const std::vector<Eigen::VectorXd>& states(StateSet set) {
         const auto& limits = model->robot().joints()[j].limits;
         q[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
       }
-      const bool keep = wanted == StateSet::Any ||
-                        (isCollisionFree(*model, data, q) &&
-                         (wanted == StateSet::Valid || distance(*model, data, q).minimum() < 0.02));
+      const bool keep =
+          wanted == StateSet::Any || (isCollisionFree(*model, data, q) &&
+                                      (wanted == StateSet::Valid || distance(*model, data, q).minimum() < 0.02));
       if (keep) result.push_back(q);
     }
     return result;
@@ -110,8 +110,10 @@ void CollisionIsCollisionFreePerStateMedian(benchmark::State& state) {
     perState.clear();
     for (const auto& q : qs) {
       const auto start = std::chrono::steady_clock::now();
-      for (int repetition = 0; repetition < 20; ++repetition) benchmark::DoNotOptimize(isCollisionFree(*model, data, q));
-      perState.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() / 20);
+      for (int repetition = 0; repetition < 20; ++repetition)
+        benchmark::DoNotOptimize(isCollisionFree(*model, data, q));
+      perState.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() /
+                         20);
     }
   }
   std::nth_element(perState.begin(), perState.begin() + perState.size() / 2, perState.end());
@@ -147,7 +149,8 @@ const std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>& motions(MotionSe
                                : std::uniform_real_distribution<double>(1.0, 5.0)(random) / direction.norm();
       const Eigen::VectorXd end = start + scale * direction;
       bool inside = true;
-      for (int j = 0; j < 6; ++j) inside = inside && joints[j].limits.lower <= end[j] && end[j] <= joints[j].limits.upper;
+      for (int j = 0; j < 6; ++j)
+        inside = inside && joints[j].limits.lower <= end[j] && end[j] <= joints[j].limits.upper;
       if (!inside) continue;
       if (wanted == MotionSet::Short && !isCollisionFree(*model, data, end)) continue;
       if (wanted == MotionSet::LongFree && !isMotionCollisionFree(*model, data, start, end, nullptr, fine)) continue;

@@ -17,14 +17,16 @@ using namespace arcplan::model;
 
 const ModelSpec& baseModel() {
   static const ModelSpec spec = parseModelYaml(
-      "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n", "base.yaml");
+      "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n",
+      "base.yaml");
   return spec;
 }
 
 // A 60 s, 500 Hz log with a hidden load-dependent friction, written once as RTDE CSV and removed
 // at exit.
 struct TemporaryLog {
-  TemporaryLog() : path(std::filesystem::temp_directory_path() / ("arcplan_perf_model_" + std::to_string(::getpid()) + ".csv")) {
+  TemporaryLog()
+      : path(std::filesystem::temp_directory_path() / ("arcplan_perf_model_" + std::to_string(::getpid()) + ".csv")) {
     const ModelSpec truth = parseModelYaml(
         "kind: joint_current\nload_torque: target_moment\n"
         "effects: [drive_gain, offset, coulomb, viscous, load_friction]\n",

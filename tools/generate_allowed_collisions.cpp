@@ -66,7 +66,9 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   double margin = 0.002;  // above the meshes' polygon error (0.5 mm) and STL rounding
   std::string output = collision::ur10eAllowedCollisionsPath().string();
-  app.add_option("--samples", samples, "random configurations per link pair")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--samples", samples, "random configurations per link pair")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--seed", seed, "seed of the configuration sampler (mt19937_64)")->capture_default_str();
   app.add_option("--margin", margin, "a pair closer than this in some sample stays checked [m]")->capture_default_str();
   app.add_option("--out", output, "output file")->capture_default_str();
@@ -87,8 +89,8 @@ int main(int argc, char** argv) {
         std::cout << links[a] << " - " << links[b] << ": " << s.collisions << " collisions, min distance "
                   << s.minimumDistance << " m\n";
         if (s.collisions == 0 && s.minimumDistance > margin) {
-          never << "  - {links: [" << s.first << ", " << s.second << "], reason: never, min_distance: "
-                << s.minimumDistance << "}\n";
+          never << "  - {links: [" << s.first << ", " << s.second
+                << "], reason: never, min_distance: " << s.minimumDistance << "}\n";
         } else {
           checked << "#   " << s.first << " - " << s.second << ": " << s.collisions << " of " << samples
                   << " samples in collision\n";

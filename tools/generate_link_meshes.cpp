@@ -39,26 +39,22 @@ const std::vector<LinkShape>& ur10eLinkShapes() {
   static const std::vector<LinkShape> shapes{
       {"base_link_inertia", {{{0, 0, 0}, {0, 0, 0.0993}, 0.095}}},
       {"shoulder_link",
-       {{{0, 0, -0.0817}, {0, 0, 0.0939}, 0.0765},     // shoulder-pan housing
-        {{0, -0.0946, 0}, {0, 0.0765, 0}, 0.0765}}},   // shoulder-lift housing
+       {{{0, 0, -0.0817}, {0, 0, 0.0939}, 0.0765},    // shoulder-pan housing
+        {{0, -0.0946, 0}, {0, 0.0765, 0}, 0.0765}}},  // shoulder-lift housing
       {"upper_arm_link",
-       {{{0, 0, 0.0948}, {0, 0, 0.2694}, 0.0767},              // shoulder-lift housing
-        {{-0.6127, 0, 0.1762}, {0, 0, 0.1762}, 0.0553},        // tube
-        {{-0.105, 0, 0.1762}, {0, 0, 0.1762}, 0.075},          // collar at the shoulder
-        {{-0.6127, 0, 0.1762}, {-0.535, 0, 0.1762}, 0.0601},   // collar at the elbow
+       {{{0, 0, 0.0948}, {0, 0, 0.2694}, 0.0767},                // shoulder-lift housing
+        {{-0.6127, 0, 0.1762}, {0, 0, 0.1762}, 0.0553},          // tube
+        {{-0.105, 0, 0.1762}, {0, 0, 0.1762}, 0.075},            // collar at the shoulder
+        {{-0.6127, 0, 0.1762}, {-0.535, 0, 0.1762}, 0.0601},     // collar at the elbow
         {{-0.6127, 0, 0.0986}, {-0.6127, 0, 0.2482}, 0.0601}}},  // elbow housing
       {"forearm_link",
-       {{{0, 0, -0.0189}, {0, 0, 0.0987}, 0.0588},              // elbow housing
-        {{-0.57155, 0, 0.0393}, {0, 0, 0.0393}, 0.0427},        // tube
-        {{-0.09, 0, 0.0393}, {0, 0, 0.0393}, 0.0585},           // collar at the elbow
-        {{-0.57155, 0, 0.0393}, {-0.505, 0, 0.0393}, 0.0455},   // collar at the wrist
+       {{{0, 0, -0.0189}, {0, 0, 0.0987}, 0.0588},                 // elbow housing
+        {{-0.57155, 0, 0.0393}, {0, 0, 0.0393}, 0.0427},           // tube
+        {{-0.09, 0, 0.0393}, {0, 0, 0.0393}, 0.0585},              // collar at the elbow
+        {{-0.57155, 0, 0.0393}, {-0.505, 0, 0.0393}, 0.0455},      // collar at the wrist
         {{-0.57155, 0, -0.0181}, {-0.57155, 0, 0.1060}, 0.047}}},  // wrist-1 housing
-      {"wrist_1_link",
-       {{{0, 0, -0.0683}, {0, 0, 0.0472}, 0.047},
-        {{0, -0.0666, 0}, {0, 0.0575, 0}, 0.047}}},
-      {"wrist_2_link",
-       {{{0, 0, -0.0534}, {0, 0, 0.0465}, 0.047},
-        {{0, -0.0570, 0}, {0, 0.0679, 0}, 0.047}}},
+      {"wrist_1_link", {{{0, 0, -0.0683}, {0, 0, 0.0472}, 0.047}, {{0, -0.0666, 0}, {0, 0.0575, 0}, 0.047}}},
+      {"wrist_2_link", {{{0, 0, -0.0534}, {0, 0, 0.0465}, 0.047}, {{0, -0.0570, 0}, {0, 0.0679, 0}, 0.047}}},
       {"wrist_3_link",
        {{{0, 0, -0.0489}, {0, 0, 0}, 0.0452},
         {{0, 0, -0.045}, {0, 0, -0.030}, 0.0516}}},  // the local bump next to the wrist-3 motor
@@ -70,10 +66,10 @@ const std::vector<LinkShape>& ur10eLinkShapes() {
 std::string binaryStl(const TriangleMesh& mesh) {
   aiScene scene;  // owns and frees everything attached below
   scene.mRootNode = new aiNode();
-  scene.mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene.mMaterials = new aiMaterial* [1] { new aiMaterial() };
   scene.mNumMaterials = 1;
   auto* aiMeshPtr = new aiMesh();
-  scene.mMeshes = new aiMesh*[1]{aiMeshPtr};
+  scene.mMeshes = new aiMesh* [1] { aiMeshPtr };
   scene.mNumMeshes = 1;
   scene.mRootNode->mMeshes = new unsigned[1]{0};
   scene.mRootNode->mNumMeshes = 1;
@@ -83,8 +79,8 @@ std::string binaryStl(const TriangleMesh& mesh) {
   aiMeshPtr->mVertices = new aiVector3D[mesh.vertices.size()];
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const auto& p = mesh.vertices[i];
-    aiMeshPtr->mVertices[i] = aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()),
-                                         static_cast<ai_real>(p.z()));
+    aiMeshPtr->mVertices[i] =
+        aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()), static_cast<ai_real>(p.z()));
   }
   aiMeshPtr->mNumFaces = static_cast<unsigned>(mesh.triangles.size());
   aiMeshPtr->mFaces = new aiFace[mesh.triangles.size()];

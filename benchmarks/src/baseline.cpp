@@ -33,7 +33,8 @@ nlohmann::json metricSummary(std::vector<double> values) {
     return summary;
   }
   std::vector<double> quantiles;
-  for (int i = 0; i < kQuantileCount; ++i) quantiles.push_back(quantileOfSorted(values, i / double(kQuantileCount - 1)));
+  for (int i = 0; i < kQuantileCount; ++i)
+    quantiles.push_back(quantileOfSorted(values, i / double(kQuantileCount - 1)));
   summary["quantiles"] = quantiles;
   return summary;
 }
@@ -43,9 +44,12 @@ class BaselineReader {
 public:
   explicit BaselineReader(std::filesystem::path file) : file_(std::move(file)) {}
 
-  static std::string join(const std::string& field, const std::string& key) { return field.empty() ? key : field + "." + key; }
+  static std::string join(const std::string& field, const std::string& key) {
+    return field.empty() ? key : field + "." + key;
+  }
   [[noreturn]] void fail(const std::string& field, const std::string& expected) const {
-    throw Error(file_.string() + ": " + field + ": expected " + expected + " (a file written by `arcplan bench baseline save`)");
+    throw Error(file_.string() + ": " + field + ": expected " + expected +
+                " (a file written by `arcplan bench baseline save`)");
   }
   const nlohmann::json& member(const nlohmann::json& object, const std::string& key, const std::string& field) const {
     if (!object.is_object() || !object.contains(key)) fail(join(field, key), "this field");
@@ -113,7 +117,8 @@ public:
       if (!problems[i].is_string()) fail("campaign.problems[" + std::to_string(i) + "]", "a problem name");
     }
     const auto& planners = array(campaign, "planners", "campaign");
-    for (std::size_t i = 0; i < planners.size(); ++i) text(planners[i], "name", "campaign.planners[" + std::to_string(i) + "]");
+    for (std::size_t i = 0; i < planners.size(); ++i)
+      text(planners[i], "name", "campaign.planners[" + std::to_string(i) + "]");
     const auto& results = array(baseline, "results", "");
     for (std::size_t i = 0; i < results.size(); ++i) {
       const std::string field = "results[" + std::to_string(i) + "]";
@@ -168,7 +173,8 @@ nlohmann::json makeBaseline(const std::filesystem::path& directory) {
                          {"metrics", metrics}});
     }
   }
-  nlohmann::json baseline{{"format", kFormatName}, {"version", kBaselineFormatVersion}, {"campaign", manifest}, {"results", entries}};
+  nlohmann::json baseline{
+      {"format", kFormatName}, {"version", kBaselineFormatVersion}, {"campaign", manifest}, {"results", entries}};
   BaselineReader(manifestFile).check(baseline);  // a campaign.json from elsewhere must not make an unreadable baseline
   return baseline;
 }
@@ -208,7 +214,8 @@ Suite suiteForBaseline(const nlohmann::json& baseline, const std::optional<std::
   const auto name = campaign.at("suite").get<std::string>();
   auto suite = loadSuite(suiteFile ? *suiteFile : findSuite(name));
   if (suite.name != name) {
-    throw Error(suite.sourceFile.string() + ": suite '" + suite.name + "', but the baseline was made with suite '" + name + "'");
+    throw Error(suite.sourceFile.string() + ": suite '" + suite.name + "', but the baseline was made with suite '" +
+                name + "'");
   }
   std::vector<std::string> labels;
   for (const auto& planner : campaign.at("planners")) labels.push_back(planner.at("name").get<std::string>());
@@ -218,7 +225,8 @@ Suite suiteForBaseline(const nlohmann::json& baseline, const std::optional<std::
   suite.problems = std::move(problems);
   std::vector<std::string> plots;
   for (const auto& plot : suite.plotProblems) {
-    const bool kept = std::any_of(suite.problems.begin(), suite.problems.end(), [&](const Problem& p) { return p.name == plot; });
+    const bool kept =
+        std::any_of(suite.problems.begin(), suite.problems.end(), [&](const Problem& p) { return p.name == plot; });
     if (kept) plots.push_back(plot);
   }
   suite.plotProblems = std::move(plots);

@@ -28,7 +28,8 @@ void writeProblemFiles(const Suite& suite, const std::filesystem::path& out) {
   for (const auto& problem : suite.problems) {
     if (suite.generator) {
       const auto file = out / "scenes" / (problem.name + ".yaml");
-      if (problem.kind != "scene file" && !std::filesystem::exists(file)) writeFileAtomically(file, sceneToYaml(problem.scene));
+      if (problem.kind != "scene file" && !std::filesystem::exists(file))
+        writeFileAtomically(file, sceneToYaml(problem.scene));
     }
     if (detail::isPlotProblem(suite, problem)) {
       const auto file = detail::pathsDirectory(out, suite, problem) / "scene.json";
@@ -42,8 +43,8 @@ detail::PoolResult runPendingJobs(const Suite& suite, const std::vector<Job>& pe
   std::vector<std::string> labels;
   for (const auto& job : pending) labels.push_back(detail::jobLabel(suite, job));
   std::ostream discard(nullptr);  // no buffer: swallows everything
-  ProgressDisplay shown(options.showProgress ? std::cerr : discard, options.showProgress && ::isatty(STDERR_FILENO) != 0,
-                        labels, suite.runs);
+  ProgressDisplay shown(options.showProgress ? std::cerr : discard,
+                        options.showProgress && ::isatty(STDERR_FILENO) != 0, labels, suite.runs);
   const auto runJob = [&](std::size_t i, const std::function<void(unsigned, bool)>& onRunFinished) {
     const Job& job = pending[i];
     return detail::runJob(suite, suite.problems[job.problem], suite.planners[job.planner],
@@ -53,7 +54,8 @@ detail::PoolResult runPendingJobs(const Suite& suite, const std::vector<Job>& pe
   {
     const InterruptHandlers handlers;
     const unsigned workers = std::max(1u, std::min<unsigned>(options.workers, static_cast<unsigned>(pending.size())));
-    result = detail::runJobs(pending.size(), workers, runJob, [&](std::size_t i) { return labels[i]; }, shown);
+    result = detail::runJobs(
+        pending.size(), workers, runJob, [&](std::size_t i) { return labels[i]; }, shown);
     shown.finish();
     if (interruptRequested()) result.interrupted = true;
   }
@@ -118,8 +120,8 @@ CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options) {
   if (lock.otherHosts().empty()) {
     const auto removed = detail::removeAbandonedTemporaries(options.outDirectory);
     if (!removed.empty()) {
-      printNote("removed " + std::to_string(removed.size()) + " temporary file(s) of a campaign that was killed, e.g. " +
-                removed.front().string());
+      printNote("removed " + std::to_string(removed.size()) +
+                " temporary file(s) of a campaign that was killed, e.g. " + removed.front().string());
     }
   }
   const FileSizeSignalIgnored fileSizeSignal;
@@ -159,7 +161,8 @@ CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options) {
       buildBenchmarkDatabase(findLogs({options.outDirectory / "logs" / suite.name}), database);
     } catch (const Error& e) {
       throw Error(std::string(e.what()) + "\nevery job's log is complete and kept in " +
-                  (options.outDirectory / "logs").string() + "; run the same command again to build " + database.string());
+                  (options.outDirectory / "logs").string() + "; run the same command again to build " +
+                  database.string());
     }
     ReportOptions report;
     report.outDirectory = options.outDirectory;

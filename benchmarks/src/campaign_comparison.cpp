@@ -39,7 +39,8 @@ bool zeroVariance(const std::vector<double>& values, double tolerance) {
 
 double relativeChange(double base, double current) {
   if (base == current) return 0.0;
-  if (base == 0.0) return current > 0.0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+  if (base == 0.0)
+    return current > 0.0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
   return current / base - 1.0;
 }
 
@@ -73,12 +74,13 @@ PathTable readPathTable(const std::filesystem::path& file) {
     std::vector<double> row;
     for (const auto field : fields) {
       const auto value = parseDouble(field);
-      if (!value) throw Error(file.string() + ":" + std::to_string(lineNumber) + ": expected numbers, got '" + line + "'");
+      if (!value)
+        throw Error(file.string() + ":" + std::to_string(lineNumber) + ": expected numbers, got '" + line + "'");
       row.push_back(*value);
     }
     if (row.size() != table.columns.size()) {
-      throw Error(file.string() + ":" + std::to_string(lineNumber) + ": expected " + std::to_string(table.columns.size()) +
-                  " values as in the header");
+      throw Error(file.string() + ":" + std::to_string(lineNumber) + ": expected " +
+                  std::to_string(table.columns.size()) + " values as in the header");
     }
     table.rows.push_back(std::move(row));
   }
@@ -92,7 +94,8 @@ std::string firstPathDifference(const std::filesystem::path& baseFile, const std
   std::vector<std::pair<std::size_t, std::size_t>> shared;  // column index in base, in current
   for (std::size_t i = 0; i < base.columns.size(); ++i) {
     const auto found = std::find(current.columns.begin(), current.columns.end(), base.columns[i]);
-    if (found != current.columns.end()) shared.emplace_back(i, static_cast<std::size_t>(found - current.columns.begin()));
+    if (found != current.columns.end())
+      shared.emplace_back(i, static_cast<std::size_t>(found - current.columns.begin()));
   }
   // Where the paths part geometrically says more than where their timing does: positions first.
   const auto timing = [&](const std::pair<std::size_t, std::size_t>& columns) {
@@ -151,8 +154,9 @@ ComparisonRow successRow(const std::string& problem, const std::string& planner,
   return row;
 }
 
-ComparisonRow metricRow(const std::string& problem, const std::string& planner, const trajectory::MetricDescriptor& metric,
-                        const PlannerResults& base, const PlannerResults& current, const ComparisonOptions& options) {
+ComparisonRow metricRow(const std::string& problem, const std::string& planner,
+                        const trajectory::MetricDescriptor& metric, const PlannerResults& base,
+                        const PlannerResults& current, const ComparisonOptions& options) {
   auto row = newRow(problem, planner, metric.key);
   const auto valuesOf = [&](const PlannerResults& r) {
     const auto found = r.values.find(metric.key);
@@ -173,7 +177,8 @@ ComparisonRow metricRow(const std::string& problem, const std::string& planner, 
   if (zeroVariance(baseValues, options.tolerance) && zeroVariance(currentValues, options.tolerance)) {
     row.method = ComparisonMethod::Exact;
     const double change = row.current - row.base;
-    row.verdict = std::abs(change) <= options.tolerance ? Verdict::Same : directionVerdict(change, metric.lowerIsBetter);
+    row.verdict =
+        std::abs(change) <= options.tolerance ? Verdict::Same : directionVerdict(change, metric.lowerIsBetter);
     return row;
   }
   row.method = ComparisonMethod::MannWhitney;
@@ -192,8 +197,9 @@ Verdict stochasticVerdict(const ComparisonRow& row, const ComparisonOptions& opt
   return directionVerdict(row.current - row.base, trajectory::metricDescriptor(row.metric).lowerIsBetter);
 }
 
-void addSettingDifferences(const std::string& pair, const PlannerResults& base, const PlannerResults& current,
-                           std::map<std::tuple<std::string, std::string, std::string>, std::vector<std::string>>& found) {
+void addSettingDifferences(
+    const std::string& pair, const PlannerResults& base, const PlannerResults& current,
+    std::map<std::tuple<std::string, std::string, std::string>, std::vector<std::string>>& found) {
   std::set<std::string> names;
   for (const auto& [name, value] : base.settings) names.insert(name);
   for (const auto& [name, value] : current.settings) names.insert(name);
@@ -235,7 +241,9 @@ std::string csvField(const std::string& text) {
   return quoted + "\"";
 }
 
-nlohmann::json jsonNumber(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr); }
+nlohmann::json jsonNumber(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
 
 }  // namespace
 
@@ -247,26 +255,35 @@ const std::vector<std::string>& defaultComparedMetrics() {
 
 std::string verdictName(Verdict verdict) {
   switch (verdict) {
-    case Verdict::Better: return "better";
-    case Verdict::Same: return "same";
-    case Verdict::Worse: return "worse";
-    case Verdict::NotComparable: break;
+    case Verdict::Better:
+      return "better";
+    case Verdict::Same:
+      return "same";
+    case Verdict::Worse:
+      return "worse";
+    case Verdict::NotComparable:
+      break;
   }
   return "not comparable";
 }
 
 std::string methodName(ComparisonMethod method) {
   switch (method) {
-    case ComparisonMethod::Exact: return "exact";
-    case ComparisonMethod::Fisher: return "Fisher";
-    case ComparisonMethod::MannWhitney: return "Mann-Whitney U";
-    case ComparisonMethod::None: break;
+    case ComparisonMethod::Exact:
+      return "exact";
+    case ComparisonMethod::Fisher:
+      return "Fisher";
+    case ComparisonMethod::MannWhitney:
+      return "Mann-Whitney U";
+    case ComparisonMethod::None:
+      break;
   }
   return "-";
 }
 
 int CampaignComparison::count(Verdict verdict) const {
-  return static_cast<int>(std::count_if(rows.begin(), rows.end(), [&](const ComparisonRow& row) { return row.verdict == verdict; }));
+  return static_cast<int>(
+      std::count_if(rows.begin(), rows.end(), [&](const ComparisonRow& row) { return row.verdict == verdict; }));
 }
 
 CampaignResults campaignResultsFromRuns(
@@ -300,8 +317,9 @@ CampaignResults loadCampaignResults(const std::filesystem::path& input) {
   if (std::filesystem::is_directory(input)) {
     const auto database = input / "benchmark.db";
     if (!std::filesystem::is_regular_file(database)) {
-      throw Error(input.string() + ": not a finished campaign folder (no benchmark.db; `arcplan bench` writes it once "
-                                   "every job of the campaign is done)");
+      throw Error(input.string() +
+                  ": not a finished campaign folder (no benchmark.db; `arcplan bench` writes it once "
+                  "every job of the campaign is done)");
     }
     const auto recorded = readRecordedRuns(database);
     auto results = campaignResultsFromRuns(input.string(), recorded.runs, recorded.settings);
@@ -313,14 +331,16 @@ CampaignResults loadCampaignResults(const std::filesystem::path& input) {
     }
     return results;
   }
-  if (!std::filesystem::exists(input)) throw Error(input.string() + ": no such campaign folder, database or baseline file");
+  if (!std::filesystem::exists(input))
+    throw Error(input.string() + ": no such campaign folder, database or baseline file");
   if (isBaselineFile(input)) return baselineResults(readBaseline(input), input.string());
   const auto recorded = readRecordedRuns(input);
   return campaignResultsFromRuns(input.string(), recorded.runs, recorded.settings);
 }
 
 void checkComparisonOptions(const ComparisonOptions& options) {
-  if (!(options.alpha > 0.0 && options.alpha < 1.0)) throw Error("--alpha must be in (0, 1), got " + formatNumber(options.alpha, 6));
+  if (!(options.alpha > 0.0 && options.alpha < 1.0))
+    throw Error("--alpha must be in (0, 1), got " + formatNumber(options.alpha, 6));
   if (!(options.minEffect >= 0.0)) throw Error("--min-effect must not be negative");
   if (!(options.tolerance >= 0.0)) throw Error("--tolerance must not be negative");
   if (!(options.solveTimeFloor >= 0.0)) throw Error("--solve-time-floor must not be negative");
@@ -375,7 +395,8 @@ CampaignComparison compareCampaigns(const CampaignResults& base, const CampaignR
         auto row = metricRow(problem, planner, trajectory::metricDescriptor(key), b->second, c->second, options);
         const bool exactChange = row.method == ComparisonMethod::Exact && row.verdict != Verdict::Same;
         if (exactChange && !b->second.medianRun.empty() && !c->second.medianRun.empty()) {
-          if (!pathCompared) pathNote = firstPathDifference(b->second.medianRun, c->second.medianRun, options.tolerance);
+          if (!pathCompared)
+            pathNote = firstPathDifference(b->second.medianRun, c->second.medianRun, options.tolerance);
           pathCompared = true;
           row.note = pathNote;
         }
@@ -413,8 +434,9 @@ std::string comparisonMarkdown(const CampaignComparison& comparison, bool onlyCh
   const auto& o = comparison.options;
   out << "# Campaign comparison\n\n"
       << "- base: `" << comparison.base << "`\n- new: `" << comparison.current << "`\n"
-      << "- verdicts: " << comparison.count(Verdict::Worse) << " worse, " << comparison.count(Verdict::Better) << " better, "
-      << comparison.count(Verdict::Same) << " same, " << comparison.count(Verdict::NotComparable) << " not comparable\n"
+      << "- verdicts: " << comparison.count(Verdict::Worse) << " worse, " << comparison.count(Verdict::Better)
+      << " better, " << comparison.count(Verdict::Same) << " same, " << comparison.count(Verdict::NotComparable)
+      << " not comparable\n"
       << "- thresholds: alpha " << formatNumber(o.alpha, 3) << " (Holm over the stochastic rows), minimum effect "
       << formatNumber(100.0 * o.minEffect, 3) << " %, exact tolerance " << formatNumber(o.tolerance, 3)
       << ", solve-time floor " << formatNumber(o.solveTimeFloor, 3) << " s\n";
@@ -459,10 +481,11 @@ nlohmann::json comparisonJson(const CampaignComparison& comparison) {
   const auto& o = comparison.options;
   nlohmann::json settings = nlohmann::json::array();
   for (const auto& difference : comparison.settings) {
-    settings.push_back({{"setting", difference.setting},
-                        {"base", difference.base},
-                        {"new", difference.current},
-                        {"pairs", difference.pairs.empty() ? nlohmann::json("all") : nlohmann::json(difference.pairs)}});
+    settings.push_back(
+        {{"setting", difference.setting},
+         {"base", difference.base},
+         {"new", difference.current},
+         {"pairs", difference.pairs.empty() ? nlohmann::json("all") : nlohmann::json(difference.pairs)}});
   }
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& row : comparison.rows) {
@@ -484,7 +507,10 @@ nlohmann::json comparisonJson(const CampaignComparison& comparison) {
   return {{"base", comparison.base},
           {"new", comparison.current},
           {"options",
-           {{"alpha", o.alpha}, {"min_effect", o.minEffect}, {"tolerance", o.tolerance}, {"solve_time_floor_s", o.solveTimeFloor},
+           {{"alpha", o.alpha},
+            {"min_effect", o.minEffect},
+            {"tolerance", o.tolerance},
+            {"solve_time_floor_s", o.solveTimeFloor},
             {"metrics", o.metrics}}},
           {"counts",
            {{"worse", comparison.count(Verdict::Worse)},
@@ -502,10 +528,11 @@ std::string comparisonCsv(const CampaignComparison& comparison) {
   out << "problem,planner,metric,test,base_n,new_n,base,new,effect,p,p_holm,verdict,note\n";
   const auto csvNumber = [](double value) { return std::isnan(value) ? std::string() : formatNumber(value, 10); };
   for (const auto& row : comparison.rows) {
-    out << csvField(row.problem) << "," << csvField(row.planner) << "," << row.metric << "," << methodName(row.method) << ","
-        << row.baseCount << "," << row.newCount << "," << csvNumber(row.base) << "," << csvNumber(row.current) << ","
-        << (row.method == ComparisonMethod::None ? std::string() : csvNumber(row.effect)) << "," << csvNumber(row.pValue)
-        << "," << csvNumber(row.adjustedPValue) << "," << verdictName(row.verdict) << "," << csvField(row.note) << "\n";
+    out << csvField(row.problem) << "," << csvField(row.planner) << "," << row.metric << "," << methodName(row.method)
+        << "," << row.baseCount << "," << row.newCount << "," << csvNumber(row.base) << "," << csvNumber(row.current)
+        << "," << (row.method == ComparisonMethod::None ? std::string() : csvNumber(row.effect)) << ","
+        << csvNumber(row.pValue) << "," << csvNumber(row.adjustedPValue) << "," << verdictName(row.verdict) << ","
+        << csvField(row.note) << "\n";
   }
   return out.str();
 }

@@ -37,14 +37,15 @@ nlohmann::json manifestOf(const Suite& suite) {
   }
   nlohmann::json problems = nlohmann::json::array();
   for (const auto& problem : suite.problems) problems.push_back(problem.name);
-  return {{"suite", suite.name},
-          {"runs", suite.runs},
-          {"time_limit_s", suite.timeLimit},
-          {"iteration_budget", suite.iterationBudget ? nlohmann::json(*suite.iterationBudget) : nlohmann::json(nullptr)},
-          {"vmax_mps", suite.vMax},
-          {"generator_seed", suite.generator ? nlohmann::json(suite.generator->seed) : nlohmann::json(nullptr)},
-          {"problems", problems},
-          {"planners", planners}};
+  return {
+      {"suite", suite.name},
+      {"runs", suite.runs},
+      {"time_limit_s", suite.timeLimit},
+      {"iteration_budget", suite.iterationBudget ? nlohmann::json(*suite.iterationBudget) : nlohmann::json(nullptr)},
+      {"vmax_mps", suite.vMax},
+      {"generator_seed", suite.generator ? nlohmann::json(suite.generator->seed) : nlohmann::json(nullptr)},
+      {"problems", problems},
+      {"planners", planners}};
 }
 
 std::string hostName() {
@@ -168,8 +169,8 @@ bool isLockFile(const std::filesystem::path& file) {
 
 }  // namespace
 
-OutputDirectoryLock::OutputDirectoryLock(const std::filesystem::path& directory, const Shard& shard, std::size_t jobCount,
-                                         std::vector<std::string>& notes)
+OutputDirectoryLock::OutputDirectoryLock(const std::filesystem::path& directory, const Shard& shard,
+                                         std::size_t jobCount, std::vector<std::string>& notes)
     : file_(directory / ("campaign-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".lock")),
       owner_(::getpid()) {
   const DirectoryFlock exclusive(directory);
@@ -187,8 +188,9 @@ OutputDirectoryLock::OutputDirectoryLock(const std::filesystem::path& directory,
     if (shardsShareJobs(shard, holder.shard, jobCount)) {
       throw Error(directory.string() + " is in use by another campaign: " + holder.describe(entry.path()) +
                   "; wait for it to finish" +
-                  (holder.host == host ? std::string()
-                                       : " (if that process is gone from host " + holder.host + ", delete the lock file)"));
+                  (holder.host == host
+                       ? std::string()
+                       : " (if that process is gone from host " + holder.host + ", delete the lock file)"));
     }
     if (holder.host != host) otherHosts_.push_back(holder.host);
   }
@@ -285,7 +287,8 @@ JobFiles jobFiles(const std::filesystem::path& out, const Suite& suite, const Jo
 }
 
 void writePlotScene(const std::filesystem::path& file, const Problem& problem, double vMax) {
-  const auto planning = planners::makePlanningProblem(std::make_shared<const collision::Scene>(problem.scene), problem.query);
+  const auto planning =
+      planners::makePlanningProblem(std::make_shared<const collision::Scene>(problem.scene), problem.query);
   const auto& robot = planning.collisionModel->robot();
   const auto position = [&](const robot::Vector6& q) {
     const Eigen::Vector3d p = robot::tipPose(robot, q).translation();
@@ -293,19 +296,21 @@ void writePlotScene(const std::filesystem::path& file, const Problem& problem, d
   };
   nlohmann::json obstacles = nlohmann::json::array();
   for (const auto& obstacle : problem.scene.obstacles) {
-    static const std::map<collision::Obstacle::Shape, const char*> shapes{{collision::Obstacle::Shape::Sphere, "sphere"},
-                                                                          {collision::Obstacle::Shape::Box, "box"},
-                                                                          {collision::Obstacle::Shape::Cylinder, "cylinder"},
-                                                                          {collision::Obstacle::Shape::Mesh, "mesh"}};
+    static const std::map<collision::Obstacle::Shape, const char*> shapes{
+        {collision::Obstacle::Shape::Sphere, "sphere"},
+        {collision::Obstacle::Shape::Box, "box"},
+        {collision::Obstacle::Shape::Cylinder, "cylinder"},
+        {collision::Obstacle::Shape::Mesh, "mesh"}};
     const Eigen::Matrix3d r = obstacle.pose.linear();
     const Eigen::Vector3d t = obstacle.pose.translation();
-    obstacles.push_back({{"name", obstacle.name},
-                         {"shape", shapes.at(obstacle.shape)},
-                         {"radius", obstacle.radius},
-                         {"length", obstacle.length},
-                         {"size", {obstacle.size.x(), obstacle.size.y(), obstacle.size.z()}},
-                         {"position", {t.x(), t.y(), t.z()}},
-                         {"rotation", {{r(0, 0), r(0, 1), r(0, 2)}, {r(1, 0), r(1, 1), r(1, 2)}, {r(2, 0), r(2, 1), r(2, 2)}}}});
+    obstacles.push_back(
+        {{"name", obstacle.name},
+         {"shape", shapes.at(obstacle.shape)},
+         {"radius", obstacle.radius},
+         {"length", obstacle.length},
+         {"size", {obstacle.size.x(), obstacle.size.y(), obstacle.size.z()}},
+         {"position", {t.x(), t.y(), t.z()}},
+         {"rotation", {{r(0, 0), r(0, 1), r(0, 2)}, {r(1, 0), r(1, 1), r(1, 2)}, {r(2, 0), r(2, 1), r(2, 2)}}}});
   }
   const nlohmann::json scene{{"problem", problem.name},
                              {"obstacles", obstacles},
@@ -320,7 +325,8 @@ void writePlotScene(const std::filesystem::path& file, const Problem& problem, d
 Shard parseShard(const std::string& text) {
   const auto slash = text.find('/');
   const auto fail = [&]() -> Shard {
-    throw Error("--shard: '" + text + "' is not K/N with whole numbers 1 <= K <= N (e.g. 2/8 for the second of 8 shards)");
+    throw Error("--shard: '" + text +
+                "' is not K/N with whole numbers 1 <= K <= N (e.g. 2/8 for the second of 8 shards)");
   };
   if (slash == std::string::npos) return fail();
   const auto index = parseDouble(text.substr(0, slash)), count = parseDouble(text.substr(slash + 1));

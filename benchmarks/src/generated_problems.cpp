@@ -16,7 +16,6 @@ namespace {
 
 using namespace detail;
 
-
 // One sphere, box or cylinder on or near the straight line (the thesis' situation, randomised).
 Problem lineObstacleProblem(const ProblemFactory& factory, std::uint64_t seed, int index) {
   static const char* kinds[] = {"sphere", "box", "cylinder"};
@@ -51,7 +50,7 @@ Problem lineObstacleProblem(const ProblemFactory& factory, std::uint64_t seed, i
     const Vector3d onLine = a + random.uniform(0.3, 0.7) * (b - a);
     const Vector3d center = onLine + random.uniform(0.0, 1.2 * bound) * randomPerpendicular(random, b - a);
     obstacle.pose.translation() = center;
-    if (center.z() - bound < 0.01) continue;                                       // clear of the table
+    if (center.z() - bound < 0.01) continue;                                                 // clear of the table
     if ((center - a).norm() < bound + 0.15 || (center - b).norm() < bound + 0.15) continue;  // room for a detour
 
     const auto ends = factory.straightLineEnds(a, b);
@@ -89,7 +88,8 @@ Problem pillarProblem(const ProblemFactory& factory, std::uint64_t seed, int ind
     const double radius = random.uniform(family.low, family.high);
     const double height = family.height;
     Vector3d center = a + random.uniform(0.4, 0.6) * (b - a);
-    center += random.uniform(0.0, 0.5 * radius) * randomPerpendicular(random, Vector3d(b - a).cwiseProduct(Vector3d(1, 1, 0)));
+    center += random.uniform(0.0, 0.5 * radius) *
+              randomPerpendicular(random, Vector3d(b - a).cwiseProduct(Vector3d(1, 1, 0)));
     center.z() = height / 2;
     const auto horizontal = [&](const Vector3d& p) { return (p - center).head<2>().norm(); };
     if (horizontal(a) < radius + 0.2 || horizontal(b) < radius + 0.2) continue;
@@ -135,10 +135,14 @@ Problem shelfProblem(const ProblemFactory& factory, std::uint64_t seed, int inde
       return Vector3d(middle.x(), middle.y(), 0.0) + rotation * Vector3d(x, y, z);
     };
     auto scene = tableScene("");
-    scene.obstacles.push_back(box("shelf_back", Vector3d(panel, width, height), at(depth / 2 - panel / 2, 0, height / 2), yaw));
-    scene.obstacles.push_back(box("shelf_left", Vector3d(depth, panel, height), at(0, width / 2 - panel / 2, height / 2), yaw));
-    scene.obstacles.push_back(box("shelf_right", Vector3d(depth, panel, height), at(0, -width / 2 + panel / 2, height / 2), yaw));
-    for (const auto& [board, z] : {std::pair{"shelf_bottom", panel / 2}, {"shelf_middle", height / 2}, {"shelf_top", height - panel / 2}}) {
+    scene.obstacles.push_back(
+        box("shelf_back", Vector3d(panel, width, height), at(depth / 2 - panel / 2, 0, height / 2), yaw));
+    scene.obstacles.push_back(
+        box("shelf_left", Vector3d(depth, panel, height), at(0, width / 2 - panel / 2, height / 2), yaw));
+    scene.obstacles.push_back(
+        box("shelf_right", Vector3d(depth, panel, height), at(0, -width / 2 + panel / 2, height / 2), yaw));
+    for (const auto& [board, z] :
+         {std::pair{"shelf_bottom", panel / 2}, {"shelf_middle", height / 2}, {"shelf_top", height - panel / 2}}) {
       scene.obstacles.push_back(box(board, Vector3d(depth, width, panel), at(0, 0, z), yaw));
     }
     const auto ends = factory.straightLineEnds(a, b);
@@ -150,7 +154,6 @@ Problem shelfProblem(const ProblemFactory& factory, std::uint64_t seed, int inde
   throw Error(std::string("problem generator: no valid ") + family.kind + " problem " + std::to_string(index) +
               " for seed " + std::to_string(seed));
 }
-
 
 void emitVector(YAML::Emitter& out, const double* values, int count) {
   out << YAML::Flow << YAML::BeginSeq;
@@ -167,10 +170,14 @@ std::vector<Problem> generateProblems(const GeneratorSettings& settings) {
     return [make, &family](const ProblemFactory& f, std::uint64_t seed, int i) { return make(f, seed, i, family); };
   };
   const std::vector<std::pair<int, Family>> families = {
-      {settings.lineObstacles, lineObstacleProblem},     {settings.pillars, furniture(pillarProblem, kPillars)},
-      {settings.shelves, furniture(shelfProblem, kShelves)}, {settings.clutter, clutterProblem},
-      {settings.armBlocked, armBlockedProblem},           {settings.walls, wallProblem},
-      {settings.nearEndpoint, nearEndpointProblem},       {settings.tallPillars, furniture(pillarProblem, kTallPillars)},
+      {settings.lineObstacles, lineObstacleProblem},
+      {settings.pillars, furniture(pillarProblem, kPillars)},
+      {settings.shelves, furniture(shelfProblem, kShelves)},
+      {settings.clutter, clutterProblem},
+      {settings.armBlocked, armBlockedProblem},
+      {settings.walls, wallProblem},
+      {settings.nearEndpoint, nearEndpointProblem},
+      {settings.tallPillars, furniture(pillarProblem, kTallPillars)},
       {settings.deepShelves, furniture(shelfProblem, kDeepShelves)},
   };
   for (const auto& [count, make] : families) {
@@ -210,7 +217,8 @@ std::string sceneToYaml(const collision::Scene& scene) {
         break;
       case collision::Obstacle::Shape::Cylinder:
         out << YAML::Key << "cylinder" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "radius"
-            << YAML::Value << obstacle.radius << YAML::Key << "length" << YAML::Value << obstacle.length << YAML::EndMap;
+            << YAML::Value << obstacle.radius << YAML::Key << "length" << YAML::Value << obstacle.length
+            << YAML::EndMap;
         break;
       case collision::Obstacle::Shape::Mesh: {
         out << YAML::Key << "mesh" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "file" << YAML::Value

@@ -88,7 +88,8 @@ public:
     // What ompl::tools::Benchmark reads without a virtual call: the wrapped planner's own.
     specs_ = planner_->getSpecs();
     params_ = planner_->params();
-    for (const auto& [name, property] : planner_->getPlannerProgressProperties()) addPlannerProgressProperty(name, property);
+    for (const auto& [name, property] : planner_->getPlannerProgressProperties())
+      addPlannerProgressProperty(name, property);
   }
 
   ob::PlannerStatus solve(const ob::PlannerTerminationCondition& limit) override {
@@ -224,8 +225,8 @@ void writeMedianRun(const std::filesystem::path& file, const std::string& planne
   const RecordedRun& median = runs[(runs.size() - 1) / 2];
   writeJobOutput(file, [&](AtomicOutputFile& out) {
     out.stream() << std::setprecision(9) << "# planner: " << planner << "\n# run: " << median.run
-                 << "\n# execution time (s): " << median.executionTime << "\n# tcp path length (m): "
-                 << median.tcpPathLength << "\n# successful runs: " << runs.size()
+                 << "\n# execution time (s): " << median.executionTime
+                 << "\n# tcp path length (m): " << median.tcpPathLength << "\n# successful runs: " << runs.size()
                  << "\nt,tcp_speed,x,y,z,q0,q1,q2,q3,q4,q5\n";
     for (std::size_t i = 0; i < median.time.size(); ++i) {
       out.stream() << median.time[i] << "," << median.speed[i] << "," << median.tcp[i].x() << "," << median.tcp[i].y()
@@ -319,7 +320,8 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   if (suite.iterationBudget) {
     benchmark.addExperimentParameter("iteration budget", "INTEGER", std::to_string(*suite.iterationBudget));
   }
-  if (suite.generator) benchmark.addExperimentParameter("generator seed", "INTEGER", std::to_string(suite.generator->seed));
+  if (suite.generator)
+    benchmark.addExperimentParameter("generator seed", "INTEGER", std::to_string(suite.generator->seed));
   benchmark.addExperimentParameter("ompl version", "TEXT",
                                    versionText(OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION));
   benchmark.addExperimentParameter("fcl version", "TEXT", FCL_VERSION);

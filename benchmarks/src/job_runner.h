@@ -44,7 +44,7 @@ std::uint32_t runSeed(std::uint32_t jobSeed, unsigned run);
 void checkPlannerConfigurations(const Suite& suite);
 
 // Throws JobInterrupted (see above), OutputWriteError or arcplan::Error (the problem cannot be set up).
-JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfiguration& planner, const JobFiles& files,
-                  const std::function<void(unsigned run, bool solved)>& onRunFinished);
+JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfiguration& planner,
+                  const JobFiles& files, const std::function<void(unsigned run, bool solved)>& onRunFinished);
 
 }  // namespace arcplan::benchmarks::detail

@@ -18,11 +18,11 @@
 
 namespace arcplan::benchmarks::detail {
 
-using robot::Vector6;
 using Eigen::Vector3d;
+using robot::Vector6;
 
 inline constexpr int kAttemptsPerProblem = 2000;
-inline constexpr double kLineStep = 0.005;          // m, IK continuation step along the straight TCP line
+inline constexpr double kLineStep = 0.005;           // m, IK continuation step along the straight TCP line
 inline constexpr double kMaxJointJumpPerStep = 0.1;  // rad: larger means the IK branch flipped
 inline constexpr double kTableThickness = 0.05;
 // Start and goal keep this much room (m): more than the built-in suites' 1 cm clearance, so that every
@@ -88,7 +88,8 @@ inline collision::Obstacle box(const std::string& name, const Vector3d& size, co
 inline collision::Scene tableScene(const std::string& name) {
   collision::Scene scene;
   scene.name = name;
-  scene.obstacles.push_back(box("table", Vector3d(2.0, 2.0, kTableThickness), Vector3d(0.0, 0.0, -kTableThickness / 2), 0.0));
+  scene.obstacles.push_back(
+      box("table", Vector3d(2.0, 2.0, kTableThickness), Vector3d(0.0, 0.0, -kTableThickness / 2), 0.0));
   scene.allowedCollisions.emplace_back("table", "base_link_inertia");
   return scene;
 }
@@ -181,7 +182,7 @@ inline std::string indexed(const std::string& family, int index) {
 }
 
 inline Problem makeProblem(const std::string& name, const std::string& kind, std::uint64_t seed, int index,
-                    collision::Scene scene) {
+                           collision::Scene scene) {
   Problem problem;
   problem.name = name;
   problem.kind = kind;

@@ -35,8 +35,9 @@ std::string ProgressDisplay::timing() const {
 }
 
 void ProgressDisplay::report(const ProgressEvent& event) {
-  const std::string jobCount = std::to_string(finishedJobs_ + (event.kind == ProgressEvent::Kind::RunFinished ? 1 : 0)) +
-                               "/" + std::to_string(jobLabels_.size());
+  const std::string jobCount =
+      std::to_string(finishedJobs_ + (event.kind == ProgressEvent::Kind::RunFinished ? 1 : 0)) + "/" +
+      std::to_string(jobLabels_.size());
   const std::string& label = event.job < jobLabels_.size() ? jobLabels_[event.job] : std::string("?");
   switch (event.kind) {
     case ProgressEvent::Kind::RunFinished:

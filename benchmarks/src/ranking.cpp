@@ -95,13 +95,15 @@ void rankProblem(std::vector<PlannerStanding>& planners) {
     return a.planner < b.planner;
   });
   for (std::size_t i = 0; i < planners.size(); ++i) {
-    planners[i].rank = (i > 0 && !better(planners[i - 1], planners[i])) ? planners[i - 1].rank : static_cast<int>(i) + 1;
+    planners[i].rank =
+        (i > 0 && !better(planners[i - 1], planners[i])) ? planners[i - 1].rank : static_cast<int>(i) + 1;
   }
 }
 
 // Mean rank, pooled runs and first places of every planner over `problems`, best first.
-std::vector<PlannerStanding> aggregate(const std::vector<const ProblemRanking*>& problems,
-                                       const std::map<std::string, std::map<std::string, std::vector<RunValues>>>& runs) {
+std::vector<PlannerStanding> aggregate(
+    const std::vector<const ProblemRanking*>& problems,
+    const std::map<std::string, std::map<std::string, std::vector<RunValues>>>& runs) {
   std::map<std::string, std::vector<int>> ranksOf;
   std::map<std::string, std::vector<const RunValues*>> runsOf;
   for (const auto* problem : problems) {
@@ -129,7 +131,8 @@ std::vector<PlannerStanding> aggregate(const std::vector<const ProblemRanking*>&
     return a.planner < b.planner;
   });
   for (std::size_t i = 0; i < standings.size(); ++i) {
-    standings[i].rank = (i > 0 && !better(standings[i - 1], standings[i])) ? standings[i - 1].rank : static_cast<int>(i) + 1;
+    standings[i].rank =
+        (i > 0 && !better(standings[i - 1], standings[i])) ? standings[i - 1].rank : static_cast<int>(i) + 1;
   }
   return standings;
 }

@@ -77,8 +77,9 @@ std::string runsQuery(const std::set<std::string>& columns) {
       select += ", COALESCE(" + joinText(present, ", ") + ")";
     }
   }
-  return select + " FROM runs JOIN experiments ON runs.experimentid = experiments.id"
-                  " JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id";
+  return select +
+         " FROM runs JOIN experiments ON runs.experimentid = experiments.id"
+         " JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id";
 }
 
 // Problem families are an arcplan experiment parameter; logs from elsewhere simply have none.
@@ -155,8 +156,9 @@ SettingsByPair pairSettings(sqlite3* db, const std::filesystem::path& file) {
     present.push_back(&setting);
     select += std::string(", experiments.") + setting.column;
   }
-  select += " FROM runs JOIN experiments ON runs.experimentid = experiments.id"
-            " JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id";
+  select +=
+      " FROM runs JOIN experiments ON runs.experimentid = experiments.id"
+      " JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id";
   auto statement = prepare(db, select, file);
   SettingsByPair settings;
   while (sqlite3_step(statement.get()) == SQLITE_ROW) {
@@ -199,7 +201,8 @@ RecordedRuns readRecordedRuns(const std::filesystem::path& file) {
       return value == nullptr ? std::string() : std::string(reinterpret_cast<const char*>(value));
     };
     RunValues run;
-    const bool solved = sqlite3_column_type(statement.get(), 2) != SQLITE_NULL && sqlite3_column_int(statement.get(), 2) == 1;
+    const bool solved =
+        sqlite3_column_type(statement.get(), 2) != SQLITE_NULL && sqlite3_column_int(statement.get(), 2) == 1;
     if (solved) {
       int column = 3;
       for (const auto& metric : rankedMetrics()) {

@@ -56,7 +56,8 @@ std::string standingsTable(const std::vector<PlannerStanding>& standings, bool o
   std::ostringstream out;
   out << "| rank | planner |" << (overall ? " mean rank | problems | 1st |" : "") << " success |"
       << " exec time median (s) | TCP length median [min, max] (m) | solve time median (s) |"
-      << " peak TCP speed median (m/s) | time above limit max (s) | min clearance median (m) | joint speed ratio max |\n";
+      << " peak TCP speed median (m/s) | time above limit max (s) | min clearance median (m) | joint speed ratio max "
+         "|\n";
   out << "|---:|---|" << (overall ? "---:|---:|---:|" : "") << "---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& s : standings) {
     const auto summary = [&](const char* key) -> const MetricSummary& { return s.metrics.at(key); };

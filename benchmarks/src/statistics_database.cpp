@@ -83,7 +83,8 @@ public:
   }
 
   bool nextEndsWith(const std::string& suffix) const {
-    return !atEnd() && peek().size() > suffix.size() && peek().compare(peek().size() - suffix.size(), suffix.size(), suffix) == 0;
+    return !atEnd() && peek().size() > suffix.size() &&
+           peek().compare(peek().size() - suffix.size(), suffix.size(), suffix) == 0;
   }
 
   [[noreturn]] void fail(const std::string& message) const {
@@ -120,7 +121,8 @@ void checkPlanner(LogLines& lines, const LogExpectation& expected) {
   }
   const auto settings = lines.takeCount("common properties");
   for (unsigned long i = 0; i < settings; ++i) {
-    if (lines.take("a planner setting").find(" = ") == std::string::npos) lines.fail("expected a setting 'name = value'");
+    if (lines.take("a planner setting").find(" = ") == std::string::npos)
+      lines.fail("expected a setting 'name = value'");
   }
   const auto properties = lines.takeCount("properties for each run");
   for (unsigned long i = 0; i < properties; ++i) {
@@ -138,8 +140,8 @@ void checkPlanner(LogLines& lines, const LogExpectation& expected) {
     std::size_t separators = 0;
     for (auto at = values.find("; "); at != std::string::npos; at = values.find("; ", at + 2)) ++separators;
     if (separators != properties || values.size() < 2 || values.compare(values.size() - 2, 2, "; ") != 0) {
-      lines.fail("run " + std::to_string(run + 1) + " of " + std::to_string(runs) + " has " + std::to_string(separators) +
-                 " of " + std::to_string(properties) + " values (cut short or garbled)");
+      lines.fail("run " + std::to_string(run + 1) + " of " + std::to_string(runs) + " has " +
+                 std::to_string(separators) + " of " + std::to_string(properties) + " values (cut short or garbled)");
     }
   }
   if (!lines.atEnd() && lines.peek() != ".") {
@@ -162,7 +164,8 @@ void checkLog(LogLines& lines, const LogExpectation& expected) {
   if (lines.nextEndsWith(" experiment properties")) {
     const auto count = lines.takeCount("experiment properties");
     for (unsigned long i = 0; i < count; ++i) {
-      if (lines.take("an experiment property").find(" = ") == std::string::npos) lines.fail("expected 'name TYPE = value'");
+      if (lines.take("an experiment property").find(" = ") == std::string::npos)
+        lines.fail("expected 'name TYPE = value'");
     }
   }
   takePrefixed(lines, "Running on ");
@@ -231,8 +234,9 @@ std::filesystem::path findBenchmarkStatisticsScript() {
   }
   const std::filesystem::path debian = "/usr/bin/ompl_benchmark_statistics";
   if (isExecutable(debian)) return debian;
-  throw Error("ompl_benchmark_statistics not found (it builds the benchmark database from the OMPL logs): install "
-              "Debian's ompl-demos package (scripts/setup) or set ARCPLAN_OMPL_BENCHMARK_STATISTICS");
+  throw Error(
+      "ompl_benchmark_statistics not found (it builds the benchmark database from the OMPL logs): install "
+      "Debian's ompl-demos package (scripts/setup) or set ARCPLAN_OMPL_BENCHMARK_STATISTICS");
 }
 
 std::vector<std::filesystem::path> findLogs(const std::vector<std::filesystem::path>& paths) {
@@ -260,10 +264,13 @@ void buildBenchmarkDatabase(const std::vector<std::filesystem::path>& logs, cons
     if (const auto problem = benchmarkLogProblem(log)) badLogs.push_back(log.string() + ": " + *problem);
   }
   if (!badLogs.empty()) {
-    std::string message = std::to_string(badLogs.size()) + " incomplete or corrupt OMPL log(s), not given to "
-                          "ompl_benchmark_statistics (" + database.string() + " is unchanged):";
+    std::string message = std::to_string(badLogs.size()) +
+                          " incomplete or corrupt OMPL log(s), not given to "
+                          "ompl_benchmark_statistics (" +
+                          database.string() + " is unchanged):";
     for (std::size_t i = 0; i < std::min(badLogs.size(), kBadLogsNamed); ++i) message += "\n  " + badLogs[i];
-    if (badLogs.size() > kBadLogsNamed) message += "\n  ... and " + std::to_string(badLogs.size() - kBadLogsNamed) + " more";
+    if (badLogs.size() > kBadLogsNamed)
+      message += "\n  ... and " + std::to_string(badLogs.size() - kBadLogsNamed) + " more";
     throw Error(message + "\nrerun the campaign that wrote them (it runs their jobs again) or leave them out");
   }
   const auto script = findBenchmarkStatisticsScript();

@@ -80,7 +80,8 @@ struct SuiteReader {
     } catch (const YAML::Exception&) {
       fail(node, what + ": field '" + key + "' must be a number (m)");
     }
-    if (!std::isfinite(value) || value < 0.0 || value >= 1.0) fail(node, what + ": field '" + key + "' must be in [0, 1) m");
+    if (!std::isfinite(value) || value < 0.0 || value >= 1.0)
+      fail(node, what + ": field '" + key + "' must be in [0, 1) m");
     return value;
   }
 
@@ -137,7 +138,8 @@ struct SuiteReader {
     if (node.IsScalar()) {  // "- RRTConnect": the planner with its defaults, labelled by its name
       configuration.label = node.as<std::string>();
       configuration.planner = configuration.label;
-      if (!isPlainName(configuration.label)) fail(node, "planner name '" + configuration.label + "' is not a plain name");
+      if (!isPlainName(configuration.label))
+        fail(node, "planner name '" + configuration.label + "' is not a plain name");
       return configuration;
     }
     expectKeys(node, {"name", "planner", "params"}, "planner");
@@ -146,8 +148,9 @@ struct SuiteReader {
     if (const auto params = node["params"]) {
       if (!params.IsMap()) fail(params, "planner '" + configuration.label + "': params must be a map name: value");
       for (const auto& entry : params) {
-        if (!entry.second.IsScalar()) fail(entry.second, "planner '" + configuration.label + "': parameter '" +
-                                                              entry.first.as<std::string>() + "' must be a single value");
+        if (!entry.second.IsScalar())
+          fail(entry.second, "planner '" + configuration.label + "': parameter '" + entry.first.as<std::string>() +
+                                 "' must be a single value");
         configuration.parameters[entry.first.as<std::string>()] = entry.second.as<std::string>();
       }
     }
@@ -157,17 +160,22 @@ struct SuiteReader {
   GeneratorSettings generator(const YAML::Node& node) const {
     GeneratorSettings settings;
     const std::vector<std::pair<const char*, int*>> counts = {
-        {"line_obstacles", &settings.lineObstacles}, {"pillars", &settings.pillars},
-        {"shelves", &settings.shelves},              {"clutter", &settings.clutter},
-        {"arm_blocked", &settings.armBlocked},       {"walls", &settings.walls},
-        {"near_endpoint", &settings.nearEndpoint},   {"tall_pillars", &settings.tallPillars},
+        {"line_obstacles", &settings.lineObstacles},
+        {"pillars", &settings.pillars},
+        {"shelves", &settings.shelves},
+        {"clutter", &settings.clutter},
+        {"arm_blocked", &settings.armBlocked},
+        {"walls", &settings.walls},
+        {"near_endpoint", &settings.nearEndpoint},
+        {"tall_pillars", &settings.tallPillars},
         {"deep_shelves", &settings.deepShelves},
     };
     std::set<std::string> keys{"seed"};
     for (const auto& [key, field] : counts) keys.insert(key);
     expectKeys(node, keys, "generate");
     if (!node["seed"]) fail(node, "generate: missing field 'seed' (problems must be reproducible)");
-    settings.seed = static_cast<std::uint64_t>(count(node, "seed", "generate", 0, std::numeric_limits<long long>::max()));
+    settings.seed =
+        static_cast<std::uint64_t>(count(node, "seed", "generate", 0, std::numeric_limits<long long>::max()));
     for (const auto& [key, field] : counts) {
       if (node[key]) *field = static_cast<int>(count(node, key, "generate", 0, kMaximumGeneratedPerKind));
     }
@@ -196,10 +204,11 @@ namespace {
 
 Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
   const SuiteReader reader{file};
-  if (!root || !root.IsMap()) throw Error(file.string() + ": a suite must be a YAML map (name, runs, problems, planners)");
+  if (!root || !root.IsMap())
+    throw Error(file.string() + ": a suite must be a YAML map (name, runs, problems, planners)");
   reader.expectKeys(root,
-                    {"name", "description", "runs", "time_limit", "budget", "v_max", "clearance", "problems", "generate",
-                     "planners", "plots"},
+                    {"name", "description", "runs", "time_limit", "budget", "v_max", "clearance", "problems",
+                     "generate", "planners", "plots"},
                     "suite");
 
   Suite suite;
@@ -222,10 +231,12 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
     suite.generator = reader.generator(generate);
     for (auto& problem : generateProblems(*suite.generator)) suite.problems.push_back(std::move(problem));
   }
-  if (suite.problems.empty()) reader.fail(root, "suite '" + suite.name + "' has no problems (give 'problems' or 'generate')");
+  if (suite.problems.empty())
+    reader.fail(root, "suite '" + suite.name + "' has no problems (give 'problems' or 'generate')");
   std::set<std::string> problemNames;
   for (const auto& problem : suite.problems) {
-    if (!problemNames.insert(problem.name).second) reader.fail(root["problems"], "duplicate problem name '" + problem.name + "'");
+    if (!problemNames.insert(problem.name).second)
+      reader.fail(root["problems"], "duplicate problem name '" + problem.name + "'");
   }
 
   const auto planners = root["planners"];
@@ -235,7 +246,8 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
   std::set<std::string> labels;
   for (const auto& node : planners) {
     auto configuration = reader.planner(node);
-    if (!labels.insert(configuration.label).second) reader.fail(node, "duplicate planner name '" + configuration.label + "'");
+    if (!labels.insert(configuration.label).second)
+      reader.fail(node, "duplicate planner name '" + configuration.label + "'");
     suite.planners.push_back(std::move(configuration));
   }
 
@@ -243,7 +255,8 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
     if (!plots.IsSequence()) reader.fail(plots, "plots must be a list of problem names");
     for (const auto& node : plots) {
       const auto problem = node.as<std::string>();
-      if (problemNames.count(problem) == 0) reader.fail(node, "plots: no problem named '" + problem + "' in this suite");
+      if (problemNames.count(problem) == 0)
+        reader.fail(node, "plots: no problem named '" + problem + "' in this suite");
       suite.plotProblems.push_back(problem);
     }
   }
@@ -253,7 +266,8 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
 }  // namespace
 
 Suite loadSuite(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) throw Error("suite file " + file.string() + " not found (or not a file)");
+  if (!std::filesystem::is_regular_file(file))
+    throw Error("suite file " + file.string() + " not found (or not a file)");
   // Any yaml-cpp exception (a syntax error, or a conversion the reader did not anticipate, such as
   // a map where a name is expected) becomes an arcplan::Error at its line.
   try {

@@ -9,7 +9,8 @@ namespace arcplan::benchmarks::detail {
 namespace {
 
 // A random sphere, box or cylinder with its bounding radius between `low` and `high` (m), at `center`.
-collision::Obstacle randomBody(Random& random, const std::string& name, double low, double high, const Vector3d& center) {
+collision::Obstacle randomBody(Random& random, const std::string& name, double low, double high,
+                               const Vector3d& center) {
   collision::Obstacle body;
   body.name = name;
   const double size = random.uniform(low, high);
@@ -78,7 +79,8 @@ Problem clutterProblem(const ProblemFactory& factory, std::uint64_t seed, int in
                              const Vector3d center = a + random.uniform(0.2, 0.8) * (b - a) +
                                                      random.uniform(0.0, 0.12) * randomPerpendicular(random, b - a);
                              auto body = randomBody(random, "clutter_" + std::to_string(k), 0.02, 0.06, center);
-                             if (!aboveTable(body) || (center - a).norm() < 0.12 || (center - b).norm() < 0.12) return false;
+                             if (!aboveTable(body) || (center - a).norm() < 0.12 || (center - b).norm() < 0.12)
+                               return false;
                              scene.obstacles.push_back(body);
                            }
                            return true;

@@ -18,8 +18,8 @@
 namespace arcplan::benchmarks::detail {
 namespace {
 
-PoolResult runInProcess(std::size_t jobCount, const JobFunction& job, const std::function<std::string(std::size_t)>& label,
-                        ProgressDisplay& display) {
+PoolResult runInProcess(std::size_t jobCount, const JobFunction& job,
+                        const std::function<std::string(std::size_t)>& label, ProgressDisplay& display) {
   PoolResult result;
   for (std::size_t i = 0; i < jobCount; ++i) {
     if (interruptRequested()) {
@@ -181,7 +181,8 @@ void waitForWorkers(const std::vector<pid_t>& children, PoolResult& result) {
 PoolResult runInWorkers(std::size_t jobCount, unsigned workers, const JobFunction& job,
                         const std::function<std::string(std::size_t)>& label, ProgressDisplay& display) {
   void* memory = ::mmap(nullptr, sizeof(SharedCounters), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-  if (memory == MAP_FAILED) throw Error(std::string("cannot share memory with worker processes: ") + std::strerror(errno));
+  if (memory == MAP_FAILED)
+    throw Error(std::string("cannot share memory with worker processes: ") + std::strerror(errno));
   auto* shared = new (memory) SharedCounters();
   int fds[2];
   if (::pipe(fds) != 0) throw Error(std::string("cannot create a pipe to worker processes: ") + std::strerror(errno));

@@ -15,7 +15,8 @@
 namespace arcplan::benchmarks::detail {
 
 // Runs job `index`, calling onRunFinished after every run; throws JobInterrupted or std::exception.
-using JobFunction = std::function<JobOutcome(std::size_t index, const std::function<void(unsigned run, bool solved)>& onRunFinished)>;
+using JobFunction =
+    std::function<JobOutcome(std::size_t index, const std::function<void(unsigned run, bool solved)>& onRunFinished)>;
 
 struct PoolResult {
   std::size_t completed = 0;

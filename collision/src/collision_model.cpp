@@ -67,7 +67,8 @@ double linkGap(const Implementation& impl, const Workspace& data, const Implemen
   if (group.self) {
     const int b = group.secondBody;
     return segmentDistance(data.linkCapsuleStarts[a], data.linkCapsuleEnds[a], data.linkCapsuleStarts[b],
-                           data.linkCapsuleEnds[b]) - radius - impl.linkCapsules[b].radius;
+                           data.linkCapsuleEnds[b]) -
+           radius - impl.linkCapsules[b].radius;
   }
   double gap = std::numeric_limits<double>::infinity();
   for (const int j : group.obstacleParts) {
@@ -116,7 +117,8 @@ bool partsCollide(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, 
   if (options.convexCollision && a.convexGeometry && b.convexGeometry) {
     return fcl::collide(a.convexGeometry.get(), poseA, b.convexGeometry.get(), poseB, request, result) > 0;
   }
-  if (fcl::collide(a.collisionGeometry.get(), poseA, b.collisionGeometry.get(), poseB, request, result) > 0) return true;
+  if (fcl::collide(a.collisionGeometry.get(), poseA, b.collisionGeometry.get(), poseB, request, result) > 0)
+    return true;
   return oneInsideOther(a, poseA, b, poseB);
 }
 
@@ -128,8 +130,8 @@ bool groupCollides(const CollisionModel& model, Workspace& data, const Implement
     if (broadPhase && boundGap(impl, data, i, j, group.self) > 0.0) continue;
     ensurePart(impl, data, i);
     if (group.self) ensurePart(impl, data, j);
-    if (partsCollide(impl.robotParts[i], data.partPoses[i], secondPart(impl, group, j), secondPose(impl, data, group, j),
-                     model.options())) {
+    if (partsCollide(impl.robotParts[i], data.partPoses[i], secondPart(impl, group, j),
+                     secondPose(impl, data, group, j), model.options())) {
       return true;
     }
   }
@@ -145,11 +147,16 @@ NamePair namesOf(const CollisionModel& model, const Implementation::PairGroup& g
 
 const char* toString(BoundingVolume boundingVolume) {
   switch (boundingVolume) {
-    case BoundingVolume::AABB: return "AABB";
-    case BoundingVolume::OBB: return "OBB";
-    case BoundingVolume::RSS: return "RSS";
-    case BoundingVolume::kIOS: return "kIOS";
-    case BoundingVolume::OBBRSS: return "OBBRSS";
+    case BoundingVolume::AABB:
+      return "AABB";
+    case BoundingVolume::OBB:
+      return "OBB";
+    case BoundingVolume::RSS:
+      return "RSS";
+    case BoundingVolume::kIOS:
+      return "kIOS";
+    case BoundingVolume::OBBRSS:
+      return "OBBRSS";
   }
   return "?";
 }
@@ -166,9 +173,12 @@ std::vector<Part> geometryParts(const robot::CollisionGeometry& geometry, const 
       } catch (const Error& e) {
         throw Error("link " + linkName + ": " + e.what());
       }
-    case robot::CollisionGeometry::Shape::Box: return {detail::boxPart(geometry.boxSize)};
-    case robot::CollisionGeometry::Shape::Sphere: return {detail::spherePart(geometry.radius)};
-    case robot::CollisionGeometry::Shape::Cylinder: return {detail::cylinderPart(geometry.radius, geometry.length)};
+    case robot::CollisionGeometry::Shape::Box:
+      return {detail::boxPart(geometry.boxSize)};
+    case robot::CollisionGeometry::Shape::Sphere:
+      return {detail::spherePart(geometry.radius)};
+    case robot::CollisionGeometry::Shape::Cylinder:
+      return {detail::cylinderPart(geometry.radius, geometry.length)};
   }
   return {};
 }
@@ -200,13 +210,15 @@ void addRobotParts(const robot::RobotModel& robot, const CollisionModelOptions& 
 // The parts of an obstacle, in the obstacle's own frame.
 std::vector<Part> obstacleShapeParts(const Obstacle& obstacle, const CollisionModelOptions& options) {
   switch (obstacle.shape) {
-    case Obstacle::Shape::Sphere: return {detail::spherePart(obstacle.radius)};
+    case Obstacle::Shape::Sphere:
+      return {detail::spherePart(obstacle.radius)};
     case Obstacle::Shape::Box: {
       Part box = detail::boxPart(obstacle.size);
       box.boxBound = true;
       return {std::move(box)};
     }
-    case Obstacle::Shape::Cylinder: return {detail::cylinderPart(obstacle.radius, obstacle.length)};
+    case Obstacle::Shape::Cylinder:
+      return {detail::cylinderPart(obstacle.radius, obstacle.length)};
     case Obstacle::Shape::Mesh:
       try {
         return detail::meshParts(
@@ -292,7 +304,9 @@ void addPairGroups(const AllowedCollisionMatrix& allowed, const std::vector<std:
 
 CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, const Scene& scene,
                                AllowedCollisionMatrix allowed, CollisionModelOptions options)
-    : robot_(std::move(robot)), allowed_(std::move(allowed)), options_(options),
+    : robot_(std::move(robot)),
+      allowed_(std::move(allowed)),
+      options_(options),
       implementation_(std::make_unique<detail::ModelImplementation>()) {
   if (!robot_) throw Error("collision model: no robot model");
   if (options_.distanceBoundingVolume == BoundingVolume::OBB) {
@@ -312,8 +326,9 @@ std::size_t CollisionModel::robotObstaclePairCount() const { return implementati
 std::size_t CollisionModel::selfPairCount() const { return implementation_->selfGroups.size(); }
 
 std::shared_ptr<const CollisionModel> makeCollisionModel(const Scene& scene, CollisionModelOptions options) {
-  auto robot = scene.robotUrdf.empty() ? std::make_shared<const robot::RobotModel>(robot::ur10e())
-                                       : std::make_shared<const robot::RobotModel>(robot::loadRobotModel(scene.robotUrdf));
+  auto robot = scene.robotUrdf.empty()
+                   ? std::make_shared<const robot::RobotModel>(robot::ur10e())
+                   : std::make_shared<const robot::RobotModel>(robot::loadRobotModel(scene.robotUrdf));
   AllowedCollisionMatrix allowed = defaultAllowedCollisions(*robot);
   for (const auto& [first, second] : scene.allowedCollisions) allowed.allow(first, second);
   return std::make_shared<const CollisionModel>(std::move(robot), scene, std::move(allowed), options);
@@ -364,7 +379,8 @@ DistanceReport distance(const CollisionModel& model, CollisionData& workspace, c
   data.distanceOrder.clear();
   for (std::size_t k = 0; k < impl.partPairs.size(); ++k) {
     const auto& pair = impl.partPairs[k];
-    const double bound = model.options().broadPhase ? boundGap(impl, data, pair.first, pair.second, pair.group->self) : 0.0;
+    const double bound =
+        model.options().broadPhase ? boundGap(impl, data, pair.first, pair.second, pair.group->self) : 0.0;
     data.distanceOrder.emplace_back(bound, static_cast<int>(k));
   }
   std::sort(data.distanceOrder.begin(), data.distanceOrder.end());
@@ -376,10 +392,10 @@ DistanceReport distance(const CollisionModel& model, CollisionData& workspace, c
     double& best = self ? report.selfDistance : report.obstacleDistance;
     if (bound >= std::max(report.selfDistance, report.obstacleDistance)) break;
     if (bound >= best) continue;
-    const double d = partsDistance(impl.robotParts[candidate.first], data.partPoses[candidate.first],
-                                   secondPart(impl, *candidate.group, candidate.second),
-                                   secondPose(impl, data, *candidate.group, candidate.second), bound <= 0.0,
-                                   model.options());
+    const double d =
+        partsDistance(impl.robotParts[candidate.first], data.partPoses[candidate.first],
+                      secondPart(impl, *candidate.group, candidate.second),
+                      secondPose(impl, data, *candidate.group, candidate.second), bound <= 0.0, model.options());
     if (d < best) {
       best = d;
       (self ? report.selfPair : report.obstaclePair) = namesOf(model, *candidate.group);

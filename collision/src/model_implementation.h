@@ -66,7 +66,7 @@ struct Workspace {
   std::vector<std::uint64_t> partStamps;
   std::uint64_t stamp = 0;
   std::vector<Eigen::Vector3d> linkCapsuleStarts, linkCapsuleEnds;  // per link with geometry
-  std::vector<std::pair<double, int>> distanceOrder;  // (lower bound, pair) for distance queries
+  std::vector<std::pair<double, int>> distanceOrder;                // (lower bound, pair) for distance queries
   // Motion checks (motion_check.h): per non-allowed body pair, how fast its distance can shrink
   // along the motion [m per unit of the motion's fraction], the fractions before / after which it is
   // proven apart, and where those certificates were measured.

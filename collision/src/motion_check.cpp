@@ -100,8 +100,8 @@ struct PairMeasurement {
 // UR10e the capsules are tight enough that exact distances for larger bounds cost more (2.5 µs per
 // GJK call) than the steps they save: below 2 cm they made the long motions of
 // perf/perf_collision.cpp 2–2.4x slower.
-PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data, const Implementation::PairGroup& group,
-                            double wanted, double minimumClearance) {
+PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data,
+                            const Implementation::PairGroup& group, double wanted, double minimumClearance) {
   const Implementation& impl = detail::implementationOf(model);
   double gap = detail::linkGap(impl, data, group);
   if (gap >= wanted) return {gap, false};
@@ -161,8 +161,8 @@ bool certifiedMotionFree(const CollisionModel& model, detail::Workspace& data, c
       auto& pair = pairs[k];
       if (done(pair)) continue;
       const double ahead = atStart ? pair.certifiedFromStart - s : s - pair.certifiedFromEnd;
-      const double lastStep = atStart ? pair.certifiedFromStart - pair.measuredFromStart
-                                      : pair.measuredFromEnd - pair.certifiedFromEnd;
+      const double lastStep =
+          atStart ? pair.certifiedFromStart - pair.measuredFromStart : pair.measuredFromEnd - pair.certifiedFromEnd;
       if (ahead > kEarlyMeasurement * lastStep) continue;
       const double remaining = atStart ? pair.certifiedFromEnd - s : s - pair.certifiedFromStart;
       const PairMeasurement measured = measurePair(model, data, *impl.groups[k],
@@ -276,8 +276,10 @@ void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl) {
 
 const char* toString(MotionCheck method) {
   switch (method) {
-    case MotionCheck::Discrete: return "discrete";
-    case MotionCheck::Certified: return "certified";
+    case MotionCheck::Discrete:
+      return "discrete";
+    case MotionCheck::Certified:
+      return "certified";
   }
   return "?";
 }
@@ -317,7 +319,8 @@ bool PathCertifier::anchorAll(const robot::JointRef& q) {
   ++measurements_;
   for (std::size_t k = 0; k < budget_.size(); ++k) {
     // The capsule bounds are taken as soon as they reach a few centimetres: enough for several waypoints.
-    const PairMeasurement measured = measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], 0.05, minimumClearance_);
+    const PairMeasurement measured =
+        measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], 0.05, minimumClearance_);
     if (measured.tooClose) return false;
     budget_[k] = measured.gap;
     used_[k] = 0.0;
@@ -346,8 +349,8 @@ bool PathCertifier::extend(const robot::JointRef& q) {
       ++measurements_;
       remeasured = true;
     }
-    const PairMeasurement measured =
-        measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], std::max(bound_[k], minimumClearance_), minimumClearance_);
+    const PairMeasurement measured = measurePair(model_, detail::workspaceOf(data_), *impl.groups[k],
+                                                 std::max(bound_[k], minimumClearance_), minimumClearance_);
     if (measured.tooClose) return false;
     budget_[k] = measured.gap;
     used_[k] = 0.0;

@@ -43,11 +43,16 @@ std::shared_ptr<fcl::CollisionGeometryd> makeBvh(const robot::TriangleMesh& mesh
 
 std::shared_ptr<fcl::CollisionGeometryd> makeBvh(const robot::TriangleMesh& mesh, BoundingVolume boundingVolume) {
   switch (boundingVolume) {
-    case BoundingVolume::AABB: return makeBvh<fcl::AABBd>(mesh);
-    case BoundingVolume::OBB: return makeBvh<fcl::OBBd>(mesh);
-    case BoundingVolume::RSS: return makeBvh<fcl::RSSd>(mesh);
-    case BoundingVolume::kIOS: return makeBvh<fcl::kIOSd>(mesh);
-    case BoundingVolume::OBBRSS: return makeBvh<fcl::OBBRSSd>(mesh);
+    case BoundingVolume::AABB:
+      return makeBvh<fcl::AABBd>(mesh);
+    case BoundingVolume::OBB:
+      return makeBvh<fcl::OBBd>(mesh);
+    case BoundingVolume::RSS:
+      return makeBvh<fcl::RSSd>(mesh);
+    case BoundingVolume::kIOS:
+      return makeBvh<fcl::kIOSd>(mesh);
+    case BoundingVolume::OBBRSS:
+      return makeBvh<fcl::OBBRSSd>(mesh);
   }
   throw Error("unknown bounding-volume type");
 }
@@ -148,7 +153,8 @@ std::vector<std::vector<int>> edgeComponents(const robot::TriangleMesh& mesh) {
     }
   }
   std::map<int, std::vector<int>> byRoot;
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) byRoot[find(static_cast<int>(f))].push_back(static_cast<int>(f));
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    byRoot[find(static_cast<int>(f))].push_back(static_cast<int>(f));
   std::vector<std::vector<int>> components;
   for (auto& entry : byRoot) components.push_back(std::move(entry.second));
   return components;
@@ -183,7 +189,8 @@ bool isClosed(const robot::TriangleMesh& mesh) {
 
 double sixTimesVolume(const robot::TriangleMesh& mesh) {
   double volume = 0.0;
-  for (const auto& t : mesh.triangles) volume += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  for (const auto& t : mesh.triangles)
+    volume += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
   return volume;
 }
 
@@ -202,14 +209,14 @@ Solid closedMeshSolid(robot::TriangleMesh mesh) {
     if (normal.norm() == 0.0) continue;
     const Eigen::Vector4d plane((normal.normalized()).x(), normal.normalized().y(), normal.normalized().z(),
                                 normal.normalized().dot(a));
-    const bool known = std::any_of(solid.planes.begin(), solid.planes.end(),
-                                   [&plane](const Eigen::Vector4d& p) { return (p - plane).cwiseAbs().maxCoeff() < 1e-9; });
+    const bool known = std::any_of(solid.planes.begin(), solid.planes.end(), [&plane](const Eigen::Vector4d& p) {
+      return (p - plane).cwiseAbs().maxCoeff() < 1e-9;
+    });
     if (!known) solid.planes.push_back(plane);
   }
   const bool convex = std::all_of(solid.planes.begin(), solid.planes.end(), [&](const Eigen::Vector4d& plane) {
-    return std::all_of(mesh.vertices.begin(), mesh.vertices.end(), [&](const Eigen::Vector3d& v) {
-      return plane.head<3>().dot(v) <= plane[3] + tolerance;
-    });
+    return std::all_of(mesh.vertices.begin(), mesh.vertices.end(),
+                       [&](const Eigen::Vector3d& v) { return plane.head<3>().dot(v) <= plane[3] + tolerance; });
   });
   if (convex) {
     solid.kind = Solid::Kind::Convex;
@@ -231,8 +238,9 @@ Part makeMeshPart(const robot::TriangleMesh& mesh, Solid solid, const CollisionM
   if (solid.kind == Solid::Kind::Convex) {
     auto faces = std::make_shared<std::vector<int>>();
     for (const auto& t : mesh.triangles) faces->insert(faces->end(), {3, t[0], t[1], t[2]});
-    part.convexGeometry = std::make_shared<fcl::Convexd>(std::make_shared<const std::vector<Eigen::Vector3d>>(mesh.vertices),
-                                                         static_cast<int>(mesh.triangles.size()), faces);
+    part.convexGeometry =
+        std::make_shared<fcl::Convexd>(std::make_shared<const std::vector<Eigen::Vector3d>>(mesh.vertices),
+                                       static_cast<int>(mesh.triangles.size()), faces);
     part.convexGeometry->computeLocalAABB();
   }
   part.solid = std::move(solid);
@@ -245,14 +253,19 @@ Part makeMeshPart(const robot::TriangleMesh& mesh, Solid solid, const CollisionM
 
 bool Solid::contains(const Eigen::Vector3d& point) const {
   switch (kind) {
-    case Kind::None: return false;
-    case Kind::Sphere: return point.squaredNorm() <= radius * radius;
-    case Kind::Box: return (point.cwiseAbs() - halfExtents).maxCoeff() <= 0.0;
-    case Kind::Cylinder: return std::abs(point.z()) <= halfLength && point.head<2>().squaredNorm() <= radius * radius;
+    case Kind::None:
+      return false;
+    case Kind::Sphere:
+      return point.squaredNorm() <= radius * radius;
+    case Kind::Box:
+      return (point.cwiseAbs() - halfExtents).maxCoeff() <= 0.0;
+    case Kind::Cylinder:
+      return std::abs(point.z()) <= halfLength && point.head<2>().squaredNorm() <= radius * radius;
     case Kind::Convex:
       return std::all_of(planes.begin(), planes.end(),
                          [&point](const Eigen::Vector4d& plane) { return plane.head<3>().dot(point) <= plane[3]; });
-    case Kind::ClosedMesh: break;
+    case Kind::ClosedMesh:
+      break;
   }
   // Signed crossings of a ray (Möller–Trumbore): leaving through an outward face counts +1,
   // entering -1; the sum is the number of (possibly overlapping) components around the point.
@@ -271,7 +284,7 @@ bool Solid::contains(const Eigen::Vector3d& point) const {
     const double v = direction.dot(q) / determinant;
     if (v < 0.0 || u + v > 1.0) continue;
     if (edge2.dot(q) / determinant <= 0.0) continue;  // behind the point
-    crossings += determinant < 0.0 ? 1 : -1;         // det = -(normal · direction)
+    crossings += determinant < 0.0 ? 1 : -1;          // det = -(normal · direction)
   }
   return crossings > 0;
 }

@@ -5,7 +5,6 @@
 #include <initializer_list>
 #include <set>
 
-
 #include "arcplan/common/error.h"
 #include "arcplan/robot/package_path.h"
 #include "arcplan/robot/pose.h"
@@ -81,7 +80,8 @@ private:
       return;
     }
     if (node.IsScalar()) {
-      if (node.Scalar() != "ur10e") yaml_.fail(node, "robot", "expected 'ur10e' (built in) or a mapping {urdf: FILE}, got '" + node.Scalar() + "'");
+      if (node.Scalar() != "ur10e")
+        yaml_.fail(node, "robot", "expected 'ur10e' (built in) or a mapping {urdf: FILE}, got '" + node.Scalar() + "'");
       linkNames_ = linkNamesOf(robot::ur10e());
       return;
     }
@@ -90,7 +90,8 @@ private:
     const auto urdf = yaml_.required(node, "urdf", "robot");
     std::filesystem::path path = yaml_.text(urdf, "robot.urdf");
     if (path.is_relative()) path = yaml_.file().parent_path() / path;
-    if (!std::filesystem::exists(path)) yaml_.fail(urdf, "robot.urdf", "URDF file " + path.string() + " does not exist");
+    if (!std::filesystem::exists(path))
+      yaml_.fail(urdf, "robot.urdf", "URDF file " + path.string() + " does not exist");
     scene.robotUrdf = path;
     try {
       linkNames_ = linkNamesOf(robot::loadRobotModel(path));
@@ -115,8 +116,9 @@ private:
     int shapes = 0;
     for (const char* key : {"sphere", "box", "cylinder", "mesh"}) shapes += node[key] ? 1 : 0;
     if (shapes != 1) {
-      yaml_.fail(node, named, shapes == 0 ? "no shape: expected one of sphere, box, cylinder, mesh"
-                                    : "more than one shape: give exactly one of sphere, box, cylinder, mesh");
+      yaml_.fail(node, named,
+                 shapes == 0 ? "no shape: expected one of sphere, box, cylinder, mesh"
+                             : "more than one shape: give exactly one of sphere, box, cylinder, mesh");
     }
     if (const auto sphere = node["sphere"]) {
       yaml_.expectMap(sphere, named + ".sphere");
@@ -132,8 +134,10 @@ private:
       yaml_.expectMap(cylinder, named + ".cylinder");
       yaml_.checkKeys(cylinder, named + ".cylinder", {"radius", "length"});
       obstacle.shape = Obstacle::Shape::Cylinder;
-      obstacle.radius = yaml_.positive(yaml_.required(cylinder, "radius", named + ".cylinder"), named + ".cylinder.radius");
-      obstacle.length = yaml_.positive(yaml_.required(cylinder, "length", named + ".cylinder"), named + ".cylinder.length");
+      obstacle.radius =
+          yaml_.positive(yaml_.required(cylinder, "radius", named + ".cylinder"), named + ".cylinder.radius");
+      obstacle.length =
+          yaml_.positive(yaml_.required(cylinder, "length", named + ".cylinder"), named + ".cylinder.length");
     } else {
       const auto mesh = node["mesh"];
       yaml_.expectMap(mesh, named + ".mesh");
@@ -141,12 +145,14 @@ private:
       obstacle.shape = Obstacle::Shape::Mesh;
       const auto fileNode = yaml_.required(mesh, "file", named + ".mesh");
       if (const auto scale = mesh["scale"]) {
-        obstacle.meshScale = scale.IsSequence() ? yaml_.positiveVector(scale, named + ".mesh.scale")
-                                                : Eigen::Vector3d::Constant(yaml_.positive(scale, named + ".mesh.scale"));
+        obstacle.meshScale = scale.IsSequence()
+                                 ? yaml_.positiveVector(scale, named + ".mesh.scale")
+                                 : Eigen::Vector3d::Constant(yaml_.positive(scale, named + ".mesh.scale"));
       }
       try {
         obstacle.meshFile = robot::resolveResourceUri(yaml_.text(fileNode, named + ".mesh.file"), yaml_.file());
-        obstacle.meshData = std::make_shared<const robot::TriangleMesh>(robot::loadMesh(obstacle.meshFile, obstacle.meshScale));
+        obstacle.meshData =
+            std::make_shared<const robot::TriangleMesh>(robot::loadMesh(obstacle.meshFile, obstacle.meshScale));
       } catch (const Error& e) {
         yaml_.fail(fileNode, named + ".mesh.file", e.what());
       }
@@ -179,7 +185,8 @@ private:
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const std::string field = "allowed_collisions[" + std::to_string(i) + "]";
       const auto pair = pairs[i];
-      if (!pair.IsSequence() || pair.size() != 2) yaml_.fail(pair, field, "expected a pair [name, name] of links or obstacles");
+      if (!pair.IsSequence() || pair.size() != 2)
+        yaml_.fail(pair, field, "expected a pair [name, name] of links or obstacles");
       std::array<std::string, 2> names;
       for (std::size_t k = 0; k < 2; ++k) {
         names[k] = yaml_.text(pair[k], field + "[" + std::to_string(k) + "]");
@@ -198,7 +205,8 @@ private:
     yaml_.checkKeys(node, field, {"pose", "seed", "joints"});
     QueryEndpoint endpoint;
     const bool hasPose = static_cast<bool>(node["pose"]), hasJoints = static_cast<bool>(node["joints"]);
-    if (hasPose == hasJoints) yaml_.fail(node, field, "expected exactly one of 'pose' (with optional 'seed') or 'joints'");
+    if (hasPose == hasJoints)
+      yaml_.fail(node, field, "expected exactly one of 'pose' (with optional 'seed') or 'joints'");
     if (hasPose) {
       const auto values = yaml_.numbers(node["pose"], field + ".pose", 6);
       endpoint.pose = std::array<double, 6>{values[0], values[1], values[2], values[3], values[4], values[5]};
@@ -234,10 +242,14 @@ Eigen::Vector3d Obstacle::boundingCenter() const {
 
 double Obstacle::boundingRadius() const {
   switch (shape) {
-    case Shape::Sphere: return radius;
-    case Shape::Box: return size.norm() / 2.0;
-    case Shape::Cylinder: return std::hypot(radius, length / 2.0);
-    case Shape::Mesh: break;
+    case Shape::Sphere:
+      return radius;
+    case Shape::Box:
+      return size.norm() / 2.0;
+    case Shape::Cylinder:
+      return std::hypot(radius, length / 2.0);
+    case Shape::Mesh:
+      break;
   }
   std::shared_ptr<const robot::TriangleMesh> loaded;
   const auto& mesh = meshOf(*this, loaded);

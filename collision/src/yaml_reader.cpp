@@ -83,8 +83,9 @@ double YamlReader::number(const YAML::Node& node, const std::string& field) cons
 
 std::vector<double> YamlReader::numbers(const YAML::Node& node, const std::string& field, std::size_t count) const {
   if (!node.IsSequence() || node.size() != count) {
-    fail(node, field, "expected a list of " + std::to_string(count) + " numbers" +
-                          (node.IsSequence() ? ", got " + std::to_string(node.size()) : std::string()));
+    fail(node, field,
+         "expected a list of " + std::to_string(count) + " numbers" +
+             (node.IsSequence() ? ", got " + std::to_string(node.size()) : std::string()));
   }
   std::vector<double> values;
   for (std::size_t i = 0; i < count; ++i) values.push_back(number(node[i], field + "[" + std::to_string(i) + "]"));

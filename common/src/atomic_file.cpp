@@ -34,7 +34,8 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path target) : target_(std::
   temporary_ += ".tmp." + std::to_string(::getpid());
   stream_.open(temporary_, std::ios::out | std::ios::trunc | std::ios::binary);
   if (!stream_) {
-    throw Error("cannot write " + target_.string() + " (temporary " + temporary_.string() + "): " + std::strerror(errno));
+    throw Error("cannot write " + target_.string() + " (temporary " + temporary_.string() +
+                "): " + std::strerror(errno));
   }
 }
 

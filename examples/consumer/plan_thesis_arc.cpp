@@ -16,8 +16,8 @@ int main() {
   auto scene = std::make_shared<const arcplan::collision::Scene>(
       arcplan::collision::loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"));
   auto problem = arcplan::planners::makePlanningProblem(scene);  // OMPL SimpleSetup with start and goal
-  problem.setup->setPlanner(arcplan::planners::makePlanner(
-      "arc", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"sagitta", "0.1"}}));
+  problem.setup->setPlanner(arcplan::planners::makePlanner("arc", problem.setup->getSpaceInformation(),
+                                                           problem.plannerContext(), {{"sagitta", "0.1"}}));
   if (problem.setup->solve(1.0) != ompl::base::PlannerStatus::EXACT_SOLUTION) return 1;
 
   arcplan::trajectory::JointPath path;

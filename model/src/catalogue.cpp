@@ -18,10 +18,10 @@ double typical(const std::vector<double>& values, int channel) {
   return values[static_cast<std::size_t>(std::min<int>(channel, static_cast<int>(values.size()) - 1))];
 }
 const std::vector<double> kDriveGain{0.085, 0.085, 0.10, 0.095, 0.09, 0.08};  // A/(N·m)
-const std::vector<double> kCoulomb{1.4, 1.3, 0.65, 0.26, 0.3, 0.24};           // A
-const std::vector<double> kViscous{1.75, 1.63, 1.09, 0.33, 0.24, 0.29};        // A·s/rad
-const std::vector<double> kTorqueScale{10.0, 70.0, 30.0, 2.5, 0.5, 0.3};       // typical |τ| in N·m
-const std::vector<double> kRotorInertia{6.0, 6.0, 1.9, 0.6, 0.6, 0.6};         // kg·m² at the joint
+const std::vector<double> kCoulomb{1.4, 1.3, 0.65, 0.26, 0.3, 0.24};          // A
+const std::vector<double> kViscous{1.75, 1.63, 1.09, 0.33, 0.24, 0.29};       // A·s/rad
+const std::vector<double> kTorqueScale{10.0, 70.0, 30.0, 2.5, 0.5, 0.3};      // typical |τ| in N·m
+const std::vector<double> kRotorInertia{6.0, 6.0, 1.9, 0.6, 0.6, 0.6};        // kg·m² at the joint
 
 double sgn(const Dataset& data, double velocity) { return smoothedDirection(data, velocity); }
 
@@ -237,7 +237,9 @@ class TrackingDelay : public Effect {
 public:
   using Effect::Effect;
   std::string meaning() const override { return "controller and servo lag: the joint follows its target late"; }
-  std::string term() const override { return "actual(t) = target(t - d)  (scale·[target(t-d) - target(t)]), d searched"; }
+  std::string term() const override {
+    return "actual(t) = target(t - d)  (scale·[target(t-d) - target(t)]), d searched";
+  }
   std::string residualPattern() const override {
     return "follows the commanded joint speed with the opposite sign: the actual position lags the target";
   }

@@ -30,7 +30,8 @@ std::string formatNumber(double value) {
   return buffer;
 }
 
-RegimeBin summarize(const std::string& label, const Eigen::VectorXd& residual, const std::vector<Eigen::Index>& members) {
+RegimeBin summarize(const std::string& label, const Eigen::VectorXd& residual,
+                    const std::vector<Eigen::Index>& members) {
   RegimeBin bin;
   bin.label = label;
   bin.count = static_cast<Eigen::Index>(members.size());
@@ -65,7 +66,8 @@ Regime quartileRegime(const std::string& name, const std::string& unit, const Ei
       if (inside) members.push_back(candidates[k]);
     }
     if (members.empty()) continue;
-    regime.bins.push_back(summarize(formatNumber(edges[b]) + " to " + formatNumber(edges[b + 1]) + " " + unit, residual, members));
+    regime.bins.push_back(
+        summarize(formatNumber(edges[b]) + " to " + formatNumber(edges[b + 1]) + " " + unit, residual, members));
   }
   return regime;
 }
@@ -187,9 +189,9 @@ std::vector<ChannelRegimes> residualRegimes(const Dataset& data, const std::vect
       if (std::abs(qd[i]) > rest) moving.push_back(i);
     }
     Regime direction{"direction", {}};
-    for (const auto& [label, members] : {std::pair{gearbox ? "direct" : "qd > 0", positive},
-                                         std::pair{gearbox ? "indirect" : "qd < 0", negative},
-                                         std::pair{"at rest", resting}}) {
+    for (const auto& [label, members] :
+         {std::pair{gearbox ? "direct" : "qd > 0", positive}, std::pair{gearbox ? "indirect" : "qd < 0", negative},
+          std::pair{"at rest", resting}}) {
       if (!members.empty()) direction.bins.push_back(summarize(label, residual, members));
     }
     channel.regimes.push_back(direction);
@@ -206,27 +208,31 @@ std::vector<ChannelRegimes> residualRegimes(const Dataset& data, const std::vect
     std::vector<Eigen::Index> all(static_cast<std::size_t>(n));
     std::iota(all.begin(), all.end(), 0);
     if (!gearbox) {
-      channel.regimes.push_back(quartileRegime("speed", "rad/s", residual, moving, [&](Eigen::Index i) { return std::abs(qd[i]); }));
+      channel.regimes.push_back(
+          quartileRegime("speed", "rad/s", residual, moving, [&](Eigen::Index i) { return std::abs(qd[i]); }));
     }
     if (hasLoad) {
       const auto& tau = data.signal("tau", c);
-      channel.regimes.push_back(quartileRegime("load", "N·m", residual, all, [&](Eigen::Index i) { return std::abs(tau[i]); }));
+      channel.regimes.push_back(
+          quartileRegime("load", "N·m", residual, all, [&](Eigen::Index i) { return std::abs(tau[i]); }));
     }
     if (data.hasSignal("temperature")) {
       const auto& temperature = data.signal("temperature", c);
-      channel.regimes.push_back(quartileRegime("temperature", "°C", residual, all, [&](Eigen::Index i) { return temperature[i]; }));
+      channel.regimes.push_back(
+          quartileRegime("temperature", "°C", residual, all, [&](Eigen::Index i) { return temperature[i]; }));
     }
     if (data.hasSignal("q")) {
       const auto& q = data.signal("q", c);
-      channel.regimes.push_back(quartileRegime("joint_angle", "rad", residual, all, [&](Eigen::Index i) { return q[i]; }));
+      channel.regimes.push_back(
+          quartileRegime("joint_angle", "rad", residual, all, [&](Eigen::Index i) { return q[i]; }));
     }
     result.push_back(std::move(channel));
   }
   return result;
 }
 
-std::vector<ResidualCorrelation> residualCorrelations(const Dataset& data, const std::vector<Eigen::VectorXd>& residuals,
-                                                      double minimum) {
+std::vector<ResidualCorrelation> residualCorrelations(const Dataset& data,
+                                                      const std::vector<Eigen::VectorXd>& residuals, double minimum) {
   // Every joint's signals and their transforms (term_library.h), not only the channel's own.
   std::vector<ResidualCorrelation> result;
   for (int c = 0; c < data.channelCount(); ++c) {

@@ -11,7 +11,7 @@ namespace arcplan::model {
 namespace {
 
 const std::vector<std::string> kRobotSignals{"rb_gravity", "rb_inertial", "payload_m",
-                                             "payload_mx", "payload_my", "payload_mz"};
+                                             "payload_mx", "payload_my",  "payload_mz"};
 
 bool isRobotSignal(const std::string& name) {
   return std::find(kRobotSignals.begin(), kRobotSignals.end(), name) != kRobotSignals.end();
@@ -34,7 +34,8 @@ void checkRobotJoints(const robot::RobotModel& robot, int joints, const std::str
 }  // namespace
 
 std::shared_ptr<const robot::RobotModel> modelRobot(const ModelSpec& spec) {
-  if (spec.urdf.empty()) return std::shared_ptr<const robot::RobotModel>(&robot::ur10e(), [](const robot::RobotModel*) {});
+  if (spec.urdf.empty())
+    return std::shared_ptr<const robot::RobotModel>(&robot::ur10e(), [](const robot::RobotModel*) {});
   if (!std::filesystem::exists(spec.urdf)) {
     throw Error(spec.source.string() + ": urdf: file " + spec.urdf.string() + " does not exist");
   }
@@ -109,7 +110,8 @@ void Dataset::computeRobotSignals() const {
 
 Dataset makeJointDataset(const Log& log, const ModelSpec& spec) {
   if (spec.kind == ModelKind::GearboxFtd) {
-    throw Error(log.source.string() + ": kind gearbox_ftd needs force-transfer data (gearbox, ratio, direction, "
+    throw Error(log.source.string() +
+                ": kind gearbox_ftd needs force-transfer data (gearbox, ratio, direction, "
                 "tau_out_Nm, tau_in_Nm columns), not a joint log");
   }
   Dataset dataset;
@@ -140,7 +142,8 @@ Dataset makeJointDataset(const Log& log, const ModelSpec& spec) {
   if (spec.loadTorque == LoadTorqueSource::TargetMoment) {
     if (current) {
       if (!log.has("target_moment")) {
-        throw Error(log.source.string() + ": load_torque: target_moment needs target_moment_* columns, which the log "
+        throw Error(log.source.string() +
+                    ": load_torque: target_moment needs target_moment_* columns, which the log "
                     "does not have; use load_torque: rigid_body to compute it from the URDF");
       }
       tau = log.vector("target_moment");
@@ -220,7 +223,8 @@ Dataset makeGearboxDataset(const std::vector<ForceTransferPoint>& points, const 
     channel.signals["series"] = series;
     dataset.channels_.push_back(std::move(channel));
   }
-  dataset.notes_.push_back("base prediction: ideal ratio, input torque = output torque / ratio; qd = +1 DIRECT, -1 INDIRECT");
+  dataset.notes_.push_back(
+      "base prediction: ideal ratio, input torque = output torque / ratio; qd = +1 DIRECT, -1 INDIRECT");
   return dataset;
 }
 

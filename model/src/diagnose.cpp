@@ -44,8 +44,8 @@ ErrorSummary summaryFromSquares(const Dataset& heldData, const std::vector<doubl
 
 // The model as it is on every channel: its columns (or, kept fixed, its prediction) and the
 // held-out error.
-detail::HeldOutBaseline makeBaseline(const FittedModel& model, bool kept, const Dataset& data, const Dataset* validation,
-                                     int folds) {
+detail::HeldOutBaseline makeBaseline(const FittedModel& model, bool kept, const Dataset& data,
+                                     const Dataset* validation, int folds) {
   detail::HeldOutBaseline baseline;
   for (int c = 0; c < data.channelCount(); ++c) {
     Eigen::MatrixXd train, held;
@@ -98,7 +98,8 @@ EffectCandidate scoreCatalogueEffect(const Effect& effect, const Dataset& data, 
   std::vector<double> squares(static_cast<std::size_t>(channels));
   std::vector<int> ranks(static_cast<std::size_t>(channels));
   for (int c = 0; c < channels; ++c) {
-    const double value = nonlinear ? effect.searchNonlinear(data, c, baseline.trainResidual[c], baseline.trainBasis[c]) : 0.0;
+    const double value =
+        nonlinear ? effect.searchNonlinear(data, c, baseline.trainResidual[c], baseline.trainBasis[c]) : 0.0;
     if (nonlinear) candidate.nonlinear[c] = value;
     const Eigen::MatrixXd train = columnsOf(effect, data, c, value);
     const Eigen::MatrixXd held = validation ? columnsOf(effect, *validation, c, value) : Eigen::MatrixXd();
@@ -115,7 +116,8 @@ double catalogueTogether(const std::vector<EffectCandidate>& ranking, const Data
   for (int c = 0; c < data.channelCount(); ++c) {
     Eigen::MatrixXd train(data.samples(c), 0), held(validation ? validation->samples(c) : 0, 0);
     for (const auto& candidate : ranking) {
-      if (candidate.discovered || std::find(candidate.joints.begin(), candidate.joints.end(), c) == candidate.joints.end()) {
+      if (candidate.discovered ||
+          std::find(candidate.joints.begin(), candidate.joints.end(), c) == candidate.joints.end()) {
         continue;
       }
       const auto effect = createEffect(candidate.entry);
@@ -164,7 +166,8 @@ std::string describeChannels(const Dataset& data, const std::vector<int>& channe
   return text;
 }
 
-Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* validation, const DiagnoseOptions& options) {
+Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* validation,
+                   const DiagnoseOptions& options) {
   if (validation && validation->channelCount() != data.channelCount()) {
     throw Error(validation->source() + ": mismatched joint count: " + std::to_string(validation->channelCount()) +
                 " channels, the data has " + std::to_string(data.channelCount()));
@@ -199,11 +202,13 @@ Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* va
     // One physical payload for the arm: fitted jointly on the channels it helps, reported in kg.
     if (candidate.suggested && effect->sharedAcrossChannels() && spec.hasEffect("drive_gain")) {
       const FittedModel with = options.keepParameters ? fitAdditions(base, {candidate.entry}, data)
-                                                      : fitModel([&] {
-                                                          ModelSpec extended = spec;
-                                                          extended.effects.push_back(candidate.entry);
-                                                          return extended;
-                                                        }(), data);
+                                                      : fitModel(
+                                                            [&] {
+                                                              ModelSpec extended = spec;
+                                                              extended.effects.push_back(candidate.entry);
+                                                              return extended;
+                                                            }(),
+                                                            data);
       const auto& fit = with.effects.back();
       candidate.quantities = fit.effect->physicalQuantities(fit.shared, fit.sharedCovariance);
     }

@@ -50,8 +50,8 @@ std::string percentText(double fraction) {
 std::string explainCandidate(const Effect& effect, const EffectCandidate& candidate, const Dataset& data) {
   std::string text = "The residual on " + describeChannels(data, candidate.joints) + " " + effect.residualPattern() +
                      ": " + effect.meaning() + ". Adding " + candidate.effect + " removes " +
-                     percentText(candidate.heldoutReduction) + " of the held-out residual (" + perChannel(candidate, data) +
-                     ")";
+                     percentText(candidate.heldoutReduction) + " of the held-out residual (" +
+                     perChannel(candidate, data) + ")";
   if (!candidate.nonlinearName.empty()) {
     text += "; " + candidate.nonlinearName + " =";
     for (std::size_t k = 0; k < candidate.joints.size(); ++k) {
@@ -95,14 +95,16 @@ std::string diagnosisSummary(const Diagnosis& diagnosis, double minimumReduction
       summary += " The held-out residual still follows:";
       for (std::size_t k = 0; k < diagnosis.residualFollows.size() && k < 5; ++k) {
         const auto& follow = diagnosis.residualFollows[k];
-        summary += (k ? ", " : " ") + follow.signal + " on " + follow.channel + " (r = " + number(follow.correlation) + ")";
+        summary +=
+            (k ? ", " : " ") + follow.signal + " on " + follow.channel + " (r = " + number(follow.correlation) + ")";
       }
       summary += ".";
     }
   }
   if (!std::isnan(diagnosis.explainable)) {
-    summary += "\nThe catalogue explains " + percentText(diagnosis.catalogueExplains) + " of the held-out residual, of the " +
-               percentText(diagnosis.explainable) + " that can be explained at all (the rest is at the noise floor, " +
+    summary += "\nThe catalogue explains " + percentText(diagnosis.catalogueExplains) +
+               " of the held-out residual, of the " + percentText(diagnosis.explainable) +
+               " that can be explained at all (the rest is at the noise floor, " +
                "estimated from the residual's second differences).";
   }
   return summary;

@@ -63,7 +63,8 @@ std::vector<EffectCandidate> discoverTerms(const Dataset& data, const Dataset* v
   std::map<std::string, CandidateTerm> shortlist;  // by expression: deterministic order, no repeats
   for (int c = 0; c < channels; ++c) {
     auto scored = screen(data, c, baseline.trainBasis[c], baseline.trainResidual[c]);
-    const auto keep = std::min<std::size_t>(scored.size(), static_cast<std::size_t>(std::max(1, options.screenedPerChannel)));
+    const auto keep =
+        std::min<std::size_t>(scored.size(), static_cast<std::size_t>(std::max(1, options.screenedPerChannel)));
     std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(keep), scored.end(),
                       [](const auto& a, const auto& b) { return a.first > b.first; });
     for (std::size_t k = 0; k < keep; ++k) shortlist.emplace(scored[k].second.expression, scored[k].second);

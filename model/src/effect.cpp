@@ -34,7 +34,8 @@ double remainingSquares(Eigen::MatrixXd columns, const Eigen::VectorXd& residual
   if (basis.cols() > 0 && basis.rows() == columns.rows()) columns -= basis * (basis.transpose() * columns);
   const Eigen::MatrixXd gram = columns.transpose() * columns;
   const Eigen::VectorXd moment = columns.transpose() * residual;
-  const Eigen::LDLT<Eigen::MatrixXd> solver(gram + 1e-12 * gram.trace() * Eigen::MatrixXd::Identity(gram.rows(), gram.cols()));
+  const Eigen::LDLT<Eigen::MatrixXd> solver(gram +
+                                            1e-12 * gram.trace() * Eigen::MatrixXd::Identity(gram.rows(), gram.cols()));
   return residual.squaredNorm() - moment.dot(solver.solve(moment));
 }
 
@@ -163,14 +164,14 @@ std::unique_ptr<Effect> createEffect(const EffectSpec& spec) {
   const auto allowed = effect->optionNames();
   const auto parameter = effect->nonlinearParameter();
   for (const auto& [name, value] : spec.options) {
-    const bool known = std::find(allowed.begin(), allowed.end(), name) != allowed.end() ||
-                       (parameter && parameter->name == name);
+    const bool known =
+        std::find(allowed.begin(), allowed.end(), name) != allowed.end() || (parameter && parameter->name == name);
     if (!known) {
       std::string names;
       for (const auto& n : allowed) names += (names.empty() ? "" : ", ") + n;
       if (parameter) names += (names.empty() ? "" : ", ") + parameter->name;
-      throw Error("effect '" + spec.id + "': unknown option '" + name + "' (options: " +
-                  (names.empty() ? std::string("none") : names) + ")");
+      throw Error("effect '" + spec.id + "': unknown option '" + name +
+                  "' (options: " + (names.empty() ? std::string("none") : names) + ")");
     }
   }
   return effect;

@@ -1,7 +1,7 @@
 // A user effect written in the model file (or proposed by the diagnosis' discovery): each
-// expression is one regressor column, evaluated by muparser over the dataset's signals. Variables: the channel's own signals by name (q, qd, qdd,
-// tau, temperature, time, ...), every joint's signal as name_j (q_0, tau_3, ...), and sgn(x, w)
-// for the smoothed sign.
+// expression is one regressor column, evaluated by muparser over the dataset's signals. Variables: the channel's own
+// signals by name (q, qd, qdd, tau, temperature, time, ...), every joint's signal as name_j (q_0, tau_3, ...), and
+// sgn(x, w) for the smoothed sign.
 #include <cmath>
 #include <deque>
 
@@ -24,8 +24,7 @@ public:
     for (std::size_t i = 0; i < spec.expressions.size(); ++i) {
       mu::Parser parser;
       parser.DefineFun("sgn", smoothedSign);
-      parser.SetVarFactory(
-          [](const char*, void* user) -> double* { return static_cast<double*>(user); }, &scratch_);
+      parser.SetVarFactory([](const char*, void* user) -> double* { return static_cast<double*>(user); }, &scratch_);
       try {
         parser.SetExpr(spec.expressions[i]);
         parser.Eval();
@@ -105,6 +104,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Effect> detail::makeExpressionEffect(const EffectSpec& spec) { return std::make_unique<ExpressionEffect>(spec); }
+std::unique_ptr<Effect> detail::makeExpressionEffect(const EffectSpec& spec) {
+  return std::make_unique<ExpressionEffect>(spec);
+}
 
 }  // namespace arcplan::model

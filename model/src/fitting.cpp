@@ -74,7 +74,8 @@ void fitChannels(std::vector<EffectFit>& effects, const Dataset& data, const std
     // Linear effects first; each nonlinear effect then searches its parameter on what the others
     // leave, twice round so that two nonlinear effects settle against each other.
     std::vector<bool> include(count);
-    for (std::size_t e = 0; e < count; ++e) include[e] = free[e] && !effects[e].effect->nonlinearParameter().has_value();
+    for (std::size_t e = 0; e < count; ++e)
+      include[e] = free[e] && !effects[e].effect->nonlinearParameter().has_value();
     std::vector<std::size_t> nonlinear;
     for (std::size_t e = 0; e < count; ++e) {
       if (free[e] && !include[e] && effects[e].applied[c]) nonlinear.push_back(e);
@@ -112,7 +113,8 @@ void fitShared(std::vector<EffectFit>& effects, std::size_t e, const Dataset& da
     if (effects[k].effect->id() == "drive_gain") gainEffect = static_cast<int>(k);
   }
   if (gainEffect < 0) {
-    throw Error("effect '" + shared.effect->id() + "': one set of physical parameters for the arm is seen in each "
+    throw Error("effect '" + shared.effect->id() +
+                "': one set of physical parameters for the arm is seen in each "
                 "joint's current through its drive gain; add drive_gain to the model");
   }
   const bool gainFree = free[static_cast<std::size_t>(gainEffect)];
@@ -166,7 +168,8 @@ void fitShared(std::vector<EffectFit>& effects, std::size_t e, const Dataset& da
       stacked.gram.block(channel.offset, channel.offset, p, p) += weight * own.gram.topLeftCorner(p, p);
       stacked.gram.block(channel.offset, unknowns, p, parameters) += weight * own.gram.topRightCorner(p, parameters);
       stacked.gram.block(unknowns, channel.offset, parameters, p) += weight * own.gram.bottomLeftCorner(parameters, p);
-      stacked.gram.bottomRightCorner(parameters, parameters) += weight * own.gram.bottomRightCorner(parameters, parameters);
+      stacked.gram.bottomRightCorner(parameters, parameters) +=
+          weight * own.gram.bottomRightCorner(parameters, parameters);
       stacked.moment.segment(channel.offset, p) += weight * own.moment.head(p);
       stacked.moment.tail(parameters) += weight * own.moment.tail(parameters);
       stacked.squares += weight * own.squares;
@@ -190,7 +193,8 @@ void fitShared(std::vector<EffectFit>& effects, std::size_t e, const Dataset& da
   // Covariance of θ: σ²·(stacked gram)⁻¹, σ² from the weighted residuals (≈ 1 when the model fits).
   double weightedSquares = 0.0;
   for (const auto& channel : channels) weightedSquares += static_cast<double>(channel.design.rows());
-  const double scale = weightedSquares / static_cast<double>(std::max<Eigen::Index>(1, stacked.samples - solution.rank));
+  const double scale =
+      weightedSquares / static_cast<double>(std::max<Eigen::Index>(1, stacked.samples - solution.rank));
   const Eigen::MatrixXd inverse = stacked.gram.ldlt().solve(Eigen::MatrixXd::Identity(total, total));
   shared.shared = theta;
   shared.sharedCovariance = scale * inverse.bottomRightCorner(parameters, parameters);
@@ -314,7 +318,8 @@ FittedModel modelFromParameters(const ModelSpec& spec, const Dataset& data, bool
       if (it == stored.end()) {
         if (!typicalWhenMissing) {
           throw Error(spec.source.string() + ": effects[" + std::to_string(e) + "] (" + fit.effect->id() +
-                      "): parameters." + name + ": missing; the model has no fitted parameters to keep (fit it with "
+                      "): parameters." + name +
+                      ": missing; the model has no fitted parameters to keep (fit it with "
                       "--save first)");
         }
         return typicalValue;
@@ -356,7 +361,8 @@ Eigen::VectorXd predict(const FittedModel& model, const Dataset& data, int chann
 std::vector<Eigen::VectorXd> predictAll(const FittedModel& model, const Dataset& data) {
   if (data.channelCount() != model.channelCount()) {
     throw Error(data.source() + ": mismatched joint count: the model was fitted on " +
-                std::to_string(model.channelCount()) + " channels, this data has " + std::to_string(data.channelCount()));
+                std::to_string(model.channelCount()) + " channels, this data has " +
+                std::to_string(data.channelCount()));
   }
   std::vector<Eigen::VectorXd> predictions;
   for (int c = 0; c < data.channelCount(); ++c) predictions.push_back(predict(model, data, c));

@@ -56,7 +56,8 @@ std::vector<ForceTransferPoint> readForceTransferData(const std::filesystem::pat
     if (point.ratio <= 0.0) throw Error(where + ": column ratio must be positive");
     if (column.count("series")) {
       const double series = number("series");
-      if (series < 0 || series > 1e6 || series != std::floor(series)) throw Error(where + ": column series: expected a small integer");
+      if (series < 0 || series > 1e6 || series != std::floor(series))
+        throw Error(where + ": column series: expected a small integer");
       point.series = static_cast<int>(series);
     }
     std::string direction(trim(fields[column.at("direction")]));

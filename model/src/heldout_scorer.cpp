@@ -8,8 +8,8 @@
 namespace arcplan::model::detail {
 
 HeldOutScorer::HeldOutScorer(const Dataset& data, const Dataset* validation, Eigen::VectorXd targetTrain,
-                             Eigen::VectorXd targetValidation, Eigen::MatrixXd baseTrain, Eigen::MatrixXd baseValidation,
-                             int folds)
+                             Eigen::VectorXd targetValidation, Eigen::MatrixXd baseTrain,
+                             Eigen::MatrixXd baseValidation, int folds)
     : validation_(validation != nullptr),
       targetTrain_(std::move(targetTrain)),
       targetValidation_(std::move(targetValidation)),
@@ -21,7 +21,8 @@ HeldOutScorer::HeldOutScorer(const Dataset& data, const Dataset* validation, Eig
   const Eigen::Index n = targetTrain_.size();
   members_.resize(static_cast<std::size_t>(folds));
   for (Eigen::Index i = 0; i < n; ++i) {
-    const auto fold = data.timeOrdered() ? static_cast<std::size_t>(i * folds / n) : static_cast<std::size_t>(i % folds);
+    const auto fold =
+        data.timeOrdered() ? static_cast<std::size_t>(i * folds / n) : static_cast<std::size_t>(i % folds);
     members_[fold].push_back(i);
   }
 }
@@ -106,8 +107,8 @@ void judgeCandidate(EffectCandidate& candidate, const std::vector<double>& squar
   // Suggested: the effect on its significant channels only; otherwise what it would do everywhere.
   double with = 0.0;
   for (std::size_t c = 0; c < channels; ++c) {
-    const bool used = !candidate.suggested ||
-                      std::find(candidate.joints.begin(), candidate.joints.end(), static_cast<int>(c)) != candidate.joints.end();
+    const bool used = !candidate.suggested || std::find(candidate.joints.begin(), candidate.joints.end(),
+                                                        static_cast<int>(c)) != candidate.joints.end();
     with += used ? squares[c] : baseline.squares[c];
   }
   const double total = baseline.total();
@@ -117,8 +118,8 @@ void judgeCandidate(EffectCandidate& candidate, const std::vector<double>& squar
 double noiseFloor(const Eigen::VectorXd& residual) {
   const Eigen::Index n = residual.size();
   if (n < 3) return 0.0;
-  const Eigen::ArrayXd second = residual.segment(2, n - 2).array() - 2.0 * residual.segment(1, n - 2).array() +
-                                residual.head(n - 2).array();
+  const Eigen::ArrayXd second =
+      residual.segment(2, n - 2).array() - 2.0 * residual.segment(1, n - 2).array() + residual.head(n - 2).array();
   return std::sqrt(second.square().mean() / 6.0);
 }
 

@@ -179,9 +179,9 @@ const Eigen::MatrixXd& Log::vector(const std::string& signal) const {
 }
 
 const std::vector<std::string>& knownVectorSignals() {
-  static const std::vector<std::string> names{
-      "target_q", "target_qd", "target_qdd", "target_current", "target_moment",
-      "actual_q", "actual_qd", "actual_current", "joint_temperatures"};
+  static const std::vector<std::string> names{"target_q",       "target_qd",      "target_qdd",
+                                              "target_current", "target_moment",  "actual_q",
+                                              "actual_qd",      "actual_current", "joint_temperatures"};
   return names;
 }
 
@@ -256,7 +256,8 @@ ColumnMap parseColumnMap(const std::string& text) {
     }
     map.entries.push_back(std::move(entry));
   }
-  const bool hasTime = std::any_of(map.entries.begin(), map.entries.end(), [](const auto& e) { return e.signal == "timestamp"; });
+  const bool hasTime =
+      std::any_of(map.entries.begin(), map.entries.end(), [](const auto& e) { return e.signal == "timestamp"; });
   if (!hasTime) throw Error("column map '" + text + "' has no timestamp column");
   return map;
 }
@@ -267,8 +268,7 @@ std::pair<std::size_t, std::size_t> parseLineRange(const std::string& text, cons
   std::optional<double> last = 0.0;
   if (dash != std::string::npos && !trim(text.substr(dash + 1)).empty()) last = parseDouble(text.substr(dash + 1));
   if (dash == std::string::npos || !first || !last || *first < 1 || *first > 1e12 || *last > 1e12 ||
-      *first != std::floor(*first) ||
-      *last != std::floor(*last) || (*last != 0.0 && *last < *first)) {
+      *first != std::floor(*first) || *last != std::floor(*last) || (*last != 0.0 && *last < *first)) {
     throw Error(what + ": expected a 1-based line range FIRST-LAST or FIRST-, got '" + text + "'");
   }
   return {static_cast<std::size_t>(*first), static_cast<std::size_t>(*last)};
@@ -284,9 +284,8 @@ Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
 
   const char separator = firstLine.find(',') != std::string_view::npos ? ',' : ' ';
   const auto firstFields = splitFields(firstLine, separator);
-  const bool hasHeader = std::any_of(firstFields.begin(), firstFields.end(), [](std::string_view f) {
-    return !parseDouble(f).has_value();
-  });
+  const bool hasHeader = std::any_of(firstFields.begin(), firstFields.end(),
+                                     [](std::string_view f) { return !parseDouble(f).has_value(); });
 
   std::vector<ColumnSource> sources;
   std::size_t expectedFields = 0;  // header logs: exactly the header width; headerless: at least the map width
@@ -295,7 +294,8 @@ Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
     expectedFields = firstFields.size();
   } else {
     if (!options.columns) {
-      throw Error(file.string() + " has no header row; give a column map (--columns), e.g. 'ur10e_real' or "
+      throw Error(file.string() +
+                  " has no header row; give a column map (--columns), e.g. 'ur10e_real' or "
                   "'timestamp=1, actual_q=2-7, actual_qd=8-13, actual_current=14-19'");
     }
     sources = sourcesFromMap(*options.columns);

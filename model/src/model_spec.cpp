@@ -102,7 +102,8 @@ EffectSpec parseEffect(const YAML::Node& node, const std::filesystem::path& sour
     } else if (key == "explanation") {
       spec.explanation = entry.second.as<std::string>();
     } else if (key == "parameters" || key == "standard_errors") {
-      if (!entry.second.IsMap()) throw Error(at(source, entry.second) + ": " + field + ": expected name: [values per joint]");
+      if (!entry.second.IsMap())
+        throw Error(at(source, entry.second) + ": " + field + ": expected name: [values per joint]");
       auto& target = key == "parameters" ? spec.parameters : spec.standardErrors;
       for (const auto& parameter : entry.second) {
         const auto name = parameter.first.as<std::string>();
@@ -142,7 +143,8 @@ ModelKind parseKind(const YAML::Node& node, const std::filesystem::path& source)
   if (text == "joint_current") return ModelKind::JointCurrent;
   if (text == "joint_tracking") return ModelKind::JointTracking;
   if (text == "gearbox_ftd") return ModelKind::GearboxFtd;
-  throw Error(at(source, node) + ": kind: unknown kind '" + text + "' (expected joint_current, joint_tracking or gearbox_ftd)");
+  throw Error(at(source, node) + ": kind: unknown kind '" + text +
+              "' (expected joint_current, joint_tracking or gearbox_ftd)");
 }
 
 LoadTorqueSource parseLoadTorque(const YAML::Node& node, const std::filesystem::path& source) {
@@ -168,9 +170,12 @@ void emitList(YAML::Emitter& out, const std::vector<double>& values) {
 
 std::string toString(ModelKind kind) {
   switch (kind) {
-    case ModelKind::JointCurrent: return "joint_current";
-    case ModelKind::JointTracking: return "joint_tracking";
-    case ModelKind::GearboxFtd: return "gearbox_ftd";
+    case ModelKind::JointCurrent:
+      return "joint_current";
+    case ModelKind::JointTracking:
+      return "joint_tracking";
+    case ModelKind::GearboxFtd:
+      return "gearbox_ftd";
   }
   return "?";
 }
@@ -225,7 +230,8 @@ ModelSpec parseModelYaml(const std::string& yaml, const std::filesystem::path& s
               {"name", "kind", "load_torque", "joints", "urdf", "gravity", "payload", "derivative_cutoff_hz",
                "velocity_smoothing", "reference_temperature", "effects"},
               source, "");
-    if (!root["kind"]) throw Error(at(source, root) + ": missing 'kind' (joint_current, joint_tracking or gearbox_ftd)");
+    if (!root["kind"])
+      throw Error(at(source, root) + ": missing 'kind' (joint_current, joint_tracking or gearbox_ftd)");
     spec.kind = parseKind(root["kind"], source);
     if (root["name"]) spec.name = root["name"].as<std::string>();
     if (root["load_torque"]) spec.loadTorque = parseLoadTorque(root["load_torque"], source);
@@ -249,9 +255,12 @@ ModelSpec parseModelYaml(const std::string& yaml, const std::filesystem::path& s
         spec.dynamics.payload.centerOfMass = vector3(payload["center_of_mass"], source, "payload.center_of_mass");
       }
     }
-    if (root["derivative_cutoff_hz"]) spec.derivativeCutoffHz = number(root["derivative_cutoff_hz"], source, "derivative_cutoff_hz");
-    if (root["velocity_smoothing"]) spec.velocitySmoothing = number(root["velocity_smoothing"], source, "velocity_smoothing");
-    if (spec.velocitySmoothing <= 0.0) throw Error(at(source, root["velocity_smoothing"]) + ": velocity_smoothing must be positive");
+    if (root["derivative_cutoff_hz"])
+      spec.derivativeCutoffHz = number(root["derivative_cutoff_hz"], source, "derivative_cutoff_hz");
+    if (root["velocity_smoothing"])
+      spec.velocitySmoothing = number(root["velocity_smoothing"], source, "velocity_smoothing");
+    if (spec.velocitySmoothing <= 0.0)
+      throw Error(at(source, root["velocity_smoothing"]) + ": velocity_smoothing must be positive");
     if (root["reference_temperature"]) {
       spec.referenceTemperature = number(root["reference_temperature"], source, "reference_temperature");
     }
@@ -304,8 +313,10 @@ std::string toYaml(const ModelSpec& spec) {
     out << YAML::EndMap;
   }
   const ModelSpec plain;
-  if (spec.derivativeCutoffHz != plain.derivativeCutoffHz) out << YAML::Key << "derivative_cutoff_hz" << YAML::Value << spec.derivativeCutoffHz;
-  if (spec.velocitySmoothing != plain.velocitySmoothing) out << YAML::Key << "velocity_smoothing" << YAML::Value << spec.velocitySmoothing;
+  if (spec.derivativeCutoffHz != plain.derivativeCutoffHz)
+    out << YAML::Key << "derivative_cutoff_hz" << YAML::Value << spec.derivativeCutoffHz;
+  if (spec.velocitySmoothing != plain.velocitySmoothing)
+    out << YAML::Key << "velocity_smoothing" << YAML::Value << spec.velocitySmoothing;
   if (spec.referenceTemperature != plain.referenceTemperature) {
     out << YAML::Key << "reference_temperature" << YAML::Value << spec.referenceTemperature;
   }
@@ -325,7 +336,8 @@ std::string toYaml(const ModelSpec& spec) {
     for (const auto& [name, value] : effect.options) out << YAML::Key << name << YAML::Value << value;
     for (const auto* group : {&effect.parameters, &effect.standardErrors}) {
       if (group->empty()) continue;
-      out << YAML::Key << (group == &effect.parameters ? "parameters" : "standard_errors") << YAML::Value << YAML::BeginMap;
+      out << YAML::Key << (group == &effect.parameters ? "parameters" : "standard_errors") << YAML::Value
+          << YAML::BeginMap;
       for (const auto& [name, values] : *group) {
         out << YAML::Key << name << YAML::Value;
         emitList(out, values);
@@ -338,6 +350,8 @@ std::string toYaml(const ModelSpec& spec) {
   return std::string(out.c_str()) + "\n";
 }
 
-void saveModelFile(const ModelSpec& spec, const std::filesystem::path& file) { writeFileAtomically(file, toYaml(spec)); }
+void saveModelFile(const ModelSpec& spec, const std::filesystem::path& file) {
+  writeFileAtomically(file, toYaml(spec));
+}
 
 }  // namespace arcplan::model

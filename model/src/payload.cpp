@@ -13,8 +13,12 @@ namespace {
 class Payload : public Effect {
 public:
   using Effect::Effect;
-  std::string meaning() const override { return "an unmodelled mass at the tool (gravity and inertia of a point mass)"; }
-  std::string term() const override { return "k_j·Y_payload,j(q,qd,qdd)·[m, m·cx, m·cy, m·cz], one m and c for the arm"; }
+  std::string meaning() const override {
+    return "an unmodelled mass at the tool (gravity and inertia of a point mass)";
+  }
+  std::string term() const override {
+    return "k_j·Y_payload,j(q,qd,qdd)·[m, m·cx, m·cy, m·cz], one m and c for the arm";
+  }
   std::string residualPattern() const override {
     return "follows the gravity and acceleration torque of a mass carried at the tool";
   }

@@ -93,8 +93,8 @@ PlotOutcome plotComparison(const FittedModel& model, const Dataset& data, const 
   if (outcome.ok && data.kind() == ModelKind::GearboxFtd) {
     const auto curves = directory / (prefix + "_force_transfer_model.csv");
     writeForceTransferCurves(model, data, curves);
-    outcome = runPlotScript("plot_model_ftd.py",
-                            {series.string(), curves.string(), (directory / (prefix + "_force_transfer.png")).string()});
+    outcome = runPlotScript("plot_model_ftd.py", {series.string(), curves.string(),
+                                                  (directory / (prefix + "_force_transfer.png")).string()});
   }
   return outcome;
 }
@@ -107,7 +107,8 @@ PlotOutcome plotDiagnosis(const Diagnosis& diagnosis, const std::filesystem::pat
 
 PlotOutcome plotFitStep(const FitStep& step, const std::filesystem::path& directory) {
   const auto json = directory / "fit_before_after.json";
-  return writeJsonAndPlot(toJson(step), json, "plot_model_fit.py", {json.string(), (directory / "fit_before_after.png").string()});
+  return writeJsonAndPlot(toJson(step), json, "plot_model_fit.py",
+                          {json.string(), (directory / "fit_before_after.png").string()});
 }
 
 PlotOutcome plotHistory(const std::filesystem::path& sessionFile, const std::filesystem::path& directory) {

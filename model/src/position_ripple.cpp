@@ -17,7 +17,9 @@ public:
   std::string meaning() const override {
     return "periodic in the joint angle: gear meshing and the wave generator of the Harmonic Drive";
   }
-  std::string term() const override { return "sum_k a_k·cos(k·n·q) + b_k·sin(k·n·q), n cycles per revolution searched"; }
+  std::string term() const override {
+    return "sum_k a_k·cos(k·n·q) + b_k·sin(k·n·q), n cycles per revolution searched";
+  }
   std::string residualPattern() const override { return "repeats periodically with the joint angle"; }
   bool appliesTo(ModelKind kind) const override {
     return kind == ModelKind::JointCurrent || kind == ModelKind::JointTracking;

@@ -25,7 +25,8 @@ nlohmann::json rmseOnly(const ErrorSummary& summary) {
 
 // One value, or a vector for a vector quantity (the centre of mass).
 nlohmann::json quantityJson(const PhysicalQuantity& quantity) {
-  if (quantity.values.size() == 1) return {{"value", quantity.values[0]}, {"standard_error", quantity.standardErrors[0]}};
+  if (quantity.values.size() == 1)
+    return {{"value", quantity.values[0]}, {"standard_error", quantity.standardErrors[0]}};
   return {{"value", quantity.values}, {"standard_error", quantity.standardErrors}};
 }
 
@@ -94,7 +95,10 @@ nlohmann::json toJson(const Comparison& comparison, const FittedModel& model, co
   result["failures_analysed_on"] = comparison.failuresOn;
   nlohmann::json windows = nlohmann::json::array();
   for (const auto& w : comparison.worstWindows) {
-    windows.push_back({{"start", w.start}, {"end", w.end}, {"nrmse", w.nrmse}, {"worst_channel", w.worstChannel},
+    windows.push_back({{"start", w.start},
+                       {"end", w.end},
+                       {"nrmse", w.nrmse},
+                       {"worst_channel", w.worstChannel},
                        {"axis", data.timeOrdered() ? "time_s" : "load_Nm"}});
   }
   result["worst_windows"] = windows;
@@ -104,7 +108,8 @@ nlohmann::json toJson(const Comparison& comparison, const FittedModel& model, co
     for (const auto& regime : channel.regimes) {
       nlohmann::json bins = nlohmann::json::array();
       for (const auto& bin : regime.bins) {
-        bins.push_back({{"bin", bin.label}, {"count", bin.count}, {"mean", bin.meanResidual}, {"rms", bin.rmsResidual}});
+        bins.push_back(
+            {{"bin", bin.label}, {"count", bin.count}, {"mean", bin.meanResidual}, {"rms", bin.rmsResidual}});
       }
       byRegime[regime.name] = bins;
     }
@@ -124,7 +129,9 @@ nlohmann::json toJson(const Comparison& comparison, const FittedModel& model, co
   for (const auto& d : data.quality().dropped) {
     dropped.push_back({{"reason", d.reason}, {"count", d.count}, {"first_lines", d.firstLines}});
   }
-  result["data_quality"] = {{"rows", data.quality().dataRows}, {"kept", data.quality().keptRows}, {"dropped", dropped},
+  result["data_quality"] = {{"rows", data.quality().dataRows},
+                            {"kept", data.quality().keptRows},
+                            {"dropped", dropped},
                             {"notes", data.notes()}};
   return result;
 }
@@ -178,7 +185,8 @@ nlohmann::json toJson(const std::vector<SessionStep>& history) {
   nlohmann::json steps = nlohmann::json::array();
   for (std::size_t i = 0; i < history.size(); ++i) {
     const auto& step = history[i];
-    nlohmann::json entry{{"step", i + 1}, {"command", step.command}, {"effects", step.effects}, {"train", toJson(step.data)}};
+    nlohmann::json entry{
+        {"step", i + 1}, {"command", step.command}, {"effects", step.effects}, {"train", toJson(step.data)}};
     if (step.validation) entry["validation"] = toJson(*step.validation);
     steps.push_back(entry);
   }
@@ -270,7 +278,8 @@ std::string formatComparison(const Comparison& comparison) {
     text << "\nthe residual follows:";
     for (std::size_t k = 0; k < comparison.strongestCorrelations.size() && k < 6; ++k) {
       const auto& f = comparison.strongestCorrelations[k];
-      text << (k ? "," : "") << " " << f.signal << " on " << f.channel << " (r = " << format("%.2f", f.correlation) << ")";
+      text << (k ? "," : "") << " " << f.signal << " on " << f.channel << " (r = " << format("%.2f", f.correlation)
+           << ")";
     }
     text << "\n";
   }
@@ -306,7 +315,8 @@ std::string formatFitStep(const FitStep& step) {
   if (step.beforeValidation) text << padded("val before", 14) << "val after";
   text << "   (RMSE)\n";
   for (std::size_t c = 0; c < step.beforeData.channels.size(); ++c) {
-    text << padded(step.beforeData.channels[c].channel, 26) << padded(format("%.4g", step.beforeData.channels[c].rmse), 14)
+    text << padded(step.beforeData.channels[c].channel, 26)
+         << padded(format("%.4g", step.beforeData.channels[c].rmse), 14)
          << padded(format("%.4g", step.afterData.channels[c].rmse), 14);
     if (step.beforeValidation) {
       text << padded(format("%.4g", step.beforeValidation->channels[c].rmse), 14)
@@ -317,7 +327,8 @@ std::string formatFitStep(const FitStep& step) {
   text << padded("overall NRMSE", 26) << padded(format("%.4f", step.beforeData.overallNrmse), 14)
        << padded(format("%.4f", step.afterData.overallNrmse), 14);
   if (step.beforeValidation) {
-    text << padded(format("%.4f", step.beforeValidation->overallNrmse), 14) << format("%.4f", step.afterValidation->overallNrmse);
+    text << padded(format("%.4f", step.beforeValidation->overallNrmse), 14)
+         << format("%.4f", step.afterValidation->overallNrmse);
   }
   text << "\n\n" << formatParameters(step.after);
   return text.str();
@@ -329,7 +340,8 @@ std::string formatHistory(const std::vector<SessionStep>& history) {
   text << padded("step", 6) << padded("command", 34) << padded("train NRMSE", 13) << "validation NRMSE\n";
   for (std::size_t i = 0; i < history.size(); ++i) {
     const auto& step = history[i];
-    text << padded(std::to_string(i + 1), 6) << padded(step.command, 34) << padded(format("%.4f", step.data.overallNrmse), 13)
+    text << padded(std::to_string(i + 1), 6) << padded(step.command, 34)
+         << padded(format("%.4f", step.data.overallNrmse), 13)
          << (step.validation ? format("%.4f", step.validation->overallNrmse) : std::string("-")) << "\n";
   }
   const auto& last = history.back();

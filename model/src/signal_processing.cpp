@@ -74,7 +74,8 @@ Eigen::MatrixXd zeroPhaseLowPass(const Eigen::MatrixXd& values, double sampleRat
   if (n < 4 || cutoffHz <= 0.0 || cutoffHz >= 0.45 * sampleRate) return values;
   const Biquad filter = butterworthLowPass(sampleRate, cutoffHz);
   // Pad about two time constants of the filter so the reflected start has settled.
-  const Eigen::Index pad = std::min<Eigen::Index>(n - 1, std::max<Eigen::Index>(9, std::lround(2.0 * sampleRate / cutoffHz)));
+  const Eigen::Index pad =
+      std::min<Eigen::Index>(n - 1, std::max<Eigen::Index>(9, std::lround(2.0 * sampleRate / cutoffHz)));
   Eigen::MatrixXd filtered(n, values.cols());
   for (Eigen::Index c = 0; c < values.cols(); ++c) {
     filterForwardBackward(filter, values.col(c).data(), filtered.col(c).data(), n, pad);
@@ -82,7 +83,8 @@ Eigen::MatrixXd zeroPhaseLowPass(const Eigen::MatrixXd& values, double sampleRat
   return filtered;
 }
 
-Eigen::MatrixXd interpolateLinear(const Eigen::VectorXd& time, const Eigen::MatrixXd& values, const Eigen::VectorXd& at) {
+Eigen::MatrixXd interpolateLinear(const Eigen::VectorXd& time, const Eigen::MatrixXd& values,
+                                  const Eigen::VectorXd& at) {
   const Eigen::Index n = time.size();
   Eigen::MatrixXd result(at.size(), values.cols());
   Eigen::Index segment = 0;
@@ -116,7 +118,8 @@ Eigen::MatrixXd smoothDerivative(const Eigen::VectorXd& time, const Eigen::Matri
   // The median step, unless a gap in the log would make the grid more than 4x longer than the log.
   const double step = std::max(steps[steps.size() / 2], (time[n - 1] - time[0]) / (4.0 * static_cast<double>(n)));
   const auto gridSize = static_cast<Eigen::Index>(std::floor((time[n - 1] - time[0]) / step + 1e-9)) + 1;
-  const Eigen::VectorXd grid = Eigen::VectorXd::LinSpaced(gridSize, time[0], time[0] + step * static_cast<double>(gridSize - 1));
+  const Eigen::VectorXd grid =
+      Eigen::VectorXd::LinSpaced(gridSize, time[0], time[0] + step * static_cast<double>(gridSize - 1));
   const Eigen::MatrixXd uniform = interpolateLinear(time, values, grid);
   const Eigen::MatrixXd derivative = centralDifference(zeroPhaseLowPass(uniform, 1.0 / step, cutoffHz), step);
   return interpolateLinear(grid, derivative, time);

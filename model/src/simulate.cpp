@@ -78,7 +78,8 @@ Trajectory readTrajectory(const std::filesystem::path& file, double rate, double
   if (jointColumn.empty()) throw Error(file.string() + ":1: no joint position columns (q0.., q_0.. or target_q_0..)");
   const int joints = static_cast<int>(jointColumn.size());
   for (int j = 0; j < joints; ++j) {
-    if (!jointColumn.count(j)) throw Error(file.string() + ":1: joint columns must be numbered 0.." + std::to_string(joints - 1));
+    if (!jointColumn.count(j))
+      throw Error(file.string() + ":1: joint columns must be numbered 0.." + std::to_string(joints - 1));
   }
   std::vector<double> times;
   std::vector<std::vector<double>> positions;
@@ -88,7 +89,8 @@ Trajectory readTrajectory(const std::filesystem::path& file, double rate, double
     if (trim(line).empty()) continue;
     const auto fields = splitFields(line, separator);
     if (fields.size() != header.size()) {
-      throw Error(file.string() + ":" + std::to_string(lineNumber) + ": expected " + std::to_string(header.size()) + " fields");
+      throw Error(file.string() + ":" + std::to_string(lineNumber) + ": expected " + std::to_string(header.size()) +
+                  " fields");
     }
     auto value = [&](int column) {
       const auto v = parseDouble(fields[static_cast<std::size_t>(column)]);
@@ -114,11 +116,13 @@ Trajectory readTrajectory(const std::filesystem::path& file, double rate, double
   const Eigen::Map<const Eigen::VectorXd> sourceTime(times.data(), static_cast<Eigen::Index>(times.size()));
   Eigen::MatrixXd sourceQ(static_cast<Eigen::Index>(times.size()), joints);
   for (std::size_t k = 0; k < positions.size(); ++k) {
-    for (int j = 0; j < joints; ++j) sourceQ(static_cast<Eigen::Index>(k), j) = positions[k][static_cast<std::size_t>(j)];
+    for (int j = 0; j < joints; ++j)
+      sourceQ(static_cast<Eigen::Index>(k), j) = positions[k][static_cast<std::size_t>(j)];
   }
   const auto samples = static_cast<Eigen::Index>(std::floor((times.back() - times.front()) * rate)) + 1;
   Trajectory trajectory;
-  trajectory.time = Eigen::VectorXd::LinSpaced(samples, times.front(), times.front() + static_cast<double>(samples - 1) / rate);
+  trajectory.time =
+      Eigen::VectorXd::LinSpaced(samples, times.front(), times.front() + static_cast<double>(samples - 1) / rate);
   trajectory.q = interpolateLinear(sourceTime, sourceQ, trajectory.time);
   trajectory.qd = smoothDerivative(trajectory.time, trajectory.q, cutoffHz);
   trajectory.qdd = smoothDerivative(trajectory.time, trajectory.qd, cutoffHz);
@@ -148,7 +152,8 @@ Log simulateLog(const ModelSpec& truth, const Trajectory& trajectory, const Simu
                                            trajectory.qdd.row(k).transpose(), dynamics, truth.dynamics)
                         .transpose();
     const double progress = duration > 0.0 ? (trajectory.time[k] - trajectory.time[0]) / duration : 0.0;
-    for (int j = 0; j < joints; ++j) temperature(k, j) = start[static_cast<std::size_t>(j)] + options.temperatureRise * progress;
+    for (int j = 0; j < joints; ++j)
+      temperature(k, j) = start[static_cast<std::size_t>(j)] + options.temperatureRise * progress;
   }
 
   const bool current = truth.kind == ModelKind::JointCurrent;

@@ -36,16 +36,29 @@ CandidateTerm single(Transform transform, const std::string& signal, int joint, 
   char width[32];
   std::snprintf(width, sizeof(width), "%g", smoothing);
   switch (transform) {
-    case Transform::Identity: term.expression = x, term.words = who; break;
-    case Transform::Magnitude: term.expression = "abs(" + x + ")", term.words = "the magnitude of " + who; break;
-    case Transform::Sign: term.expression = "sgn(" + x + ", " + width + ")", term.words = "the direction of " + who; break;
+    case Transform::Identity:
+      term.expression = x, term.words = who;
+      break;
+    case Transform::Magnitude:
+      term.expression = "abs(" + x + ")", term.words = "the magnitude of " + who;
+      break;
+    case Transform::Sign:
+      term.expression = "sgn(" + x + ", " + width + ")", term.words = "the direction of " + who;
+      break;
     case Transform::SignedSquare:
       term.expression = x + "*abs(" + x + ")", term.words = "the square of " + who + ", with its sign";
       break;
-    case Transform::Square: term.expression = x + "^2", term.words = "the square of " + who; break;
-    case Transform::Sine: term.expression = "sin(" + k + x + ")", term.words = "sin(" + k + who + ")"; break;
-    case Transform::Cosine: term.expression = "cos(" + k + x + ")", term.words = "cos(" + k + who + ")"; break;
-    case Transform::Product: break;
+    case Transform::Square:
+      term.expression = x + "^2", term.words = "the square of " + who;
+      break;
+    case Transform::Sine:
+      term.expression = "sin(" + k + x + ")", term.words = "sin(" + k + who + ")";
+      break;
+    case Transform::Cosine:
+      term.expression = "cos(" + k + x + ")", term.words = "cos(" + k + who + ")";
+      break;
+    case Transform::Product:
+      break;
   }
   return term;
 }
@@ -71,7 +84,8 @@ std::vector<CandidateTerm> candidateTerms(const Dataset& data, int channel) {
       }
     }
     if (data.hasSignal("qd")) {
-      for (auto t : {Transform::Identity, Transform::Magnitude, Transform::Sign, Transform::SignedSquare, Transform::Square}) {
+      for (auto t :
+           {Transform::Identity, Transform::Magnitude, Transform::Sign, Transform::SignedSquare, Transform::Square}) {
         terms.push_back(single(t, "qd", who, smoothing));
       }
     }
@@ -103,7 +117,8 @@ std::vector<CandidateTerm> candidateTerms(const Dataset& data, int channel) {
       term.otherSignal = factors[b].first;
       term.otherJoint = factors[b].second;
       term.expression = variable(term.signal, term.joint) + "*" + variable(term.otherSignal, term.otherJoint);
-      term.words = "the product of " + owner(term.signal, term.joint) + " and " + owner(term.otherSignal, term.otherJoint);
+      term.words =
+          "the product of " + owner(term.signal, term.joint) + " and " + owner(term.otherSignal, term.otherJoint);
       terms.push_back(std::move(term));
     }
   }
@@ -114,13 +129,20 @@ Eigen::VectorXd evaluateTerm(const CandidateTerm& term, const Dataset& data, int
   const Eigen::ArrayXd x = data.signal(term.signal, term.joint < 0 ? channel : term.joint).array();
   const double k = term.harmonic;
   switch (term.transform) {
-    case Transform::Identity: return x.matrix();
-    case Transform::Magnitude: return x.abs().matrix();
-    case Transform::Sign: return (x / data.settings().velocitySmoothing).tanh().matrix();
-    case Transform::SignedSquare: return (x * x.abs()).matrix();
-    case Transform::Square: return x.square().matrix();
-    case Transform::Sine: return (k * x).sin().matrix();
-    case Transform::Cosine: return (k * x).cos().matrix();
+    case Transform::Identity:
+      return x.matrix();
+    case Transform::Magnitude:
+      return x.abs().matrix();
+    case Transform::Sign:
+      return (x / data.settings().velocitySmoothing).tanh().matrix();
+    case Transform::SignedSquare:
+      return (x * x.abs()).matrix();
+    case Transform::Square:
+      return x.square().matrix();
+    case Transform::Sine:
+      return (k * x).sin().matrix();
+    case Transform::Cosine:
+      return (k * x).cos().matrix();
     case Transform::Product:
       return (x * data.signal(term.otherSignal, term.otherJoint < 0 ? channel : term.otherJoint).array()).matrix();
   }

@@ -16,9 +16,9 @@ LoadedData loadData(const ModelSpec& spec, const DataFiles& files) {
   if (!files.validation.empty()) {
     loaded.validation = loadDataset(files.validation, spec, files.validationOptions);
     if (loaded.validation->channelCount() != loaded.data.channelCount()) {
-      throw Error(files.validation.string() + ": mismatched joint count: " +
-                  std::to_string(loaded.validation->channelCount()) + " channels, but " + files.data.string() + " has " +
-                  std::to_string(loaded.data.channelCount()));
+      throw Error(files.validation.string() +
+                  ": mismatched joint count: " + std::to_string(loaded.validation->channelCount()) + " channels, but " +
+                  files.data.string() + " has " + std::to_string(loaded.data.channelCount()));
     }
   }
   return loaded;

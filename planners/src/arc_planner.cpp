@@ -31,10 +31,14 @@ struct Range {
 };
 const std::map<std::string, Range>& ranges() {
   static const std::map<std::string, Range> table = {
-      {"sagitta", {0.001, 1.0, "0.001:0.01:1."}},      {"half_chord", {0.001, 1.0, "0.001:0.01:1."}},
-      {"entry_radius", {0.001, 1.0, "0.001:0.005:1."}}, {"exit_radius", {0.001, 1.0, "0.001:0.005:1."}},
-      {"plane_angle", {-M_PI, M_PI, "-3.14159:0.1:3.14159"}}, {"resolution", {0.001, 0.1, "0.001:0.001:0.1"}},
-      {"max_joint_step", {0.001, 0.5, "0.001:0.001:0.5"}},    {"clearance", {0.0, 0.2, "0.:0.005:0.2"}},
+      {"sagitta", {0.001, 1.0, "0.001:0.01:1."}},
+      {"half_chord", {0.001, 1.0, "0.001:0.01:1."}},
+      {"entry_radius", {0.001, 1.0, "0.001:0.005:1."}},
+      {"exit_radius", {0.001, 1.0, "0.001:0.005:1."}},
+      {"plane_angle", {-M_PI, M_PI, "-3.14159:0.1:3.14159"}},
+      {"resolution", {0.001, 0.1, "0.001:0.001:0.1"}},
+      {"max_joint_step", {0.001, 0.5, "0.001:0.001:0.5"}},
+      {"clearance", {0.0, 0.2, "0.:0.005:0.2"}},
   };
   return table;
 }
@@ -155,11 +159,13 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
                 "no valid start state (it is missing, outside the joint limits or in collision)");
   }
   if (dynamic_cast<const ob::GoalSampleableRegion*>(pdef_->getGoal().get()) == nullptr) {
-    return fail(ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE, "the goal must be a goal state (or a sampleable goal region)");
+    return fail(ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE,
+                "the goal must be a goal state (or a sampleable goal region)");
   }
   const ob::State* goalState = pis_.nextGoal(ptc);
   if (goalState == nullptr) {
-    return fail(ob::PlannerStatus::INVALID_GOAL, "no valid goal state (it is outside the joint limits or in collision)");
+    return fail(ob::PlannerStatus::INVALID_GOAL,
+                "no valid goal state (it is outside the joint limits or in collision)");
   }
   const robot::Vector6 start(collision::jointsOf(startState, 6)), goal(collision::jointsOf(goalState, 6));
   // The margin: the planner's clearance or the motion validator's, the larger; lowered to what a start
@@ -168,7 +174,8 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
   double margin = std::max(clearance_, motionValidator != nullptr ? motionValidator->options().minimumClearance
                                                                   : collision::MotionCheckOptions{}.minimumClearance);
   collision::CollisionData data(*collisionModel_);
-  for (const robot::Vector6& end : {start, goal}) margin = std::min(margin, collision::distance(*collisionModel_, data, end).minimum());
+  for (const robot::Vector6& end : {start, goal})
+    margin = std::min(margin, collision::distance(*collisionModel_, data, end).minimum());
   const bool autoMode = getAuto();
   ob::ScopedState<> scratch(si_);
   const auto waypointValid = [&](const robot::Vector6& q) {
@@ -177,10 +184,18 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
   };
   // The auto mode's routes pass close to obstacles: their motions are always certified.
   PathValidator validator(*collisionModel_, ik_, conversion_, margin, checkMotions_ || autoMode, waypointValid,
-                                  [&ptc] { return ptc(); });
+                          [&ptc] { return ptc(); });
   const robot::RobotModel& robot = collisionModel_->robot();
-  const detail::ArcQuery query{*collisionModel_, obstacles_, ik_, conversion_, ptc, validator,
-                               start, goal, robot::tipPose(robot, start), robot::tipPose(robot, goal)};
+  const detail::ArcQuery query{*collisionModel_,
+                               obstacles_,
+                               ik_,
+                               conversion_,
+                               ptc,
+                               validator,
+                               start,
+                               goal,
+                               robot::tipPose(robot, start),
+                               robot::tipPose(robot, goal)};
   JointWaypoints path;
   if (ik_.branchOf(start) != ik_.branchOf(goal)) {
     // No TCP path joins two IK branches without passing a singularity: only the fallback can help.
@@ -197,7 +212,8 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
     // Its own SpaceInformation, whose states and motions keep this planner's margin (the problem's
     // may be smaller).
     const auto fallbackSpace = collision::makeSpaceInformation(
-        collisionModel_, motionValidator != nullptr ? motionValidator->options() : collision::MotionCheckOptions{}, margin);
+        collisionModel_, motionValidator != nullptr ? motionValidator->options() : collision::MotionCheckOptions{},
+        margin);
     path = detail::planInJointSpace(query, fallbackSpace, seed_, result_);
   }
   if (path.joints.empty()) return fail(ptc() ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::ABORT, result_.reason);
@@ -232,7 +248,8 @@ void ArcPlanner::getPlannerData(ob::PlannerData& data) const {
   data.properties["arc routes INTEGER"] = std::to_string(result_.routesTried);
   data.properties["arc detours INTEGER"] = std::to_string(result_.detours.size());
   data.properties["arc analytic length REAL"] = number(result_.tcpPathLength);
-  const Detour first = result_.detours.empty() ? Detour{0.0, ArcParameters{0.0, 0.0, 0.0, 0.0}, 0.0} : result_.detours[0];
+  const Detour first =
+      result_.detours.empty() ? Detour{0.0, ArcParameters{0.0, 0.0, 0.0, 0.0}, 0.0} : result_.detours[0];
   data.properties["arc sagitta REAL"] = number(first.shape.sagitta);
   data.properties["arc half chord REAL"] = number(first.shape.halfChord);
   data.properties["arc entry radius REAL"] = number(first.shape.entryRadius);

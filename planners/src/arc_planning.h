@@ -35,8 +35,8 @@ JointWaypoints planThesisDetours(const ArcQuery& query, const ArcParameters& sha
 // Auto mode: the shortest valid route through via points, corners blended.
 JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result);
 
-// RRTConnect on `si` (whose validity keeps the margin), simplified, its segments turned into TCP lines where they validate; every
-// random draw from generators seeded with `seed`.
+// RRTConnect on `si` (whose validity keeps the margin), simplified, its segments turned into TCP lines where they
+// validate; every random draw from generators seeded with `seed`.
 JointWaypoints planInJointSpace(const ArcQuery& query, const ompl::base::SpaceInformationPtr& si,
                                 std::uint_fast32_t seed, ArcPlannerResult& result);
 

@@ -9,9 +9,9 @@
 namespace arcplan::planners {
 namespace {
 
-constexpr double kMinimumLeg = 1e-3;         // m: closer via points are a caller's mistake
-constexpr double kStraightOn = 1e-9;         // rad: a corner this flat needs no arc
-constexpr double kLengthTolerance = 1e-12;   // m
+constexpr double kMinimumLeg = 1e-3;        // m: closer via points are a caller's mistake
+constexpr double kStraightOn = 1e-9;        // rad: a corner this flat needs no arc
+constexpr double kLengthTolerance = 1e-12;  // m
 
 }  // namespace
 

@@ -12,7 +12,7 @@ namespace {
 constexpr double kGoalTolerance = 1e-6;  // rad per joint
 
 class Converter {
- public:
+public:
   Converter(const robot::UrInverseKinematics& ik, const TcpPath& path, const JointConversionOptions& options,
             const std::optional<robot::Vector6>& goal, const WaypointCheck& check, JointWaypoints& result)
       : ik_(ik),
@@ -33,7 +33,8 @@ class Converter {
     const auto onBranch = ik_.solveBranch(pose, branch_, previous[5]);
     const std::optional<robot::Vector6> q = onBranch ? ik_.nearestRepresentation(*onBranch, previous) : std::nullopt;
     if (!q) {
-      if (onBranch) return fail(ConversionStatus::JointLimits, arcLength, "the IK solution is outside the joint limits");
+      if (onBranch)
+        return fail(ConversionStatus::JointLimits, arcLength, "the IK solution is outside the joint limits");
       const bool reachable = !ik_.solveBranches(pose).empty();
       return fail(reachable ? ConversionStatus::BranchChange : ConversionStatus::Unreachable, arcLength,
                   reachable ? "the start configuration's IK branch " + std::to_string(branch_) +
@@ -100,7 +101,7 @@ class Converter {
     return false;
   }
 
- private:
+private:
   const robot::UrInverseKinematics& ik_;
   const TcpPath& path_;
   const JointConversionOptions& options_;

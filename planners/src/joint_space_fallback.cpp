@@ -29,7 +29,8 @@ double tcpLengthOf(const robot::RobotModel& robot, const robot::Vector6& from, c
   double length = 0.0;
   Eigen::Vector3d previous = robot::tipPose(robot, from).translation();
   for (int k = 1; k <= kTcpSamples; ++k) {
-    const Eigen::Vector3d p = robot::tipPose(robot, from + (to - from) * (static_cast<double>(k) / kTcpSamples)).translation();
+    const Eigen::Vector3d p =
+        robot::tipPose(robot, from + (to - from) * (static_cast<double>(k) / kTcpSamples)).translation();
     length += (p - previous).norm();
     previous = p;
   }
@@ -38,7 +39,7 @@ double tcpLengthOf(const robot::RobotModel& robot, const robot::Vector6& from, c
 
 // OMPL's uniform sampler of the joint box, drawing from its own seeded generator.
 class SeededJointSampler : public ob::RealVectorStateSampler {
- public:
+public:
   SeededJointSampler(const ob::StateSpace* space, std::uint_fast32_t seed) : RealVectorStateSampler(space) {
     rng_.setLocalSeed(seed);
   }
@@ -47,7 +48,7 @@ class SeededJointSampler : public ob::RealVectorStateSampler {
 // RRTConnect whose samples (and any other draw) come from seeded generators. RRTConnect allocates
 // its sampler in solve() only when it has none, so the seeded one set after setup() is used.
 class SeededRRTConnect : public og::RRTConnect {
- public:
+public:
   SeededRRTConnect(const ob::SpaceInformationPtr& si, std::uint_fast32_t seed) : RRTConnect(si), seed_(seed) {
     rng_.setLocalSeed(seed);
   }
@@ -56,13 +57,13 @@ class SeededRRTConnect : public og::RRTConnect {
     sampler_ = std::make_shared<SeededJointSampler>(si_->getStateSpace().get(), seed_);
   }
 
- private:
+private:
   std::uint_fast32_t seed_;
 };
 
 // OMPL's simplifier (shortcuts between random points) drawing from a seeded generator.
 class SeededSimplifier : public og::PathSimplifier {
- public:
+public:
   SeededSimplifier(const ob::SpaceInformationPtr& si, std::uint_fast32_t seed) : PathSimplifier(si) {
     rng_.setLocalSeed(seed);
   }

@@ -26,8 +26,7 @@ std::string Rejection::describe(double margin) const {
   if (collides) {
     text << "collision (" << pairsText(pairs) << ")";
   } else {
-    text << "closer than the " << margin << " m clearance (" << pairsText(pairs) << " at " << closest
-         << " m)";
+    text << "closer than the " << margin << " m clearance (" << pairsText(pairs) << " at " << closest << " m)";
   }
   return text.str();
 }
@@ -65,8 +64,9 @@ JointWaypoints PathValidator::walk(const TcpPath& path, const JointWaypoints& pr
     rejectedJoints_ = q;
     return false;
   };
-  JointWaypoints continuation = convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_,
-                                                prefix.arcLengths.back(), std::numeric_limits<double>::infinity(), check);
+  JointWaypoints continuation =
+      convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_, prefix.arcLengths.back(),
+                      std::numeric_limits<double>::infinity(), check);
   JointWaypoints combined = prefix;
   combined.joints.insert(combined.joints.end(), continuation.joints.begin() + 1, continuation.joints.end());
   combined.arcLengths.insert(combined.arcLengths.end(), continuation.arcLengths.begin() + 1,

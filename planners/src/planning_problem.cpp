@@ -43,7 +43,8 @@ robot::Vector6 resolveEndpoint(const collision::QueryEndpoint& endpoint, const c
       }
     }
     const collision::CollisionReport report = collision::collide(model, data, q);
-    if (!report.valid) throw Error(label + ": the joint configuration is in collision (" + collision::describeCollisions(report) + ")");
+    if (!report.valid)
+      throw Error(label + ": the joint configuration is in collision (" + collision::describeCollisions(report) + ")");
     return q;
   }
   if (!endpoint.pose) throw Error(label + ": needs `pose` or `joints`");

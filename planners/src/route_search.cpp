@@ -69,7 +69,8 @@ void RouteSearch::legFailed(const Route& route, std::size_t leg, const std::vect
 Eigen::Vector3d towardChord(const Eigen::Vector3d& prev, const Eigen::Vector3d& via, const Eigen::Vector3d& next,
                             double distance) {
   const Eigen::Vector3d chord = next - prev;
-  const double along = chord.squaredNorm() > 0.0 ? std::clamp((via - prev).dot(chord) / chord.squaredNorm(), 0.0, 1.0) : 0.0;
+  const double along =
+      chord.squaredNorm() > 0.0 ? std::clamp((via - prev).dot(chord) / chord.squaredNorm(), 0.0, 1.0) : 0.0;
   const Eigen::Vector3d toChord = prev + along * chord - via;
   const double gap = toChord.norm();
   return via + (gap <= distance ? 1.0 : distance / gap) * toChord;
@@ -99,9 +100,11 @@ BlendedPath shortenRoute(const Eigen::Isometry3d& start, const Eigen::Isometry3d
     }
     legsFit = legsFit && (points[viaCount + 1] - points[viaCount]).norm() >= kShortestLeg;
     std::vector<double> blends = validated.blends();
-    for (std::size_t j = 0; legsFit && j < viaCount; ++j) blends[j] = std::min(blends[j], BlendedPath::maxBlend(points, j));
+    for (std::size_t j = 0; legsFit && j < viaCount; ++j)
+      blends[j] = std::min(blends[j], BlendedPath::maxBlend(points, j));
     const bool accepted = legsFit && [&] {
-      const BlendedPath candidate(start, goal, std::vector<Eigen::Vector3d>(points.begin() + 1, points.end() - 1), blends);
+      const BlendedPath candidate(start, goal, std::vector<Eigen::Vector3d>(points.begin() + 1, points.end() - 1),
+                                  blends);
       if (candidate.length() > best.length() - kLeastGain || !validates(candidate)) return false;
       best = candidate;
       return true;

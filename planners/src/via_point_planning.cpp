@@ -68,7 +68,8 @@ struct Suspect {
   double reach;  // probe the route's nearest point only if it is this close
 };
 
-std::optional<double> failingProbe(const ArcQuery& query, const BlendedPath& path, const std::vector<Suspect>& suspects) {
+std::optional<double> failingProbe(const ArcQuery& query, const BlendedPath& path,
+                                   const std::vector<Suspect>& suspects) {
   const int count = static_cast<int>(std::ceil(path.length() / kProbeSpacing));
   std::vector<Eigen::Vector3d> points;
   for (int k = 0; k <= count; ++k) points.push_back(path.position(path.length() * k / count));
@@ -76,7 +77,8 @@ std::optional<double> failingProbe(const ArcQuery& query, const BlendedPath& pat
   for (const Suspect& suspect : suspects) {
     int nearest = 0;
     for (int k = 1; k <= count; ++k) {
-      if ((points[k] - suspect.position).squaredNorm() < (points[nearest] - suspect.position).squaredNorm()) nearest = k;
+      if ((points[k] - suspect.position).squaredNorm() < (points[nearest] - suspect.position).squaredNorm())
+        nearest = k;
     }
     if ((points[nearest] - suspect.position).norm() <= suspect.reach) probes.insert(nearest);
   }
@@ -99,7 +101,8 @@ JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result) {
     for (const Eigen::Vector3d& p : cluster.hull) centre += p / static_cast<double>(cluster.hull.size());
     suspects.push_back({centre, std::numeric_limits<double>::infinity()});
   }
-  const bool orientationHeld = Eigen::Quaterniond(query.a.linear()).angularDistance(Eigen::Quaterniond(query.b.linear())) < 1e-12;
+  const bool orientationHeld =
+      Eigen::Quaterniond(query.a.linear()).angularDistance(Eigen::Quaterniond(query.b.linear())) < 1e-12;
   std::set<std::array<double, 3>> blockedPoints;
   std::string lastFailure = "no route";
   while (const std::optional<Route> route = search.next()) {
@@ -141,18 +144,18 @@ JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result) {
       if (walked.ok()) {
         // The margins come in steps: where a via point can come closer, the path gets shorter. Each
         // trial is checked like a route (via points, probes, then the certified walk).
-        const BlendedPath shortest = shortenRoute(query.a, query.b, path, route->margins, kMaxShorteningTrials,
-                                                  [&](const BlendedPath& candidate) {
-          if (query.ptc()) return false;  // out of time: the route that validated is the answer
-          for (std::size_t i = 0; i + 2 < candidate.points().size(); ++i) {
-            if (orientationHeld && !viaPointClear(query, candidate.points()[i + 1])) return false;
-          }
-          if (failingProbe(query, candidate, suspects)) return false;
-          JointWaypoints candidateWalk = query.validator.walk(candidate, query.startOnly(), query.goal);
-          if (!candidateWalk.ok()) return false;
-          walked = std::move(candidateWalk);
-          return true;
-        });
+        const BlendedPath shortest = shortenRoute(
+            query.a, query.b, path, route->margins, kMaxShorteningTrials, [&](const BlendedPath& candidate) {
+              if (query.ptc()) return false;  // out of time: the route that validated is the answer
+              for (std::size_t i = 0; i + 2 < candidate.points().size(); ++i) {
+                if (orientationHeld && !viaPointClear(query, candidate.points()[i + 1])) return false;
+              }
+              if (failingProbe(query, candidate, suspects)) return false;
+              JointWaypoints candidateWalk = query.validator.walk(candidate, query.startOnly(), query.goal);
+              if (!candidateWalk.ok()) return false;
+              walked = std::move(candidateWalk);
+              return true;
+            });
         result.kind = vias.empty() ? ArcPlannerResult::Kind::StraightLine : ArcPlannerResult::Kind::ViaPoints;
         result.viaPoints.assign(shortest.points().begin() + 1, shortest.points().end() - 1);
         result.blends = shortest.blends();
@@ -199,7 +202,8 @@ JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result) {
           result.obstacles.push_back(name);
         }
       }
-      search.legFailed(*route, leg, viaCandidates(*cluster, route->points[leg], route->points[leg + 1], query.validator.margin()));
+      search.legFailed(*route, leg,
+                       viaCandidates(*cluster, route->points[leg], route->points[leg + 1], query.validator.margin()));
       break;
     }
   }

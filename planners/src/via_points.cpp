@@ -11,10 +11,10 @@ namespace {
 // Margins beyond the clearance (m): the tool flange is ~5 cm in radius, the wrist links above it
 // reach ~15 cm further; the largest lets the forearm pass over low walls.
 const double kMargins[] = {0.02, 0.05, 0.1, 0.2, 0.35};
-constexpr int kPlaneSteps = 12;            // 30° apart
-constexpr double kEndKeepOut = 0.01;       // m along the leg from p and q
-constexpr double kHighestApex = 1.5;       // m above the leg
-constexpr double kFloorTop = 0.01;         // m: a body whose top is this low is the floor the robot stands on
+constexpr int kPlaneSteps = 12;       // 30° apart
+constexpr double kEndKeepOut = 0.01;  // m along the leg from p and q
+constexpr double kHighestApex = 1.5;  // m above the leg
+constexpr double kFloorTop = 0.01;    // m: a body whose top is this low is the floor the robot stands on
 
 struct Box {
   Eigen::Vector3d low, high;
@@ -98,8 +98,9 @@ std::vector<ObstacleCluster> clusterObstacles(const std::vector<collision::Obsta
     bounds.push_back(box);
     clusterOf.push_back(target);
   }
-  clusters.erase(std::remove_if(clusters.begin(), clusters.end(), [](const ObstacleCluster& c) { return c.names.empty(); }),
-                 clusters.end());
+  clusters.erase(
+      std::remove_if(clusters.begin(), clusters.end(), [](const ObstacleCluster& c) { return c.names.empty(); }),
+      clusters.end());
   return clusters;
 }
 

@@ -20,7 +20,8 @@ public:
     sqlite3* raw = nullptr;
     const int status = sqlite3_open_v2(file.string().c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
     db_.reset(raw);
-    if (status != SQLITE_OK) throw Error("cannot open benchmark database " + file.string() + ": " + sqlite3_errmsg(raw));
+    if (status != SQLITE_OK)
+      throw Error("cannot open benchmark database " + file.string() + ": " + sqlite3_errmsg(raw));
   }
   Statement query(const std::string& sql) const {
     sqlite3_stmt* raw = nullptr;
@@ -45,7 +46,8 @@ std::string columnText(sqlite3_stmt* statement, int column) {
 std::map<std::string, std::string> tableColumns(const ReadOnlyDatabase& db, const std::string& table) {
   std::map<std::string, std::string> columns;
   auto statement = db.query("PRAGMA table_info(" + table + ")");
-  while (sqlite3_step(statement.get()) == SQLITE_ROW) columns[columnText(statement.get(), 1)] = columnText(statement.get(), 2);
+  while (sqlite3_step(statement.get()) == SQLITE_ROW)
+    columns[columnText(statement.get(), 1)] = columnText(statement.get(), 2);
   return columns;
 }
 
@@ -56,8 +58,8 @@ std::string withoutGeometricPrefix(const std::string& planner) {
 
 // One SQL expression per attribute: arcplan's ranked metrics (first existing column of each), or
 // every numeric column of a plain OMPL database.
-std::vector<std::pair<RunAttribute, std::string>> attributeExpressions(const std::map<std::string, std::string>& columns,
-                                                                       bool arcplanColumns) {
+std::vector<std::pair<RunAttribute, std::string>> attributeExpressions(
+    const std::map<std::string, std::string>& columns, bool arcplanColumns) {
   std::vector<std::pair<RunAttribute, std::string>> expressions;
   if (arcplanColumns) {
     for (const auto& metric : benchmarks::rankedMetrics()) {
@@ -90,10 +92,16 @@ nlohmann::json experimentRows(const ReadOnlyDatabase& db) {
     for (int column = 0; column < count; ++column) {
       const std::string name = sqlite3_column_name(statement.get(), column);
       switch (sqlite3_column_type(statement.get(), column)) {
-        case SQLITE_NULL: break;
-        case SQLITE_INTEGER: row[name] = sqlite3_column_int64(statement.get(), column); break;
-        case SQLITE_FLOAT: row[name] = sqlite3_column_double(statement.get(), column); break;
-        default: row[name] = columnText(statement.get(), column);
+        case SQLITE_NULL:
+          break;
+        case SQLITE_INTEGER:
+          row[name] = sqlite3_column_int64(statement.get(), column);
+          break;
+        case SQLITE_FLOAT:
+          row[name] = sqlite3_column_double(statement.get(), column);
+          break;
+        default:
+          row[name] = columnText(statement.get(), column);
       }
     }
     rows.push_back(std::move(row));
@@ -120,13 +128,15 @@ BenchmarkRuns readBenchmarkRuns(const std::filesystem::path& file) {
     result.attributes.push_back(attribute);
     select += ", " + expression;
   }
-  select += " FROM runs JOIN experiments ON runs.experimentid = experiments.id"
-            " JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id ORDER BY runs.id";
+  select +=
+      " FROM runs JOIN experiments ON runs.experimentid = experiments.id"
+      " JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id ORDER BY runs.id";
   auto statement = db.query(select);
   int step = 0;
   int count = 0;
   while ((step = sqlite3_step(statement.get())) == SQLITE_ROW) {
-    auto& plannerRuns = result.runs[columnText(statement.get(), 0)][withoutGeometricPrefix(columnText(statement.get(), 1))];
+    auto& plannerRuns =
+        result.runs[columnText(statement.get(), 0)][withoutGeometricPrefix(columnText(statement.get(), 1))];
     BenchmarkRun run;
     run.index = static_cast<int>(plannerRuns.size());
     run.solved = sqlite3_column_type(statement.get(), 2) != SQLITE_NULL && sqlite3_column_int(statement.get(), 2) == 1;

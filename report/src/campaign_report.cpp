@@ -17,7 +17,6 @@ namespace {
 
 constexpr std::size_t kLongText = 200;
 
-
 std::string relativeLink(const std::filesystem::path& target, const std::filesystem::path& output) {
   const auto from = std::filesystem::weakly_canonical(std::filesystem::absolute(output)).parent_path();
   return std::filesystem::weakly_canonical(std::filesystem::absolute(target)).lexically_relative(from).generic_string();
@@ -44,7 +43,8 @@ nlohmann::json runsJson(const BenchmarkRuns& runs) {
   return problems;
 }
 
-nlohmann::json medianRunJson(const MedianRun& run, const robot::RobotModel& robot, const CampaignReportOptions& options) {
+nlohmann::json medianRunJson(const MedianRun& run, const robot::RobotModel& robot,
+                             const CampaignReportOptions& options) {
   nlohmann::json t = nlohmann::json::array(), speed = nlohmann::json::array(), tcp = nlohmann::json::array();
   const auto keep = [&](std::size_t i) {
     t.push_back(detail::withSignificantDigits(run.time[i], 6));
@@ -62,8 +62,8 @@ nlohmann::json medianRunJson(const MedianRun& run, const robot::RobotModel& robo
 }
 
 // Speed profiles, TCP paths and arm frames of every problem with a paths/ folder.
-nlohmann::json pathsJson(const std::filesystem::path& campaign, const BenchmarkRuns& runs, const CampaignReportOptions& options,
-                         nlohmann::json& missing, bool& anyFrames) {
+nlohmann::json pathsJson(const std::filesystem::path& campaign, const BenchmarkRuns& runs,
+                         const CampaignReportOptions& options, nlohmann::json& missing, bool& anyFrames) {
   nlohmann::json paths = nlohmann::json::object();
   const auto& robot = robot::ur10e();
   std::vector<std::string> withoutJoints;
@@ -88,8 +88,9 @@ nlohmann::json pathsJson(const std::filesystem::path& campaign, const BenchmarkR
                       "(a campaign writes them for the suite's plot problems).");
   }
   if (!withoutJoints.empty()) {
-    missing.push_back("No joint columns (q0..q5) in " + std::to_string(withoutJoints.size()) + " median-run file(s), e.g. " +
-                      withoutJoints.front() + ": the 3D view shows their TCP paths but cannot move the arm along them.");
+    missing.push_back("No joint columns (q0..q5) in " + std::to_string(withoutJoints.size()) +
+                      " median-run file(s), e.g. " + withoutJoints.front() +
+                      ": the 3D view shows their TCP paths but cannot move the arm along them.");
   }
   return paths;
 }
@@ -108,7 +109,8 @@ nlohmann::json campaignReportData(const std::filesystem::path& input, const std:
   data["source"] = {{"campaign", campaign.string()}, {"database", database.string()}};
   data["links"] = nlohmann::json::array();
   const auto link = [&](const std::string& label, const std::filesystem::path& target) {
-    if (std::filesystem::exists(target)) data["links"].push_back({{"label", label}, {"href", relativeLink(target, output)}});
+    if (std::filesystem::exists(target))
+      data["links"].push_back({{"label", label}, {"href", relativeLink(target, output)}});
   };
   link("benchmark database (SQLite, Planner Arena)", database);
   link("OMPL benchmark logs", campaign / "logs");
@@ -127,26 +129,30 @@ nlohmann::json campaignReportData(const std::filesystem::path& input, const std:
       value = text.substr(0, std::min(kLongText, text.find('\n')));
     }
   }
-  data["settings"] = {{"campaign", std::filesystem::exists(campaign / "campaign.json") ? detail::readJsonFile(campaign / "campaign.json")
-                                                                                        : nlohmann::json(nullptr)},
+  data["settings"] = {{"campaign", std::filesystem::exists(campaign / "campaign.json")
+                                       ? detail::readJsonFile(campaign / "campaign.json")
+                                       : nlohmann::json(nullptr)},
                       {"experiments", experiments}};
   data["attributes"] = nlohmann::json::array();
-  for (const auto& attribute : runs.attributes) data["attributes"].push_back({{"key", attribute.key}, {"label", attribute.label}});
+  for (const auto& attribute : runs.attributes)
+    data["attributes"].push_back({{"key", attribute.key}, {"label", attribute.label}});
   data["runs"] = runsJson(runs);
   data["arcplan_columns"] = runs.arcplanColumns;
   if (runs.arcplanColumns) {
     data["ranking"] = benchmarks::rankingJson(benchmarks::rankDatabase(database));
   } else {
     data["ranking"] = nullptr;
-    missing.push_back(database.string() +
-                      " has no arcplan columns (execution_time, tcp_path_length, ...): a plain OMPL database, so there is "
-                      "no ranking by execution time — the tables count successes and the box plots show OMPL's own run "
-                      "attributes.");
+    missing.push_back(
+        database.string() +
+        " has no arcplan columns (execution_time, tcp_path_length, ...): a plain OMPL database, so there is "
+        "no ranking by execution time — the tables count successes and the box plots show OMPL's own run "
+        "attributes.");
   }
   bool anyFrames = false;
   data["paths"] = pathsJson(campaign, runs, options, missing, anyFrames);
-  data["robot"] = anyFrames ? nlohmann::json{{"name", robot::ur10e().name()}, {"meshes", robotMeshesJson(robot::ur10e())}}
-                            : nlohmann::json(nullptr);
+  data["robot"] = anyFrames
+                      ? nlohmann::json{{"name", robot::ur10e().name()}, {"meshes", robotMeshesJson(robot::ur10e())}}
+                      : nlohmann::json(nullptr);
   return data;
 }
 

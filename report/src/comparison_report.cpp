@@ -19,7 +19,8 @@ nlohmann::json sideValues(const benchmarks::PlannerResults& results, const std::
 }  // namespace
 
 nlohmann::json comparisonReportData(const benchmarks::CampaignComparison& comparison,
-                                    const benchmarks::CampaignResults& base, const benchmarks::CampaignResults& current) {
+                                    const benchmarks::CampaignResults& base,
+                                    const benchmarks::CampaignResults& current) {
   const auto& keys = comparison.options.metrics;
   nlohmann::json metrics = nlohmann::json::array();
   for (const auto& key : keys) {
@@ -27,7 +28,8 @@ nlohmann::json comparisonReportData(const benchmarks::CampaignComparison& compar
     metrics.push_back({{"key", key}, {"label", descriptor.label}, {"lower_is_better", descriptor.lowerIsBetter}});
   }
   nlohmann::json values = nlohmann::json::object();
-  for (const auto& [label, side] : {std::pair<const char*, const benchmarks::CampaignResults*>{"base", &base}, {"new", &current}}) {
+  for (const auto& [label, side] :
+       {std::pair<const char*, const benchmarks::CampaignResults*>{"base", &base}, {"new", &current}}) {
     for (const auto& [problem, planners] : side->problems) {
       for (const auto& [planner, results] : planners) values[problem][planner][label] = sideValues(results, keys);
     }
@@ -36,7 +38,10 @@ nlohmann::json comparisonReportData(const benchmarks::CampaignComparison& compar
   if (!comparison.onlyInBase.empty() || !comparison.onlyInNew.empty()) {
     missing.push_back("Pairs on one side only have no side-by-side box: they are listed under Verdicts.");
   }
-  return {{"comparison", benchmarks::comparisonJson(comparison)}, {"metrics", metrics}, {"values", values}, {"missing", missing}};
+  return {{"comparison", benchmarks::comparisonJson(comparison)},
+          {"metrics", metrics},
+          {"values", values},
+          {"missing", missing}};
 }
 
 void writeComparisonReport(const std::filesystem::path& file, const benchmarks::CampaignComparison& comparison,
@@ -46,7 +51,8 @@ void writeComparisonReport(const std::filesystem::path& file, const benchmarks::
     const auto path = std::filesystem::path(source).lexically_normal();
     return path.filename().empty() ? path.parent_path().filename().string() : path.filename().string();
   };
-  writeHtmlPage(file, assets, "arcplan campaign comparison — " + name(comparison.base) + " vs " + name(comparison.current),
+  writeHtmlPage(file, assets,
+                "arcplan campaign comparison — " + name(comparison.base) + " vs " + name(comparison.current),
                 comparisonReportData(comparison, base, current));
 }
 

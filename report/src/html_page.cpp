@@ -22,11 +22,20 @@ std::string htmlEscaped(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -61,9 +70,9 @@ std::string renderHtmlPage(const WebAssets& assets, const std::string& title, co
   fillSlot(page, from, "STYLE", assets.style);
   fillSlot(page, from, "HEADING", htmlEscaped(title));
   fillSlot(page, from, "LIBRARY_NAMES", htmlEscaped(libraryNames));
-  fillSlot(page, from, "DATA", "<script id=\"report-data\" type=\"application/json\">" +
-                             scriptSafe(data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)) +
-                             "</script>");
+  fillSlot(page, from, "DATA",
+           "<script id=\"report-data\" type=\"application/json\">" +
+               scriptSafe(data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)) + "</script>");
   fillSlot(page, from, "SCRIPTS", scriptElements(assets.libraries) + scriptElements(assets.pageScripts));
   return page;
 }

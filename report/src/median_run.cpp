@@ -56,7 +56,8 @@ MedianRun readMedianRun(const std::filesystem::path& file) {
     }
     const auto number_at = [&](std::size_t column) {
       const auto value = parseDouble(trim(fields[column]));
-      if (!value) throw Error(where() + "column " + header[column] + ": '" + std::string(fields[column]) + "' is not a number");
+      if (!value)
+        throw Error(where() + "column " + header[column] + ": '" + std::string(fields[column]) + "' is not a number");
       return *value;
     };
     run.time.push_back(number_at(t));

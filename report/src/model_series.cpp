@@ -29,7 +29,8 @@ std::vector<ChannelSeries> readModelSeries(const std::filesystem::path& file, st
   std::ifstream in(file);
   if (!in) throw Error(file.string() + ": cannot open model series file");
   std::string line;
-  if (!std::getline(in, line)) throw Error(file.string() + ":1: empty file, expected a header (channel,index,time,...)");
+  if (!std::getline(in, line))
+    throw Error(file.string() + ":1: empty file, expected a header (channel,index,time,...)");
   std::map<std::string, std::size_t> column;
   const auto header = splitFields(trim(line), ',');
   for (std::size_t i = 0; i < header.size(); ++i) column[std::string(trim(header[i]))] = i;
@@ -71,8 +72,11 @@ std::vector<ChannelSeries> readModelSeries(const std::filesystem::path& file, st
   for (auto& raw : channels) {
     const std::size_t n = raw.series.time.size();
     const std::size_t stride = maxSamples > 0 && n > maxSamples ? (n + maxSamples - 1) / maxSamples : 1;
-    ChannelSeries series{raw.series.channel, strided(raw.series.time, stride), strided(raw.series.measured, stride),
-                         strided(raw.series.predicted, stride), {}};
+    ChannelSeries series{raw.series.channel,
+                         strided(raw.series.time, stride),
+                         strided(raw.series.measured, stride),
+                         strided(raw.series.predicted, stride),
+                         {}};
     for (const auto& [signal, values] : raw.signals) {
       std::vector<double> complete;
       for (const auto& v : values) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 #include "arcplan/common/error.h"
 #include "arcplan/model/report.h"
 #include "arcplan/model/workflow.h"
@@ -19,7 +18,8 @@ std::filesystem::path latestSeries(const std::filesystem::path& session, const s
   for (const char* step : {"compare", "fit"}) {
     const auto file = session / (std::string(step) + "_" + which + "_series.csv");
     if (!std::filesystem::exists(file)) continue;
-    if (latest.empty() || std::filesystem::last_write_time(file) >= std::filesystem::last_write_time(latest)) latest = file;
+    if (latest.empty() || std::filesystem::last_write_time(file) >= std::filesystem::last_write_time(latest))
+      latest = file;
   }
   return latest;
 }
@@ -83,7 +83,8 @@ nlohmann::json suggestedModelLines(const nlohmann::json& diagnosis, const std::v
 nlohmann::json modelSessionReportData(const std::filesystem::path& session, const ModelReportOptions& options) {
   const auto sessionFile = session / "session.json";
   if (!std::filesystem::exists(sessionFile)) {
-    throw Error(session.string() + ": not a model session folder (no session.json; run arcplan model compare or fit with --out " +
+    throw Error(session.string() +
+                ": not a model session folder (no session.json; run arcplan model compare or fit with --out " +
                 session.string() + ")");
   }
   const auto history = model::readSession(sessionFile);
@@ -95,19 +96,20 @@ nlohmann::json modelSessionReportData(const std::filesystem::path& session, cons
     data["series"][which] = file.empty() ? nlohmann::json(nullptr) : seriesJson(file, options.maxSamplesPerChannel);
   }
   if (data["series"]["data"].is_null()) {
-    missing.push_back("No measured-vs-predicted series (compare_data_series.csv or fit_data_series.csv) in " + session.string() +
-                      ": run arcplan model compare --out " + session.string() + ".");
+    missing.push_back("No measured-vs-predicted series (compare_data_series.csv or fit_data_series.csv) in " +
+                      session.string() + ": run arcplan model compare --out " + session.string() + ".");
   }
   const auto compare = session / "compare.json";
   data["comparison"] = std::filesystem::exists(compare) ? detail::readJsonFile(compare) : nlohmann::json(nullptr);
   if (data["comparison"].is_null()) {
-    missing.push_back("No compare.json in " + session.string() + ": the worst windows and regimes come from arcplan model compare --out.");
+    missing.push_back("No compare.json in " + session.string() +
+                      ": the worst windows and regimes come from arcplan model compare --out.");
   }
   const auto diagnose = session / "diagnose_ranking.json";
   data["diagnosis"] = std::filesystem::exists(diagnose) ? detail::readJsonFile(diagnose) : nlohmann::json(nullptr);
   if (data["diagnosis"].is_null()) {
-    missing.push_back("No diagnosis in " + session.string() + " (diagnose_ranking.json): run arcplan model diagnose --out " +
-                      session.string() + ".");
+    missing.push_back("No diagnosis in " + session.string() +
+                      " (diagnose_ranking.json): run arcplan model diagnose --out " + session.string() + ".");
     data["model_lines"] = nullptr;
   } else {
     data["model_lines"] = suggestedModelLines(data["diagnosis"], history);

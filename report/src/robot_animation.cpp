@@ -17,8 +17,9 @@ std::vector<int> meshedLinks(const robot::RobotModel& model) {
   std::vector<int> links;
   for (std::size_t i = 0; i < model.links().size(); ++i) {
     const auto& collisions = model.links()[i].collisions;
-    if (std::any_of(collisions.begin(), collisions.end(),
-                    [](const robot::CollisionGeometry& g) { return g.shape == robot::CollisionGeometry::Shape::Mesh; })) {
+    if (std::any_of(collisions.begin(), collisions.end(), [](const robot::CollisionGeometry& g) {
+          return g.shape == robot::CollisionGeometry::Shape::Mesh;
+        })) {
       links.push_back(static_cast<int>(i));
     }
   }
@@ -39,10 +40,12 @@ nlohmann::json robotMeshesJson(const robot::RobotModel& model) {
       const auto offset = static_cast<std::uint32_t>(positions.size() / 3);
       for (const auto& vertex : mesh.vertices) {
         const Eigen::Vector3d p = geometry.origin * vertex;
-        positions.insert(positions.end(), {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+        positions.insert(positions.end(),
+                         {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
       }
       for (const auto& triangle : mesh.triangles) {
-        for (int corner = 0; corner < 3; ++corner) indices.push_back(offset + static_cast<std::uint32_t>(triangle[corner]));
+        for (int corner = 0; corner < 3; ++corner)
+          indices.push_back(offset + static_cast<std::uint32_t>(triangle[corner]));
       }
     }
     meshes.push_back({{"link", link.name},

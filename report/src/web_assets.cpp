@@ -28,7 +28,8 @@ const char* const kSetupHint = "scripts/setup installs it";
 }  // namespace
 
 std::filesystem::path reportPageDirectory() {
-  if (auto fromEnvironment = environmentPath("ARCPLAN_REPORT_PAGE_DIR"); !fromEnvironment.empty()) return fromEnvironment;
+  if (auto fromEnvironment = environmentPath("ARCPLAN_REPORT_PAGE_DIR"); !fromEnvironment.empty())
+    return fromEnvironment;
   // An installed arcplan has share/arcplan/report next to share/arcplan/ur10e.
   const auto installed = dataDirectory() / "report";
   if (std::filesystem::exists(installed / "page.html")) return installed;
@@ -66,22 +67,31 @@ WebAssets loadWebAssets(ReportKind kind) {
     }
   }
   if (plotly.empty()) {
-    throw Error(plotlyCandidates().back().string() +
-                ": plotly.js not found (scripts/setup runs `npm ci` in report/web; ARCPLAN_PLOTLY_JS names another copy)");
+    throw Error(
+        plotlyCandidates().back().string() +
+        ": plotly.js not found (scripts/setup runs `npm ci` in report/web; ARCPLAN_PLOTLY_JS names another copy)");
   }
   assets.libraries.push_back({"plotly.js", readText(plotly, "plotly.js", kSetupHint)});
   if (kind == ReportKind::Campaign) {
     const auto three = threeDirectory();
-    const std::string threeHint = "Debian package libjs-three; scripts/setup installs it, ARCPLAN_THREE_DIR names another copy";
+    const std::string threeHint =
+        "Debian package libjs-three; scripts/setup installs it, ARCPLAN_THREE_DIR names another copy";
     assets.libraries.push_back({"three.js", readText(three / "three.min.js", "three.js", threeHint)});
     assets.libraries.push_back(
-        {"three.js OrbitControls", readText(three / "examples" / "js" / "controls" / "OrbitControls.js", "three.js OrbitControls", threeHint)});
+        {"three.js OrbitControls",
+         readText(three / "examples" / "js" / "controls" / "OrbitControls.js", "three.js OrbitControls", threeHint)});
   }
   std::vector<std::string> scripts{"common.js"};
   switch (kind) {
-    case ReportKind::Campaign: scripts.insert(scripts.end(), {"robot_view.js", "campaign.js"}); break;
-    case ReportKind::ModelSession: scripts.push_back("model.js"); break;
-    case ReportKind::Comparison: scripts.push_back("comparison.js"); break;
+    case ReportKind::Campaign:
+      scripts.insert(scripts.end(), {"robot_view.js", "campaign.js"});
+      break;
+    case ReportKind::ModelSession:
+      scripts.push_back("model.js");
+      break;
+    case ReportKind::Comparison:
+      scripts.push_back("comparison.js");
+      break;
   }
   for (const auto& script : scripts) {
     assets.pageScripts.push_back({script, readText(page / script, "report script", pageHint)});

@@ -5,7 +5,8 @@
 
 namespace arcplan::robot {
 
-KinematicsData::KinematicsData(const RobotModel& model) : linkPoses(model.links().size(), Eigen::Isometry3d::Identity()) {}
+KinematicsData::KinematicsData(const RobotModel& model)
+    : linkPoses(model.links().size(), Eigen::Isometry3d::Identity()) {}
 
 void forwardKinematics(const RobotModel& model, const JointRef& q, KinematicsData& data) {
   assert(q.size() == model.dof());

@@ -37,8 +37,8 @@ TriangleMesh loadMesh(const std::filesystem::path& file, const Eigen::Vector3d& 
   Assimp::Importer importer;
   // Collada files carry a unit and up-axis that assimp applies through the node transforms, which
   // appendNode folds in; vertices are joined so FCL's BVH gets a connected mesh.
-  const aiScene* scene = importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                              aiProcess_SortByPType);
+  const aiScene* scene =
+      importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     throw Error("cannot read mesh " + file.string() + ": " + importer.GetErrorString());
   }

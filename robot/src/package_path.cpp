@@ -46,7 +46,8 @@ std::filesystem::path resolveResourceUri(const std::string& uri, const std::file
   if (uri.rfind(packagePrefix, 0) == 0) {
     const std::string rest = uri.substr(packagePrefix.size());
     const auto slash = rest.find('/');
-    if (slash == std::string::npos || slash == 0) throw Error("malformed resource URI '" + uri + "' (expected package://<package>/<path>)");
+    if (slash == std::string::npos || slash == 0)
+      throw Error("malformed resource URI '" + uri + "' (expected package://<package>/<path>)");
     const std::string package = rest.substr(0, slash);
     const std::string path = rest.substr(slash + 1);
     const auto arcplanRoots = searchRoots("ARCPLAN_PACKAGE_PATH");
@@ -56,8 +57,8 @@ std::filesystem::path resolveResourceUri(const std::string& uri, const std::file
     throw Error("mesh '" + uri + "' not found: package '" + package + "' searched in ARCPLAN_PACKAGE_PATH (" +
                 describe(arcplanRoots) + ") and ROS_PACKAGE_PATH (" + describe(rosRoots) + ")");
   }
-  std::filesystem::path path = uri.rfind(filePrefix, 0) == 0 ? std::filesystem::path(uri.substr(filePrefix.size()))
-                                                             : std::filesystem::path(uri);
+  std::filesystem::path path =
+      uri.rfind(filePrefix, 0) == 0 ? std::filesystem::path(uri.substr(filePrefix.size())) : std::filesystem::path(uri);
   if (path.is_relative()) path = referencingFile.parent_path() / path;
   if (!std::filesystem::exists(path)) throw Error("mesh '" + uri + "' not found (looked for " + path.string() + ")");
   return path;

@@ -34,8 +34,9 @@ std::mutex consoleBridgeMutex;  // console_bridge's output handler is process-gl
 Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
   transform.translation() << pose.position.x, pose.position.y, pose.position.z;
-  transform.linear() =
-      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z).normalized().toRotationMatrix();
+  transform.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
+                           .normalized()
+                           .toRotationMatrix();
   return transform;
 }
 
@@ -45,7 +46,8 @@ CollisionGeometry convertCollision(const urdf::Collision& collision, const std::
                                    const std::filesystem::path& sourceFile) {
   CollisionGeometry geometry;
   geometry.origin = toIsometry(collision.origin);
-  if (!collision.geometry) throw Error(where(sourceFile) + ": link '" + linkName + "' has a <collision> without <geometry>");
+  if (!collision.geometry)
+    throw Error(where(sourceFile) + ": link '" + linkName + "' has a <collision> without <geometry>");
   switch (collision.geometry->type) {
     case urdf::Geometry::MESH: {
       const auto& mesh = static_cast<const urdf::Mesh&>(*collision.geometry);
@@ -188,9 +190,11 @@ urdf::ModelInterfaceSharedPtr parseUrdf(const std::string& urdfXml, const std::f
 std::vector<urdf::LinkConstSharedPtr> chainLinks(const urdf::ModelInterface& urdf, const ChainSelection& chain,
                                                  const std::filesystem::path& sourceFile) {
   const auto base = urdf.getLink(chain.baseLink);
-  if (!base) throw Error(where(sourceFile) + ": base link '" + chain.baseLink + "' not found (links: " + knownLinks(urdf) + ")");
+  if (!base)
+    throw Error(where(sourceFile) + ": base link '" + chain.baseLink + "' not found (links: " + knownLinks(urdf) + ")");
   const auto tip = urdf.getLink(chain.tipLink);
-  if (!tip) throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' not found (links: " + knownLinks(urdf) + ")");
+  if (!tip)
+    throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' not found (links: " + knownLinks(urdf) + ")");
   std::vector<urdf::LinkConstSharedPtr> links;
   for (urdf::LinkConstSharedPtr link = tip; link; link = link->getParent()) {
     if (links.size() > urdf.links_.size()) {
@@ -200,7 +204,8 @@ std::vector<urdf::LinkConstSharedPtr> chainLinks(const urdf::ModelInterface& urd
     if (link->name == chain.baseLink) break;
   }
   if (links.back()->name != chain.baseLink) {
-    throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' is not below base link '" + chain.baseLink + "'");
+    throw Error(where(sourceFile) + ": tip link '" + chain.tipLink + "' is not below base link '" + chain.baseLink +
+                "'");
   }
   std::reverse(links.begin(), links.end());
   return links;

@@ -42,7 +42,8 @@ Eigen::Isometry3d urDhForwardKinematics(const UrDhParameters& dh, const Vector6&
 
 UrInverseKinematics::UrInverseKinematics(const RobotModel& model) {
   if (model.dof() != 6) {
-    throw Error("UR inverse kinematics needs a 6-joint chain; '" + model.name() + "' has " + std::to_string(model.dof()));
+    throw Error("UR inverse kinematics needs a 6-joint chain; '" + model.name() + "' has " +
+                std::to_string(model.dof()));
   }
   for (int j = 0; j < 6; ++j) {
     lower_[j] = model.joints()[j].limits.lower;
@@ -61,7 +62,8 @@ UrInverseKinematics::UrInverseKinematics(const RobotModel& model) {
   const Eigen::Vector3d origin0 = z0 * z0.dot(data.linkPoses[0].translation());  // base origin on axis 0
   // x0: the upper arm at q = 0 points along -x0 (the UR convention a2 < 0).
   const Eigen::Vector3d upperArm = perpendicularPart(perpendicularPart(point[2] - point[1], axis[1]), z0);
-  if (upperArm.norm() < 1e-6) throw Error("'" + model.name() + "' is not a UR-type arm: elbow axis on the shoulder axis");
+  if (upperArm.norm() < 1e-6)
+    throw Error("'" + model.name() + "' is not a UR-type arm: elbow axis on the shoulder axis");
   const Eigen::Vector3d x0 = -upperArm.normalized();
   const Eigen::Vector3d y0 = z0.cross(x0);
 
@@ -75,7 +77,8 @@ UrInverseKinematics::UrInverseKinematics(const RobotModel& model) {
   const Eigen::Vector3d flange = point[5] + axis[5] * axis[5].dot(tip - point[5]);
   dh_.d6 = -(flange - origin0).dot(y0) - dh_.d4;
   if (std::abs(dh_.d6) < 1e-6) {
-    throw Error("'" + model.name() + "': the tip link lies on the wrist-2 axis (d6 = 0); choose tool0 or a tool frame as tip");
+    throw Error("'" + model.name() +
+                "': the tip link lies on the wrist-2 axis (d6 = 0); choose tool0 or a tool frame as tip");
   }
 
   baseToDh0_.linear().col(0) = x0;
@@ -125,7 +128,7 @@ UrInverseKinematics::TargetFrame UrInverseKinematics::targetFrame(const Eigen::I
 }
 
 std::optional<UrInverseKinematics::ShoulderStep> UrInverseKinematics::shoulderStep(const TargetFrame& target,
-                                                                                  int shoulder) const {
+                                                                                   int shoulder) const {
   // The wrist-2 centre lies at distance d4 from the vertical arm plane.
   const Eigen::Vector3d p5 = target.p - dh_.d6 * target.a;
   const double rho = std::hypot(p5.x(), p5.y());
@@ -172,7 +175,8 @@ std::optional<Vector6> UrInverseKinematics::elbowStep(const TargetFrame& target,
   return q;
 }
 
-std::vector<Vector6> UrInverseKinematics::solveBranches(const Eigen::Isometry3d& tipPose, double q6AtWristSingularity) const {
+std::vector<Vector6> UrInverseKinematics::solveBranches(const Eigen::Isometry3d& tipPose,
+                                                        double q6AtWristSingularity) const {
   const TargetFrame target = targetFrame(tipPose);
   std::vector<Vector6> solutions;
   solutions.reserve(8);

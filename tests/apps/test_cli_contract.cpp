@@ -137,7 +137,8 @@ TEST(ArcplanExitCodes, AWrongJointCountFailsBeforeAnythingIsPrinted) {
 
 TEST(ArcplanExitCodes, PlanOptionValuesOutOfRangeAreUsageErrors) {
   const auto dir = freshTempDirectory("cli_plan_usage");
-  const std::vector<std::string> outputs{"--json", (dir / "out.json").string(), "--path-csv", (dir / "path.csv").string()};
+  const std::vector<std::string> outputs{"--json", (dir / "out.json").string(), "--path-csv",
+                                         (dir / "path.csv").string()};
   const struct {
     std::vector<std::string> arguments;
     std::string message;

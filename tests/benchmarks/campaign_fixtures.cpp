@@ -20,8 +20,8 @@ namespace arcplan::testing {
 namespace {
 
 // Columns whose values depend on the machine and its load, not on the planner's decisions.
-const std::set<std::string> kMeasuredColumns{"id", "experimentid", "plannerid", "time", "memory", "simplification_time",
-                                             "solve_time"};
+const std::set<std::string> kMeasuredColumns{"id",     "experimentid",        "plannerid", "time",
+                                             "memory", "simplification_time", "solve_time"};
 
 }  // namespace
 
@@ -43,7 +43,8 @@ std::filesystem::path writeTinySuite(const std::filesystem::path& directory, con
 
 std::vector<std::string> benchArguments(const std::filesystem::path& suite, const std::filesystem::path& out,
                                         const std::vector<std::string>& extra) {
-  std::vector<std::string> arguments{"bench", "--suite", suite.string(), "--no-plots", "--quiet", "--out", out.string()};
+  std::vector<std::string> arguments{"bench",   "--suite", suite.string(), "--no-plots",
+                                     "--quiet", "--out",   out.string()};
   arguments.insert(arguments.end(), extra.begin(), extra.end());
   return arguments;
 }
@@ -140,9 +141,10 @@ std::vector<std::string> deterministicRuns(const std::filesystem::path& database
   }
   std::string columns;
   for (const auto& name : names) columns += ", r." + name;
-  const auto rows = databaseRows(database, "SELECT e.name, p.name" + columns +
-                                   " FROM runs r JOIN experiments e ON e.id = r.experimentid"
-                                   " JOIN plannerConfigs p ON p.id = r.plannerid ORDER BY e.name, p.name, r.id");
+  const auto rows =
+      databaseRows(database, "SELECT e.name, p.name" + columns +
+                                 " FROM runs r JOIN experiments e ON e.id = r.experimentid"
+                                 " JOIN plannerConfigs p ON p.id = r.plannerid ORDER BY e.name, p.name, r.id");
   for (const auto& row : rows) {
     std::string text;
     for (const auto& value : row) text += value + "|";

@@ -30,10 +30,10 @@ public:
   ~ArcplanProcess();  // kills and collects a child still running
 
   pid_t pid() const { return pid_; }
-  bool running();                      // not yet exited (collects it when it has)
-  int wait();                          // exit code, or 128 + signal
-  std::string err() const;             // its stderr so far
-  std::vector<pid_t> children() const; // its child processes now (the worker processes)
+  bool running();                       // not yet exited (collects it when it has)
+  int wait();                           // exit code, or 128 + signal
+  std::string err() const;              // its stderr so far
+  std::vector<pid_t> children() const;  // its child processes now (the worker processes)
 
 private:
   pid_t pid_ = -1;
@@ -50,6 +50,5 @@ pid_t deadPid();
 // planner names and every run column except those that measure time or memory (time, memory,
 // simplification_time, solve_time) and the row ids.
 std::vector<std::string> deterministicRuns(const std::filesystem::path& database);
-
 
 }  // namespace arcplan::testing

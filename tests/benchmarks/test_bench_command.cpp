@@ -33,8 +33,9 @@ std::set<std::string> columnsOf(const std::filesystem::path& database, const std
 const std::vector<std::string> kPlanners{"arc-h1.00r", "arc-h0.50r", "arc-auto", "RRTConnect", "PRM"};
 
 std::vector<std::string> campaignArguments(const std::filesystem::path& out, const std::string& runs = "2") {
-  return {"bench", "--suite", "thesis", "--planners", "arc-h1.00r,arc-h0.50r,arc-auto,RRTConnect,PRM", "--runs", runs,
-          "--time", "0.5", "-j", "2", "--no-plots", "--out", out.string()};
+  return {"bench",  "--suite",    "thesis", "--planners", "arc-h1.00r,arc-h0.50r,arc-auto,RRTConnect,PRM",
+          "--runs", runs,         "--time", "0.5",        "-j",
+          "2",      "--no-plots", "--out",  out.string()};
 }
 
 // One small thesis campaign (5 planners x 2 problems x 2 runs), shared by the tests of one process.
@@ -102,16 +103,17 @@ TEST(BenchCommand, DatabaseIsBuiltByOmplBenchmarkStatisticsFromTheLogs) {
   EXPECT_EQ(perProblem["thesis/obstacle"], 5);
   // The metrics of docs/metrics.md are run properties, hence columns of the runs table.
   const auto columns = columnsOf(db, "runs");
-  for (const char* column : {"tcp_path_length", "execution_time", "solve_time", "mean_tcp_speed", "peak_tcp_speed",
-                             "time_above_limit", "min_clearance", "max_joint_speed_ratio", "run_seed", "solution_length",
-                             "simplified_solution_length"}) {
+  for (const char* column :
+       {"tcp_path_length", "execution_time", "solve_time", "mean_tcp_speed", "peak_tcp_speed", "time_above_limit",
+        "min_clearance", "max_joint_speed_ratio", "run_seed", "solution_length", "simplified_solution_length"}) {
     EXPECT_EQ(columns.count(column), 1u) << column;
   }
   EXPECT_EQ(query(db, "SELECT COUNT(*) FROM runs")[0][0], "20");
   // Seeds are recorded, one per run, different between runs.
   EXPECT_EQ(query(db, "SELECT COUNT(DISTINCT run_seed) FROM runs")[0][0], "20");
   // Every successful run respects the speed limit.
-  const auto limits = query(db, "SELECT MAX(peak_tcp_speed), MAX(time_above_limit) FROM runs WHERE execution_time IS NOT NULL");
+  const auto limits =
+      query(db, "SELECT MAX(peak_tcp_speed), MAX(time_above_limit) FROM runs WHERE execution_time IS NOT NULL");
   EXPECT_LE(std::stod(limits[0][0]), 0.25 + 1e-9);
   EXPECT_DOUBLE_EQ(std::stod(limits[0][1]), 0.0);
 }
@@ -201,8 +203,8 @@ TEST(BenchCommand, RankingAgreesWithTheDatabase) {
 TEST(BenchCommand, RankRecomputesTheSameRankingFromTheDatabase) {
   const auto& campaign = thesisCampaign();
   const auto again = freshTempDirectory("bench_rank_again");
-  const auto result = runArcplan({"bench", "rank", "--db", (campaign.out / "benchmark.db").string(), "--out",
-                                  again.string(), "--no-plots"});
+  const auto result = runArcplan(
+      {"bench", "rank", "--db", (campaign.out / "benchmark.db").string(), "--out", again.string(), "--no-plots"});
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(readFile(again / "ranking.csv"), readFile(campaign.out / "ranking.csv"));
   auto first = nlohmann::json::parse(readFile(campaign.out / "ranking.json"));
@@ -254,10 +256,11 @@ TEST(BenchCommand, OtherSettingsInAnExistingCampaignDirectoryAreRefused) {
 
 TEST(BenchCommand, ShardsRunWithGnuParallelMergeToTheJobsOfOneRun) {
   const auto dir = freshTempDirectory("bench_shards");
-  const std::string common = "bench --suite thesis --planners arc-h0.50r,arc-auto,RRTConnect --runs 1 --time 0.5 -j 1 "
-                             "--no-plots --quiet";
-  const std::string command = "parallel --will-cite --halt now,fail=1 " + std::string(ARCPLAN_EXECUTABLE) + " " + common +
-                              " --shard {}/2 --out " + (dir / "shard{}").string() + " ::: 1 2 > " +
+  const std::string common =
+      "bench --suite thesis --planners arc-h0.50r,arc-auto,RRTConnect --runs 1 --time 0.5 -j 1 "
+      "--no-plots --quiet";
+  const std::string command = "parallel --will-cite --halt now,fail=1 " + std::string(ARCPLAN_EXECUTABLE) + " " +
+                              common + " --shard {}/2 --out " + (dir / "shard{}").string() + " ::: 1 2 > " +
                               (dir / "parallel.out").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << readFile(dir / "parallel.out");
   const auto shard1 = filesBelow(dir / "shard1" / "logs", ".log"), shard2 = filesBelow(dir / "shard2" / "logs", ".log");
@@ -272,18 +275,20 @@ TEST(BenchCommand, ShardsRunWithGnuParallelMergeToTheJobsOfOneRun) {
                             "--time", "0.5", "-j", "1", "--no-plots", "--quiet", "--out", (dir / "single").string()});
   ASSERT_EQ(single.exitCode, 0) << single.err;
 
-  const std::string jobs = "SELECT experiments.name, plannerConfigs.name, COUNT(*) FROM runs "
-                           "JOIN experiments ON runs.experimentid = experiments.id "
-                           "JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id "
-                           "GROUP BY experiments.name, plannerConfigs.name ORDER BY 1, 2";
+  const std::string jobs =
+      "SELECT experiments.name, plannerConfigs.name, COUNT(*) FROM runs "
+      "JOIN experiments ON runs.experimentid = experiments.id "
+      "JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id "
+      "GROUP BY experiments.name, plannerConfigs.name ORDER BY 1, 2";
   const auto mergedJobs = query(dir / "merged" / "benchmark.db", jobs);
   EXPECT_EQ(mergedJobs.size(), 6u);
   EXPECT_EQ(mergedJobs, query(dir / "single" / "benchmark.db", jobs));
   // Deterministic planners give the same numbers whichever shard ran them.
-  const std::string arc = "SELECT experiments.name, plannerConfigs.name, tcp_path_length FROM runs "
-                          "JOIN experiments ON runs.experimentid = experiments.id "
-                          "JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id "
-                          "WHERE plannerConfigs.name LIKE 'geometric_arc%' ORDER BY 1, 2";
+  const std::string arc =
+      "SELECT experiments.name, plannerConfigs.name, tcp_path_length FROM runs "
+      "JOIN experiments ON runs.experimentid = experiments.id "
+      "JOIN plannerConfigs ON runs.plannerid = plannerConfigs.id "
+      "WHERE plannerConfigs.name LIKE 'geometric_arc%' ORDER BY 1, 2";
   EXPECT_EQ(query(dir / "merged" / "benchmark.db", arc), query(dir / "single" / "benchmark.db", arc));
   EXPECT_TRUE(std::filesystem::exists(dir / "merged" / "ranking.json"));
 }
@@ -323,8 +328,9 @@ int exitCodeOf(pid_t pid) {
 TEST(BenchCommand, CtrlCKeepsCompletedJobLogsWritesNothingHalfDoneAndResumes) {
   const auto dir = freshTempDirectory("bench_interrupt");
   const auto out = dir / "campaign";
-  const std::vector<std::string> arguments{"bench", "--suite", "thesis", "--planners", "RRTstar", "--runs", "4", "--time",
-                                           "0.25", "-j", "1", "--no-plots", "--out", out.string()};
+  const std::vector<std::string> arguments{"bench",  "--suite",    "thesis", "--planners", "RRTstar",
+                                           "--runs", "4",          "--time", "0.25",       "-j",
+                                           "1",      "--no-plots", "--out",  out.string()};
   const pid_t pid = startArcplan(arguments, dir);
   ASSERT_TRUE(waitForLogs(out / "logs", 1, 30.0)) << readFile(dir / "stderr");
   kill(pid, SIGINT);
@@ -345,8 +351,8 @@ TEST(BenchCommand, CtrlCKeepsCompletedJobLogsWritesNothingHalfDoneAndResumes) {
 TEST(BenchCommand, InterruptingTheParentStopsItsWorkerProcesses) {
   const auto dir = freshTempDirectory("bench_interrupt_workers");
   const auto out = dir / "campaign";
-  const pid_t pid = startArcplan({"bench", "--suite", "thesis", "--planners", "RRTstar,PRMstar", "--runs", "6", "--time",
-                                  "0.2", "-j", "2", "--no-plots", "--out", out.string()},
+  const pid_t pid = startArcplan({"bench", "--suite", "thesis", "--planners", "RRTstar,PRMstar", "--runs", "6",
+                                  "--time", "0.2", "-j", "2", "--no-plots", "--out", out.string()},
                                  dir);
   // Signal the campaign process alone (as a job scheduler may): it tells its workers to stop.
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));

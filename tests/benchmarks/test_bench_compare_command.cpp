@@ -13,7 +13,8 @@
 namespace arcplan::testing {
 namespace {
 
-const std::filesystem::path kThesisSuite = std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / ".." / "benchmarks" / "suites" / "thesis.yaml";
+const std::filesystem::path kThesisSuite =
+    std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / ".." / "benchmarks" / "suites" / "thesis.yaml";
 
 CommandResult runCampaign(const std::filesystem::path& out, const std::string& planners, const std::string& runs = "10",
                           const std::string& suite = "thesis") {
@@ -38,10 +39,11 @@ TEST(BenchCompareCommand, AThesisCampaignComparedWithARerunOfItselfHasNothingWor
   const std::string planners = "arc-h1.00r,arc-h0.50r,arc-auto,RRTConnect";
   ASSERT_EQ(runCampaign(directory / "base", planners).exitCode, 0);
   ASSERT_EQ(runCampaign(directory / "rerun", planners).exitCode, 0);
-  const auto result = runArcplan({"bench", "compare", (directory / "base").string(), (directory / "rerun").string(), "--out",
-                                  (directory / "comparison").string()});
+  const auto result = runArcplan({"bench", "compare", (directory / "base").string(), (directory / "rerun").string(),
+                                  "--out", (directory / "comparison").string()});
   EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
-  EXPECT_NE(result.out.find("- verdicts: 0 worse, 0 better, 48 same, 0 not comparable"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("- verdicts: 0 worse, 0 better, 48 same, 0 not comparable"), std::string::npos)
+      << result.out;
   EXPECT_EQ(result.out.find("## Different settings"), std::string::npos) << result.out;
   for (const char* file : {"comparison.md", "comparison.json", "comparison.csv"}) {
     EXPECT_TRUE(std::filesystem::exists(directory / "comparison" / file)) << file;
@@ -70,9 +72,10 @@ TEST(BenchCompareCommand, TheArcPlannerDegradedUnderTheSameNameIsFlaggedWithExit
   const auto results = out.find("## Results");
   EXPECT_LT(out.find("- only in base: thesis/obstacle · RRTConnect"), results) << out;
   EXPECT_LT(out.find("| parameter sagitta | 0.1 | 0.12 | every pair |"), results) << out;
-  EXPECT_TRUE(std::regex_search(out, std::regex(R"(\| thesis/obstacle \| arc-h0\.50r \| TCP path length \(m\) \| 10 → 10 \| )"
-                                                R"([0-9.]+ \| [0-9.]+ \| \+[0-9.]+ % \| exact \| - \| - \| \*\*worse\*\* \| )"
-                                                R"(median runs first differ at waypoint [0-9]+: [xyzq][0-5]? )")))
+  EXPECT_TRUE(
+      std::regex_search(out, std::regex(R"(\| thesis/obstacle \| arc-h0\.50r \| TCP path length \(m\) \| 10 → 10 \| )"
+                                        R"([0-9.]+ \| [0-9.]+ \| \+[0-9.]+ % \| exact \| - \| - \| \*\*worse\*\* \| )"
+                                        R"(median runs first differ at waypoint [0-9]+: [xyzq][0-5]? )")))
       << out;
   // The straight case has no obstacle to detour around: the same path.
   EXPECT_EQ(out.find("| thesis/straight | arc-h0.50r | TCP path length"), std::string::npos) << out;
@@ -86,7 +89,8 @@ TEST(BenchCompareCommand, RrtConnectWithTenAndElevenRunsIsComparedWithTheDiffere
       runArcplan({"bench", "compare", (directory / "ten").string(), (directory / "eleven").string(), "--all"});
   EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
   EXPECT_NE(result.out.find("| runs | 10 | 11 | every pair |"), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find("| thesis/obstacle | RRTConnect | success rate | 10 → 11 |"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("| thesis/obstacle | RRTConnect | success rate | 10 → 11 |"), std::string::npos)
+      << result.out;
   EXPECT_NE(result.out.find("0 worse"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("0 not comparable"), std::string::npos) << result.out;
 }
@@ -119,8 +123,9 @@ TEST(BenchCompareCommand, ABaselinePassesItsOwnCheckAndFlagsAOneMillimetreLonger
   std::ofstream(shorter) << document.dump(1);
   const auto flagged = runArcplan({"bench", "compare", shorter.string(), (directory / "base").string()});
   EXPECT_EQ(flagged.exitCode, 1) << flagged.out << flagged.err;
-  EXPECT_TRUE(std::regex_search(flagged.out, std::regex(R"(\| thesis/obstacle \| arc-h1\.00r \| TCP path length \(m\) \| .*)"
-                                                        R"(\| exact \| - \| - \| \*\*worse\*\* \|)")))
+  EXPECT_TRUE(
+      std::regex_search(flagged.out, std::regex(R"(\| thesis/obstacle \| arc-h1\.00r \| TCP path length \(m\) \| .*)"
+                                                R"(\| exact \| - \| - \| \*\*worse\*\* \|)")))
       << flagged.out;
 }
 
@@ -137,7 +142,8 @@ TEST(BenchCompareCommand, BadInputExitsWith1AndAWrongCommandLineWith2) {
   std::ofstream(directory / "broken.json") << R"({"format": "arcplan benchmark baseline", "version": 1})";
   const auto broken = runArcplan({"bench", "baseline", "check", (directory / "broken.json").string()});
   EXPECT_EQ(broken.exitCode, 1);
-  EXPECT_NE(broken.err.find((directory / "broken.json").string() + ": campaign: expected this field"), std::string::npos)
+  EXPECT_NE(broken.err.find((directory / "broken.json").string() + ": campaign: expected this field"),
+            std::string::npos)
       << broken.err;
   EXPECT_EQ(runArcplan({"bench", "compare", directory.string()}).exitCode, 2);
   const auto alpha = runArcplan({"bench", "compare", directory.string(), directory.string(), "--alpha", "2"});

@@ -49,7 +49,8 @@ TEST(ComparisonStatistics, FisherExactTestEqualsTheHypergeometricSumByHand) {
   EXPECT_NEAR(benchmarks::fisherExactTwoSided(3, 1, 1, 3), 34.0 / 70.0, 1e-12);
   EXPECT_NEAR(benchmarks::fisherExactTwoSided(1, 9, 11, 3), fisherByHand(1, 9, 11, 3), 1e-12);
   EXPECT_NEAR(benchmarks::fisherExactTwoSided(10, 0, 4, 6), fisherByHand(10, 0, 4, 6), 1e-12);
-  EXPECT_NEAR(benchmarks::fisherExactTwoSided(1, 9, 11, 3), 0.002759456, 1e-8);  // R: fisher.test(matrix(c(1,11,9,3),2))
+  EXPECT_NEAR(benchmarks::fisherExactTwoSided(1, 9, 11, 3), 0.002759456,
+              1e-8);  // R: fisher.test(matrix(c(1,11,9,3),2))
   EXPECT_DOUBLE_EQ(benchmarks::fisherExactTwoSided(5, 5, 5, 5), 1.0);
   EXPECT_DOUBLE_EQ(benchmarks::fisherExactTwoSided(10, 0, 10, 0), 1.0);
 }
@@ -61,7 +62,8 @@ double mannWhitneyByEnumeration(const std::vector<double>& a, const std::vector<
   pooled.insert(pooled.end(), b.begin(), b.end());
   const auto u = [](const std::vector<double>& x, const std::vector<double>& y) {
     double sum = 0.0;
-    for (double p : x) for (double q : y) sum += p > q ? 1.0 : (p == q ? 0.5 : 0.0);
+    for (double p : x)
+      for (double q : y) sum += p > q ? 1.0 : (p == q ? 0.5 : 0.0);
     return sum;
   };
   const double observed = u(a, b);
@@ -177,8 +179,10 @@ std::vector<RunValues> stochasticRuns(std::mt19937& random, int count, const Sto
 
 // The arc planner: every run the same.
 std::vector<RunValues> deterministicRuns(int count, double tcpLength) {
-  return std::vector<RunValues>(count, RunValues{{"execution_time_s", 4.17}, {"tcp_path_length_m", tcpLength},
-                                     {"min_clearance_m", 0.0946}, {"peak_tcp_speed_mps", 0.25}});
+  return std::vector<RunValues>(count, RunValues{{"execution_time_s", 4.17},
+                                                 {"tcp_path_length_m", tcpLength},
+                                                 {"min_clearance_m", 0.0946},
+                                                 {"peak_tcp_speed_mps", 0.25}});
 }
 
 benchmarks::CampaignResults campaign(const std::string& name, const Runs& runs) {
@@ -206,7 +210,7 @@ TEST(CampaignComparison, AKnownShiftOfAStochasticPlannerIsFlaggedBothWays) {
   EXPECT_LT(time.adjustedPValue, 0.01);
   EXPECT_GT(time.effect, 0.1);
   EXPECT_GT(time.rankBiserial, 0.5);  // most new runs slower than most base runs
-  EXPECT_EQ(rowOf(worse, "RRT", "min_clearance_m").verdict, Verdict::Worse);  // clearance: higher is better
+  EXPECT_EQ(rowOf(worse, "RRT", "min_clearance_m").verdict, Verdict::Worse);    // clearance: higher is better
   EXPECT_EQ(rowOf(worse, "RRT", "peak_tcp_speed_mps").verdict, Verdict::Same);  // not shifted
   const auto better = benchmarks::compareCampaigns(base, faster);
   EXPECT_FALSE(better.anyWorse());
@@ -338,7 +342,8 @@ TEST(CampaignComparison, OptionsOutOfRangeAndUnknownMetricsAreRefused) {
   EXPECT_NE(errorMessageOf([&] { benchmarks::checkComparisonOptions(options); }).find("--alpha"), std::string::npos);
   options = {};
   options.metrics = {"speediness"};
-  EXPECT_NE(errorMessageOf([&] { benchmarks::checkComparisonOptions(options); }).find("'speediness'"), std::string::npos);
+  EXPECT_NE(errorMessageOf([&] { benchmarks::checkComparisonOptions(options); }).find("'speediness'"),
+            std::string::npos);
 }
 
 // ---- campaign folders, databases and baselines on disk -----------------------------------------
@@ -358,28 +363,35 @@ std::filesystem::path syntheticCampaign(const std::string& name, double arcLengt
       << R"( {"name": "RRT", "planner": "RRT", "params": {}}]})";
   sqlite3* db = nullptr;
   EXPECT_EQ(sqlite3_open((directory / "benchmark.db").c_str(), &db), SQLITE_OK);
-  execute(db, "CREATE TABLE experiments (id INTEGER PRIMARY KEY, name VARCHAR(512), timelimit REAL, runcount INTEGER,"
-              " vmax REAL, omplversion TEXT)");
+  execute(db,
+          "CREATE TABLE experiments (id INTEGER PRIMARY KEY, name VARCHAR(512), timelimit REAL, runcount INTEGER,"
+          " vmax REAL, omplversion TEXT)");
   execute(db, "CREATE TABLE plannerConfigs (id INTEGER PRIMARY KEY, name VARCHAR(512) NOT NULL, settings TEXT)");
-  execute(db, "CREATE TABLE runs (id INTEGER PRIMARY KEY, experimentid INTEGER, plannerid INTEGER, solved BOOLEAN,"
-              " execution_time REAL, tcp_path_length REAL, solve_time REAL, min_clearance REAL, peak_tcp_speed REAL)");
-  execute(db, "INSERT INTO experiments VALUES (1, 'thesis/obstacle', 1.0, 12, 0.25, '1.5.2'),"
-              " (2, 'thesis/obstacle', 1.0, 12, 0.25, '1.5.2')");
-  execute(db, "INSERT INTO plannerConfigs VALUES (1, 'geometric_arc', 'sagitta = 0.2\n;projection.cellsize.0 = 0.07\n;'),"
-              " (2, 'geometric_RRT', 'range = 5.7\n;')");
+  execute(db,
+          "CREATE TABLE runs (id INTEGER PRIMARY KEY, experimentid INTEGER, plannerid INTEGER, solved BOOLEAN,"
+          " execution_time REAL, tcp_path_length REAL, solve_time REAL, min_clearance REAL, peak_tcp_speed REAL)");
+  execute(db,
+          "INSERT INTO experiments VALUES (1, 'thesis/obstacle', 1.0, 12, 0.25, '1.5.2'),"
+          " (2, 'thesis/obstacle', 1.0, 12, 0.25, '1.5.2')");
+  execute(db,
+          "INSERT INTO plannerConfigs VALUES (1, 'geometric_arc', 'sagitta = 0.2\n;projection.cellsize.0 = 0.07\n;'),"
+          " (2, 'geometric_RRT', 'range = 5.7\n;')");
   std::mt19937 random(5);
   std::lognormal_distribution<double> spread(0.0, 0.2);
   for (int run = 0; run < 12; ++run) {
-    execute(db, "INSERT INTO runs (experimentid, plannerid, solved, execution_time, tcp_path_length, solve_time,"
-                " min_clearance, peak_tcp_speed) VALUES (1, 1, 1, 4.17, " + std::to_string(arcLength) + ", " +
-                    std::to_string(0.0004 * spread(random)) + ", 0.0946, 0.25)");
+    execute(db,
+            "INSERT INTO runs (experimentid, plannerid, solved, execution_time, tcp_path_length, solve_time,"
+            " min_clearance, peak_tcp_speed) VALUES (1, 1, 1, 4.17, " +
+                std::to_string(arcLength) + ", " + std::to_string(0.0004 * spread(random)) + ", 0.0946, 0.25)");
     const bool solved = run % 4 != 0;
-    execute(db, "INSERT INTO runs (experimentid, plannerid, solved, execution_time, tcp_path_length, solve_time,"
-                " min_clearance, peak_tcp_speed) VALUES (2, 2, " + std::string(solved ? "1, " : "0, NULL, NULL, NULL, NULL, NULL)") +
-                    (solved ? std::to_string(5 * spread(random)) + ", " + std::to_string(1.2 * spread(random)) + ", " +
-                                  std::to_string(0.1 * spread(random)) + ", " + std::to_string(0.05 * spread(random)) +
-                                  ", 0.25)"
-                            : std::string()));
+    execute(db,
+            "INSERT INTO runs (experimentid, plannerid, solved, execution_time, tcp_path_length, solve_time,"
+            " min_clearance, peak_tcp_speed) VALUES (2, 2, " +
+                std::string(solved ? "1, " : "0, NULL, NULL, NULL, NULL, NULL)") +
+                (solved ? std::to_string(5 * spread(random)) + ", " + std::to_string(1.2 * spread(random)) + ", " +
+                              std::to_string(0.1 * spread(random)) + ", " + std::to_string(0.05 * spread(random)) +
+                              ", 0.25)"
+                        : std::string()));
   }
   sqlite3_close(db);
   return directory;
@@ -400,7 +412,8 @@ TEST(CampaignComparison, ACampaignFolderReadsRunsAndSettingsFromItsDatabase) {
   EXPECT_EQ(rrt.successes, 9);
   EXPECT_EQ(rrt.values.at("execution_time_s").size(), 9u);
   // The database file itself reads the same runs.
-  EXPECT_EQ(benchmarks::loadCampaignResults(folder / "benchmark.db").problems.at("thesis/obstacle").at("RRT").successes, 9);
+  EXPECT_EQ(benchmarks::loadCampaignResults(folder / "benchmark.db").problems.at("thesis/obstacle").at("RRT").successes,
+            9);
   EXPECT_FALSE(benchmarks::compareCampaigns(results, results).anyWorse());
 }
 
@@ -434,23 +447,26 @@ TEST(CampaignComparison, ABaselineKeepsExactValuesAndDistributionsAndComparesLik
 TEST(CampaignComparison, BadInputNamesTheFileAndTheField) {
   const auto directory = freshTempDirectory("comparison_bad_input");
   const auto notCampaign = errorMessageOf([&] { benchmarks::loadCampaignResults(directory); });
-  EXPECT_NE(notCampaign.find(directory.string() + ": not a finished campaign folder (no benchmark.db"), std::string::npos)
+  EXPECT_NE(notCampaign.find(directory.string() + ": not a finished campaign folder (no benchmark.db"),
+            std::string::npos)
       << notCampaign;
   std::ofstream(directory / "notes.txt") << "just text\n";
   const auto notDatabase = errorMessageOf([&] { benchmarks::loadCampaignResults(directory / "notes.txt"); });
   EXPECT_NE(notDatabase.find((directory / "notes.txt").string()), std::string::npos) << notDatabase;
   EXPECT_NE(notDatabase.find("not an OMPL benchmark database"), std::string::npos) << notDatabase;
-  EXPECT_NE(errorMessageOf([&] { benchmarks::loadCampaignResults(directory / "missing"); }).find("no such campaign folder"),
-            std::string::npos);
+  EXPECT_NE(
+      errorMessageOf([&] { benchmarks::loadCampaignResults(directory / "missing"); }).find("no such campaign folder"),
+      std::string::npos);
 
   const auto folder = syntheticCampaign("comparison_bad_baseline", 1.0);
   auto baseline = benchmarks::makeBaseline(folder);
   baseline["results"][0]["metrics"]["execution_time_s"]["quantiles"][3] = -1.0;  // RRT's, now out of order
   std::ofstream(directory / "broken.json") << baseline.dump();
   const auto broken = errorMessageOf([&] { benchmarks::readBaseline(directory / "broken.json"); });
-  EXPECT_NE(broken.find((directory / "broken.json").string() + ": results[0].metrics.execution_time_s.quantiles: expected 21 "
-                                                               "finite numbers in increasing order"),
-            std::string::npos)
+  EXPECT_NE(
+      broken.find((directory / "broken.json").string() + ": results[0].metrics.execution_time_s.quantiles: expected 21 "
+                                                         "finite numbers in increasing order"),
+      std::string::npos)
       << broken;
   // More summarised values than runs (a count of 10^12 would otherwise be expanded into that many values).
   auto inflated = benchmarks::makeBaseline(folder);
@@ -466,8 +482,9 @@ TEST(CampaignComparison, BadInputNamesTheFileAndTheField) {
             std::string::npos);
   baseline.erase("campaign");
   std::ofstream(directory / "no_campaign.json") << baseline.dump();
-  EXPECT_NE(errorMessageOf([&] { benchmarks::readBaseline(directory / "no_campaign.json"); }).find(": campaign: expected"),
-            std::string::npos);
+  EXPECT_NE(
+      errorMessageOf([&] { benchmarks::readBaseline(directory / "no_campaign.json"); }).find(": campaign: expected"),
+      std::string::npos);
   EXPECT_NE(errorMessageOf([&] { benchmarks::makeBaseline(directory); }).find("no campaign.json"), std::string::npos);
 }
 

@@ -59,7 +59,8 @@ TEST(CampaignDeterminism, BudgetedRunsAreIdenticalAcrossShardLayoutsAndWorkerCou
   // Recorded where a reader of the results finds it: campaign.json and every log (experiment parameter).
   const auto settings = nlohmann::json::parse(readFile(unsplit / "campaign.json"));
   EXPECT_EQ(settings.at("iteration_budget").get<unsigned>(), kBudget);
-  for (const auto& budget : column(unsplit / "benchmark.db", "(SELECT iterationbudget FROM experiments e WHERE e.id = experimentid)")) {
+  for (const auto& budget :
+       column(unsplit / "benchmark.db", "(SELECT iterationbudget FROM experiments e WHERE e.id = experimentid)")) {
     EXPECT_EQ(budget, std::to_string(kBudget));
   }
   for (const auto& log : filesBelow(unsplit / "logs", ".log")) {
@@ -80,11 +81,13 @@ TEST(CampaignDeterminism, BudgetOptionAndSuiteFieldAreChecked) {
     EXPECT_EQ(result.exitCode, 2) << value << ": " << result.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out")) << value;
   }
-  std::ofstream(dir / "bad.yaml") << "name: bad\nbudget: 0\ngenerate: {seed: 1, line_obstacles: 1, pillars: 0, shelves: 0}\n"
-                                     "planners: [RRT]\n";
+  std::ofstream(dir / "bad.yaml")
+      << "name: bad\nbudget: 0\ngenerate: {seed: 1, line_obstacles: 1, pillars: 0, shelves: 0}\n"
+         "planners: [RRT]\n";
   const auto bad = runArcplan(benchArguments(dir / "bad.yaml", dir / "out"));
   EXPECT_EQ(bad.exitCode, 1);
-  EXPECT_NE(bad.err.find("bad.yaml:2: suite: field 'budget' must be between 1 and 1000000000"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("bad.yaml:2: suite: field 'budget' must be between 1 and 1000000000"), std::string::npos)
+      << bad.err;
 }
 
 }  // namespace

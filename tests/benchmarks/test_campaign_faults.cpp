@@ -103,8 +103,8 @@ TEST(CampaignFaults, KilledCampaignTakesItsWorkersAlongAndResumesToTheSameDataba
   const auto leftover = logOf(out, "pillar-000", "RRT").string() + ".tmp." + std::to_string(deadPid());
   std::filesystem::create_directories(std::filesystem::path(leftover).parent_path());
   std::ofstream(leftover) << "OMPL version 1.5.2\nExperiment tiny/pil";
-  expectResumeEqualsReference(out, "took over the lock of a campaign that is no longer running: pid " +
-                                       std::to_string(campaign.pid()));
+  expectResumeEqualsReference(
+      out, "took over the lock of a campaign that is no longer running: pid " + std::to_string(campaign.pid()));
 }
 
 TEST(CampaignFaults, CampaignKilledAtRandomMomentsResumesToTheSameDatabase) {
@@ -119,8 +119,8 @@ TEST(CampaignFaults, CampaignKilledAtRandomMomentsResumesToTheSameDatabase) {
     std::this_thread::sleep_for(std::chrono::duration<double>(delay));
     ::kill(campaign.pid(), SIGKILL);
     const int exitCode = campaign.wait();
-    EXPECT_TRUE(exitCode == 128 + SIGKILL || exitCode == 0) << "kill " << kill << " after " << delay << " s: "
-                                                             << campaign.err();
+    EXPECT_TRUE(exitCode == 128 + SIGKILL || exitCode == 0)
+        << "kill " << kill << " after " << delay << " s: " << campaign.err();
   }
   expectResumeEqualsReference(out);
 }
@@ -165,8 +165,8 @@ TEST(CampaignFaults, IncompleteLogsAreNamedRunAgainAndNeverGivenToTheStatisticsS
   std::ofstream(garbled, std::ios::binary | std::ios::trunc) << text;
 
   // `bench rank` refuses to build a database from them, naming each and why.
-  const auto rank = runArcplan({"bench", "rank", "--logs", (out / "logs").string(), "--db", (out / "merged.db").string(),
-                                "--no-plots"});
+  const auto rank = runArcplan(
+      {"bench", "rank", "--logs", (out / "logs").string(), "--db", (out / "merged.db").string(), "--no-plots"});
   EXPECT_EQ(rank.exitCode, 1);
   EXPECT_NE(rank.err.find("3 incomplete or corrupt OMPL log(s), not given to ompl_benchmark_statistics"),
             std::string::npos)
@@ -230,7 +230,8 @@ TEST(CampaignFaults, FullDiskStopsTheCampaignWithAClearErrorAndKeepsOnlyComplete
     if (!writtenAfterTheLogs) pagesBeforeLogs += pagesOf(std::filesystem::file_size(file));
   }
   std::uintmax_t logPages = 0;
-  for (const auto& log : filesBelow(reference().out / "logs", ".log")) logPages += pagesOf(std::filesystem::file_size(log));
+  for (const auto& log : filesBelow(reference().out / "logs", ".log"))
+    logPages += pagesOf(std::filesystem::file_size(log));
   ASSERT_GE(logPages, 6u);
   const auto disk = freshTempDirectory("faults_full_disk") / "disk";
   std::filesystem::create_directories(disk);
@@ -244,7 +245,8 @@ TEST(CampaignFaults, FullDiskStopsTheCampaignWithAClearErrorAndKeepsOnlyComplete
   const auto out = disk / "out";
   const auto full = runArcplan(benchArguments(reference().suite, out, {"-j", "1"}));
   EXPECT_EQ(full.exitCode, 1) << full.err;
-  EXPECT_NE(full.err.find("arcplan: error: the campaign stopped: writing " + out.string()), std::string::npos) << full.err;
+  EXPECT_NE(full.err.find("arcplan: error: the campaign stopped: writing " + out.string()), std::string::npos)
+      << full.err;
   EXPECT_NE(full.err.find("No space left on device"), std::string::npos) << full.err;
   const auto kept = filesBelow(out / "logs", ".log");
   EXPECT_LT(kept.size(), 6u);
@@ -327,16 +329,22 @@ TEST(CampaignFaults, StaleLockOfAGoneProcessIsTakenOverAndAnotherHostsLockIsNot)
   char host[256] = {};
   ::gethostname(host, sizeof host - 1);
   const pid_t gone = deadPid();
-  std::ofstream(out / "campaign-1-of-2.lock")
-      << nlohmann::json{{"pid", gone}, {"host", host}, {"shard", "1/2"}, {"started_utc", "2026-01-01T00:00:00Z"}}.dump();
+  std::ofstream(out / "campaign-1-of-2.lock") << nlohmann::json{
+      {"pid", gone},
+      {"host", host},
+      {"shard", "1/2"},
+      {"started_utc", "2026-01-01T00:00:00Z"}}.dump();
   expectResumeEqualsReference(out, "took over the lock of a campaign that is no longer running: pid " +
                                        std::to_string(gone) + " on host " + host + " (shard 1/2");
 
   // A lock from another host cannot be checked from here: refused, with what to do if it is stale.
   const auto elsewhere = out / "campaign-1-of-1.lock";
-  std::ofstream(elsewhere) << nlohmann::json{{"pid", 1}, {"host", "build-node-7.invalid"}, {"shard", "1/1"},
-                                             {"started_utc", "2026-01-01T00:00:00Z"}}
-                                  .dump();
+  std::ofstream(elsewhere) << nlohmann::json{
+      {"pid", 1},
+      {"host", "build-node-7.invalid"},
+      {"shard", "1/1"},
+      {"started_utc",
+       "2026-01-01T00:00:00Z"}}.dump();
   const auto refused = runArcplan(benchArguments(reference().suite, out));
   EXPECT_EQ(refused.exitCode, 1);
   EXPECT_NE(refused.err.find("pid 1 on host build-node-7.invalid (shard 1/1, started 2026-01-01T00:00:00Z, lock file " +

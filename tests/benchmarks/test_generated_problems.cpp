@@ -83,8 +83,8 @@ TEST(GeneratedProblems, NamesAndFamiliesAsRequested) {
   EXPECT_EQ(problems[2].name, "line-cylinder-002");
   EXPECT_EQ(problems[6].name, "pillar-000");
   EXPECT_EQ(problems[9].name, "shelf-001");
-  const std::vector<std::string> workcell{"clutter-000",    "arm-blocked-000", "wall-000",
-                                          "near-end-000",   "pillar-tall-000", "shelf-deep-000"};
+  const std::vector<std::string> workcell{"clutter-000",  "arm-blocked-000", "wall-000",
+                                          "near-end-000", "pillar-tall-000", "shelf-deep-000"};
   for (std::size_t i = 0; i < workcell.size(); ++i) EXPECT_EQ(problems[10 + i].name, workcell[i]);
   for (const auto& problem : problems) {
     EXPECT_EQ(problem.query, "main");
@@ -110,7 +110,9 @@ TEST(GeneratedProblems, StartAndGoalAreValidReachableToolDownPoses) {
       }
       // Every colliding pair, not just the first: none may be reported.
       const auto report = collision::collide(*collisionModel, data, q);
-      EXPECT_TRUE(report.valid) << (report.collisions.empty() ? "" : report.collisions[0].first + " / " + report.collisions[0].second);
+      EXPECT_TRUE(report.valid) << (report.collisions.empty()
+                                        ? ""
+                                        : report.collisions[0].first + " / " + report.collisions[0].second);
       // More room than the built-in suites' 1 cm clearance, so every planner may start and end there.
       EXPECT_GE(collision::distance(*collisionModel, data, q).minimum(), 0.012);
       const auto pose = robot::tipPose(model, q);

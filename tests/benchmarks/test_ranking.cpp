@@ -52,7 +52,8 @@ TEST(Ranking, FailuresCountAsInfiniteInTheMedianOfAllRuns) {
   Runs data;
   data["p"]["six"] = runs(6, 4, 2.0);   // sorted: 2.000 .. 2.005, inf x4 -> median (2.004 + 2.005) / 2
   data["p"]["five"] = runs(5, 5, 1.0);  // median of 10 with 5 inf: (1.004 + inf) / 2 = inf
-  data["p"]["seven"] = runs(7, 3, 3.0); // median: (3.004 + 3.005) / 2... of 3.000..3.006 and 3 inf: 5th,6th = 3.004, 3.005
+  data["p"]["seven"] =
+      runs(7, 3, 3.0);  // median: (3.004 + 3.005) / 2... of 3.000..3.006 and 3 inf: 5th,6th = 3.004, 3.005
   const auto ranking = rankRuns(data);
   const auto& planners = ranking.problems[0].planners;
   EXPECT_NEAR(standing(planners, "six").medianExecutionTime, 2.0045, 1e-12);
@@ -147,8 +148,9 @@ TEST(Ranking, FamiliesShowWhereAPlannerLoses) {
     data[pillar]["arc"] = runs(0, 4, 0.0);
     data[pillar]["rrt"] = runs(4, 0, 6.0);
   }
-  const auto ranking = rankRuns(data, {{"line-1", "line"}, {"line-2", "line"}, {"pillar-1", "pillar"},
-                                       {"pillar-2", "pillar"}, {"pillar-3", "pillar"}});
+  const auto ranking = rankRuns(
+      data,
+      {{"line-1", "line"}, {"line-2", "line"}, {"pillar-1", "pillar"}, {"pillar-2", "pillar"}, {"pillar-3", "pillar"}});
   ASSERT_EQ(ranking.families.size(), 2u);
   const auto& line = ranking.families[0];
   const auto& pillar = ranking.families[1];
@@ -180,9 +182,9 @@ TEST(Ranking, JsonListsPlannersByRankWithTheDesignKeys) {
   EXPECT_EQ(json["planners"][0]["name"], "fast");
   EXPECT_EQ(json["planners"][0]["rank"], 1);
   EXPECT_EQ(json["planners"][0]["success_rate"], 1.0);
-  for (const char* key : {"tcp_path_length_m", "joint_path_length_rad", "solve_time_s", "execution_time_s",
-                          "mean_tcp_speed_mps", "peak_tcp_speed_mps", "time_above_limit_s", "min_clearance_m",
-                          "max_joint_speed_ratio"}) {
+  for (const char* key :
+       {"tcp_path_length_m", "joint_path_length_rad", "solve_time_s", "execution_time_s", "mean_tcp_speed_mps",
+        "peak_tcp_speed_mps", "time_above_limit_s", "min_clearance_m", "max_joint_speed_ratio"}) {
     EXPECT_TRUE(json["planners"][0].contains(key)) << key;
   }
   const auto& time = json["planners"][0]["execution_time_s"];

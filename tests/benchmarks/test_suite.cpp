@@ -19,12 +19,14 @@ using arcplan::testing::errorMessageOf;
 // A suite file in a fresh folder, with the thesis scene copied next to it.
 std::filesystem::path writeSuite(const std::string& name, const std::string& text) {
   const auto dir = testing::freshTempDirectory("suite_" + name);
-  writeFileAtomically(dir / "scene.yaml", testing::readFile(std::string(ARCPLAN_TEST_DATA_DIR) + "/scenes/thesis_obstacle.yaml"));
+  writeFileAtomically(dir / "scene.yaml",
+                      testing::readFile(std::string(ARCPLAN_TEST_DATA_DIR) + "/scenes/thesis_obstacle.yaml"));
   writeFileAtomically(dir / (name + ".yaml"), text);
   return dir / (name + ".yaml");
 }
 
-const std::vector<std::string> kRequiredOmplPlanners{"RRT", "RRTConnect", "RRTstar", "PRM", "LazyPRM", "BKPIECE1", "BiTRRT"};
+const std::vector<std::string> kRequiredOmplPlanners{"RRT",     "RRTConnect", "RRTstar", "PRM",
+                                                     "LazyPRM", "BKPIECE1",   "BiTRRT"};
 
 void expectRequiredPlanners(const Suite& suite) {
   std::set<std::string> labels;
@@ -64,7 +66,8 @@ TEST(Suite, GeneratedSuiteHasAtLeastEightyProblemsOfEveryFamily) {
   EXPECT_DOUBLE_EQ(suite.clearance, 0.01);
   std::map<std::string, int> kinds;
   for (const auto& problem : suite.problems) ++kinds[problem.kind];
-  for (const char* kind : {"line-sphere", "line-box", "line-cylinder", "pillar", "shelf"}) EXPECT_GE(kinds[kind], 5) << kind;
+  for (const char* kind : {"line-sphere", "line-box", "line-cylinder", "pillar", "shelf"})
+    EXPECT_GE(kinds[kind], 5) << kind;
   for (const char* kind : {"clutter", "arm-blocked", "wall", "near-end", "pillar-tall", "shelf-deep"}) {
     EXPECT_GE(kinds[kind], 3) << kind;
   }
@@ -102,7 +105,7 @@ planners:
   const auto suite = loadSuite(file);
   EXPECT_EQ(suite.runs, 3u);
   EXPECT_DOUBLE_EQ(suite.timeLimit, 0.25);
-  EXPECT_DOUBLE_EQ(suite.vMax, 0.25);  // default
+  EXPECT_DOUBLE_EQ(suite.vMax, 0.25);       // default
   EXPECT_DOUBLE_EQ(suite.clearance, 0.01);  // default
   ASSERT_EQ(suite.problems.size(), 1u);
   EXPECT_EQ(suite.problems[0].query, "A_to_B");  // the scene's first query
@@ -121,29 +124,39 @@ struct BadSuite {
 
 TEST(Suite, BadSuiteFilesAreReportedWithFileLineAndField) {
   const std::vector<BadSuite> cases{
-      {"unknown_key", "name: x\nrun: 3\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
+      {"unknown_key",
+       "name: x\nrun: 3\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
        {"unknown_key.yaml:2", "unknown field 'run'"}},
       {"no_planners", "name: x\nproblems: [{name: p, scene: scene.yaml}]\n", {"no_planners.yaml", "'planners'"}},
       {"no_problems", "name: x\nplanners: [RRT]\n", {"no_problems.yaml", "no problems"}},
-      {"bad_runs", "name: x\nruns: 0\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
+      {"bad_runs",
+       "name: x\nruns: 0\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
        {"bad_runs.yaml:2", "'runs' must be between 1 and 100000"}},
-      {"bad_time", "name: x\ntime_limit: -1\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
+      {"bad_time",
+       "name: x\ntime_limit: -1\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
        {"bad_time.yaml:2", "'time_limit' must be > 0"}},
-      {"bad_name", "name: x\nproblems: [{name: 'a b', scene: scene.yaml}]\nplanners: [RRT]\n",
+      {"bad_name",
+       "name: x\nproblems: [{name: 'a b', scene: scene.yaml}]\nplanners: [RRT]\n",
        {"bad_name.yaml:2", "'a b'", "plain name"}},
-      {"duplicate_planner", "name: x\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT, RRT]\n",
+      {"duplicate_planner",
+       "name: x\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT, RRT]\n",
        {"duplicate_planner.yaml:3", "duplicate planner name 'RRT'"}},
-      {"missing_scene", "name: x\nproblems: [{name: p, scene: nowhere.yaml}]\nplanners: [RRT]\n",
+      {"missing_scene",
+       "name: x\nproblems: [{name: p, scene: nowhere.yaml}]\nplanners: [RRT]\n",
        {"missing_scene.yaml:2", "nowhere.yaml", "not found"}},
-      {"unknown_query", "name: x\nproblems: [{name: p, scene: scene.yaml, query: C_to_D}]\nplanners: [RRT]\n",
+      {"unknown_query",
+       "name: x\nproblems: [{name: p, scene: scene.yaml, query: C_to_D}]\nplanners: [RRT]\n",
        {"unknown_query.yaml:2", "C_to_D", "A_to_B"}},
-      {"unknown_plot", "name: x\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\nplots: [q]\n",
+      {"unknown_plot",
+       "name: x\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\nplots: [q]\n",
        {"unknown_plot.yaml:4", "no problem named 'q'"}},
       {"not_yaml", "name: [x\n", {"not_yaml.yaml", "not a valid suite"}},
       {"no_seed", "name: x\ngenerate: {pillars: 1}\nplanners: [RRT]\n", {"no_seed.yaml:2", "missing field 'seed'"}},
-      {"bad_clearance", "name: x\nclearance: -0.01\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
+      {"bad_clearance",
+       "name: x\nclearance: -0.01\nproblems: [{name: p, scene: scene.yaml}]\nplanners: [RRT]\n",
        {"bad_clearance.yaml:2", "'clearance' must be in [0, 1) m"}},
-      {"bad_family", "name: x\ngenerate: {seed: 1, walls: -1}\nplanners: [RRT]\n",
+      {"bad_family",
+       "name: x\ngenerate: {seed: 1, walls: -1}\nplanners: [RRT]\n",
        {"bad_family.yaml:2", "'walls' must be between 0 and 1000"}},
   };
   for (const auto& bad : cases) {

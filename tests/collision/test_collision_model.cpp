@@ -130,7 +130,8 @@ TEST(CollisionModel, ParticleInsideALinkCollidesAlthoughNoSurfaceIsHit) {
   const auto& robot = arcplan::robot::ur10e();
   arcplan::robot::KinematicsData kinematics(robot);
   arcplan::robot::forwardKinematics(robot, kSolutionA, kinematics);
-  const Eigen::Vector3d inside = kinematics.linkPoses[robot.linkIndex("upper_arm_link")] * Eigen::Vector3d(-0.3, 0, 0.1762);
+  const Eigen::Vector3d inside =
+      kinematics.linkPoses[robot.linkIndex("upper_arm_link")] * Eigen::Vector3d(-0.3, 0, 0.1762);
   scene.obstacles.push_back(sphereAt("particle", inside, 0.01));
   for (bool convex : {true, false}) {
     CollisionModelOptions options;

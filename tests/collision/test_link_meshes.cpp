@@ -28,7 +28,8 @@ TriangleMesh weldVertices(const TriangleMesh& mesh) {
   std::vector<int> remap(mesh.vertices.size());
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const auto& p = mesh.vertices[i];
-    const auto [it, inserted] = indexOf.emplace(std::make_tuple(p.x(), p.y(), p.z()), static_cast<int>(welded.vertices.size()));
+    const auto [it, inserted] =
+        indexOf.emplace(std::make_tuple(p.x(), p.y(), p.z()), static_cast<int>(welded.vertices.size()));
     if (inserted) welded.vertices.push_back(p);
     remap[i] = it->second;
   }
@@ -69,7 +70,8 @@ std::vector<std::vector<int>> components(const TriangleMesh& mesh) {
     }
   }
   std::map<int, std::vector<int>> byRoot;
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) byRoot[find(static_cast<int>(f))].push_back(static_cast<int>(f));
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    byRoot[find(static_cast<int>(f))].push_back(static_cast<int>(f));
   std::vector<std::vector<int>> result;
   for (auto& [root, faces] : byRoot) result.push_back(std::move(faces));
   return result;
@@ -128,11 +130,17 @@ const std::map<std::string, std::vector<FactsCylinder>>& factsCylinders() {
       {"base_link_inertia", {{'z', 0, 0, 0.095, 0, 0.0993}}},
       {"shoulder_link", {{'z', 0, 0, 0.0765, -0.0817, 0.0939}, {'y', 0, 0, 0.0765, -0.0946, 0.0765}}},
       {"upper_arm_link",
-       {{'z', 0, 0, 0.0767, 0.0948, 0.2694}, {'x', 0, 0.1762, 0.0553, -0.6127, 0}, {'x', 0, 0.1762, 0.075, -0.105, 0},
-        {'x', 0, 0.1762, 0.0601, -0.6127, -0.535}, {'z', -0.6127, 0, 0.0601, 0.0986, 0.2482}}},
+       {{'z', 0, 0, 0.0767, 0.0948, 0.2694},
+        {'x', 0, 0.1762, 0.0553, -0.6127, 0},
+        {'x', 0, 0.1762, 0.075, -0.105, 0},
+        {'x', 0, 0.1762, 0.0601, -0.6127, -0.535},
+        {'z', -0.6127, 0, 0.0601, 0.0986, 0.2482}}},
       {"forearm_link",
-       {{'z', 0, 0, 0.0588, -0.0189, 0.0987}, {'x', 0, 0.0393, 0.0427, -0.57155, 0}, {'x', 0, 0.0393, 0.0585, -0.09, 0},
-        {'x', 0, 0.0393, 0.0455, -0.57155, -0.505}, {'z', -0.57155, 0, 0.047, -0.0181, 0.1060}}},
+       {{'z', 0, 0, 0.0588, -0.0189, 0.0987},
+        {'x', 0, 0.0393, 0.0427, -0.57155, 0},
+        {'x', 0, 0.0393, 0.0585, -0.09, 0},
+        {'x', 0, 0.0393, 0.0455, -0.57155, -0.505},
+        {'z', -0.57155, 0, 0.047, -0.0181, 0.1060}}},
       {"wrist_1_link", {{'z', 0, 0, 0.047, -0.0683, 0.0472}, {'y', 0, 0, 0.047, -0.0666, 0.0575}}},
       {"wrist_2_link", {{'z', 0, 0, 0.047, -0.0534, 0.0465}, {'y', 0, 0, 0.047, -0.0570, 0.0679}}},
       {"wrist_3_link", {{'z', 0, 0, 0.0452, -0.0489, 0}}},

@@ -326,7 +326,9 @@ TEST(MotionBounds, NoVertexMovesFartherThanTheBound) {
       qa[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
     }
     switch (trial % 3) {
-      case 0: dq[static_cast<int>(random() % 6)] = std::uniform_real_distribution<double>(-0.05, 0.05)(random); break;
+      case 0:
+        dq[static_cast<int>(random() % 6)] = std::uniform_real_distribution<double>(-0.05, 0.05)(random);
+        break;
       case 1:
         for (int j = 0; j < 6; ++j) dq[j] = std::uniform_real_distribution<double>(-0.02, 0.02)(random);
         break;

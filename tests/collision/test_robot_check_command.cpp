@@ -20,8 +20,8 @@ std::string thesisScene() { return std::string(ARCPLAN_TEST_DATA_DIR) + "/scenes
 
 TEST(RobotCheckCommand, ThesisSolutionIsValidWithPositiveClearance) {
   const auto dir = freshTempDirectory("check_valid");
-  const auto result = runArcplan({"robot", "check", "--scene", thesisScene(), "--joints=" + kSolutionA, "--json",
-                                  (dir / "check.json").string()});
+  const auto result = runArcplan(
+      {"robot", "check", "--scene", thesisScene(), "--joints=" + kSolutionA, "--json", (dir / "check.json").string()});
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.out.find("valid         yes"), std::string::npos) << result.out;
   const auto json = nlohmann::json::parse(readFile(dir / "check.json"));
@@ -32,13 +32,15 @@ TEST(RobotCheckCommand, ThesisSolutionIsValidWithPositiveClearance) {
 }
 
 TEST(RobotCheckCommand, FoldedArmReportsItsCollidingPairs) {
-  const auto result = runArcplan({"robot", "check", "--scene", "scenes/thesis_free.yaml", "--joints=" + kFolded, "--json", "-"});
+  const auto result =
+      runArcplan({"robot", "check", "--scene", "scenes/thesis_free.yaml", "--joints=" + kFolded, "--json", "-"});
   ASSERT_EQ(result.exitCode, 0) << result.err;  // a collision is a result, not an error
   const auto json = nlohmann::json::parse(result.out.substr(result.out.find('{')));
   EXPECT_FALSE(json.at("valid").get<bool>());
   EXPECT_EQ(json.at("clearance_m").get<double>(), 0.0);
   bool wristOnUpperArm = false;
-  for (const auto& pair : json.at("collisions")) wristOnUpperArm |= pair == nlohmann::json{"upper_arm_link", "wrist_1_link"};
+  for (const auto& pair : json.at("collisions"))
+    wristOnUpperArm |= pair == nlohmann::json{"upper_arm_link", "wrist_1_link"};
   EXPECT_TRUE(wristOnUpperArm) << json.dump();
 }
 
@@ -83,7 +85,8 @@ TEST(RobotCheckCommand, BadInputGivesOneClearLineAndNoOutputFile) {
     std::ofstream(sceneFile) << bad.sceneText;
     const auto jsonFile = dir / "out.json";
     const std::string selection = bad.extraArgument.empty() ? "--joints=" + kSolutionA : bad.extraArgument;
-    const auto result = runArcplan({"robot", "check", "--scene", sceneFile.string(), selection, "--json", jsonFile.string()});
+    const auto result =
+        runArcplan({"robot", "check", "--scene", sceneFile.string(), selection, "--json", jsonFile.string()});
     EXPECT_EQ(result.exitCode, bad.exitCode) << bad.name << ": " << result.err;
     EXPECT_EQ(result.out, "") << bad.name << ": nothing is printed before the inputs are checked";
     EXPECT_EQ(result.err.rfind("arcplan: error: ", 0), 0u) << bad.name << ": " << result.err;
@@ -96,7 +99,8 @@ TEST(RobotCheckCommand, BadInputGivesOneClearLineAndNoOutputFile) {
 TEST(RobotCheckCommand, MalformedYamlNamesTheLine) {
   const auto dir = freshTempDirectory("check_line");
   std::ofstream(dir / "scene.yaml") << "name: bad\nobstacles:\n  - name: a\n   sphere: {radius: 1}\n";
-  const auto result = runArcplan({"robot", "check", "--scene", (dir / "scene.yaml").string(), "--joints=" + kSolutionA});
+  const auto result =
+      runArcplan({"robot", "check", "--scene", (dir / "scene.yaml").string(), "--joints=" + kSolutionA});
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_NE(result.err.find("scene.yaml:4:"), std::string::npos) << result.err;  // the badly indented line
 }
@@ -108,7 +112,8 @@ TEST(RobotCheckCommand, UnknownSceneFileAndUnknownQuery) {
   const auto query = runArcplan({"robot", "check", "--scene", thesisScene(), "--query", "B_to_A"});
   EXPECT_EQ(query.exitCode, 1);
   EXPECT_NE(query.err.find("has no query 'B_to_A'; queries: A_to_B"), std::string::npos) << query.err;
-  const auto both = runArcplan({"robot", "check", "--scene", thesisScene(), "--query", "A_to_B", "--joints=" + kSolutionA});
+  const auto both =
+      runArcplan({"robot", "check", "--scene", thesisScene(), "--query", "A_to_B", "--joints=" + kSolutionA});
   EXPECT_EQ(both.exitCode, 2);
   EXPECT_NE(both.err.find("exactly one of --joints or --query"), std::string::npos) << both.err;
 }

@@ -137,22 +137,25 @@ TEST(SceneErrors, MalformedYamlSaysWhere) {
 }
 
 TEST(SceneErrors, UnknownShapeKeyAndMissingShape) {
-  const std::string unknown = loadError(std::string(kValidHeader) + "obstacles:\n  - name: c\n    cone: {radius: 1}\n    position: [0, 0, 0]\n", "cone");
+  const std::string unknown = loadError(
+      std::string(kValidHeader) + "obstacles:\n  - name: c\n    cone: {radius: 1}\n    position: [0, 0, 0]\n", "cone");
   EXPECT_NE(unknown.find("scene.yaml:5:5: obstacles[0]: unknown key 'cone'"), std::string::npos) << unknown;
-  const std::string none = loadError(std::string(kValidHeader) + "obstacles:\n  - {name: c, position: [0, 0, 0]}\n", "noshape");
+  const std::string none =
+      loadError(std::string(kValidHeader) + "obstacles:\n  - {name: c, position: [0, 0, 0]}\n", "noshape");
   EXPECT_NE(none.find("obstacles[0] ('c'): no shape"), std::string::npos) << none;
 }
 
 TEST(SceneErrors, MissingRadius) {
-  const std::string message =
-      loadError(std::string(kValidHeader) + "obstacles:\n  - {name: ball, sphere: {}, position: [0, 0, 0]}\n", "radius");
+  const std::string message = loadError(
+      std::string(kValidHeader) + "obstacles:\n  - {name: ball, sphere: {}, position: [0, 0, 0]}\n", "radius");
   EXPECT_NE(message.find(":4:"), std::string::npos) << message;
   EXPECT_NE(message.find("obstacles[0] ('ball').sphere: missing 'radius'"), std::string::npos) << message;
 }
 
 TEST(SceneErrors, NegativeSize) {
   const std::string message = loadError(
-      std::string(kValidHeader) + "obstacles:\n  - {name: crate, box: {size: [1, -2, 1]}, position: [0, 0, 0]}\n", "size");
+      std::string(kValidHeader) + "obstacles:\n  - {name: crate, box: {size: [1, -2, 1]}, position: [0, 0, 0]}\n",
+      "size");
   EXPECT_NE(message.find("obstacles[0] ('crate').box.size[1]: expected a positive number, got -2"), std::string::npos)
       << message;
 }
@@ -178,7 +181,8 @@ TEST(SceneErrors, NotANumber) {
 
 TEST(SceneErrors, MeshNotFound) {
   const std::string message = loadError(
-      std::string(kValidHeader) + "obstacles:\n  - {name: m, mesh: {file: missing.stl}, position: [0, 0, 0]}\n", "mesh");
+      std::string(kValidHeader) + "obstacles:\n  - {name: m, mesh: {file: missing.stl}, position: [0, 0, 0]}\n",
+      "mesh");
   EXPECT_NE(message.find("obstacles[0] ('m').mesh.file:"), std::string::npos) << message;
   EXPECT_NE(message.find("missing.stl"), std::string::npos) << message;
 }
@@ -186,7 +190,8 @@ TEST(SceneErrors, MeshNotFound) {
 TEST(SceneErrors, UnknownLinkOrObstacleInAllowedCollisions) {
   const std::string message =
       loadError(std::string(kValidHeader) + "allowed_collisions:\n  - [wrist_9_link, base_link]\n", "acm");
-  EXPECT_NE(message.find("allowed_collisions[0]: unknown link or obstacle 'wrist_9_link'"), std::string::npos) << message;
+  EXPECT_NE(message.find("allowed_collisions[0]: unknown link or obstacle 'wrist_9_link'"), std::string::npos)
+      << message;
 }
 
 TEST(SceneErrors, DuplicateAndLinkNamedObstacles) {

@@ -42,7 +42,8 @@ std::string headerlessLog() {
 std::vector<std::string> seedsFor(const std::string& target) {
   using arcplan::testing::readFile;
   if (target == "urdf") return {readFile(kData / "ur10e" / "ur10e.urdf")};
-  if (target == "scene") return {readFile(kData / "scenes" / "thesis_obstacle.yaml"), readFile(kData / "scenes" / "thesis_free.yaml")};
+  if (target == "scene")
+    return {readFile(kData / "scenes" / "thesis_obstacle.yaml"), readFile(kData / "scenes" / "thesis_free.yaml")};
   if (target == "allowed_collisions") return {readFile(kData / "ur10e" / "allowed_collisions.yaml")};
   if (target == "joint_path") return {"q0,q1,q2,q3,q4,q5\n# a comment\n0,0,0,0,0,0\n0.1,-0.2,0.3,-0.4,0.5,-0.6\n"};
   if (target == "rtde_log") return {rtdeLog(','), rtdeLog(' ')};
@@ -50,12 +51,14 @@ std::vector<std::string> seedsFor(const std::string& target) {
   if (target == "column_map") return {"timestamp=1, actual_q=2-7, actual_qd=8-13, actual_current=14-19", "ur10e_real"};
   if (target == "force_transfer") return {readFile(kData / "thesis" / "force_transfer_diagrams.csv")};
   if (target == "model") {
-    return {"kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n",
-            "kind: gearbox_ftd\neffects: [load_friction]\n",
-            "kind: joint_current\nload_torque: rigid_body\neffects:\n  - drive_gain\n  - {id: viscous, joints: [0, 1]}\n",
-            // A discovered term as the diagnosis prints it, a payload in kg, friction with memory.
-            "kind: joint_current\neffects:\n  - drive_gain\n  - {id: found_qd_abs_qd, expression: \"qd*abs(qd)\", joints: [0, 2]}\n"
-            "  - {id: payload, mass_kg: 2.5, center_of_mass_z: 0.08}\n  - {id: dahl_friction, dahl_rate: 30}\n"};
+    return {
+        "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n",
+        "kind: gearbox_ftd\neffects: [load_friction]\n",
+        "kind: joint_current\nload_torque: rigid_body\neffects:\n  - drive_gain\n  - {id: viscous, joints: [0, 1]}\n",
+        // A discovered term as the diagnosis prints it, a payload in kg, friction with memory.
+        "kind: joint_current\neffects:\n  - drive_gain\n  - {id: found_qd_abs_qd, expression: \"qd*abs(qd)\", joints: "
+        "[0, 2]}\n"
+        "  - {id: payload, mass_kg: 2.5, center_of_mass_z: 0.08}\n  - {id: dahl_friction, dahl_rate: 30}\n"};
   }
   // Not generated.yaml: every valid variant of it would generate its 50 problems (seconds each).
   if (target == "suite") return {readFile(kSuites / "thesis.yaml")};
@@ -67,10 +70,42 @@ std::vector<std::string> seedsFor(const std::string& target) {
 }
 
 // Tokens that break parsers in practice: number edge cases, YAML/XML/CSV syntax, bytes.
-const std::vector<std::string> kTokens{"nan", "-inf", "1e400", "-0", "", "\"", "'", ":", "- ", "[", "]", "{", "}",
-                                       "&a", "*a", "!!binary", "\t", std::string(1, '\0'), "\xff\xfe", ",,,", "\n\n",
-                                       "<", ">", "</robot>", "package://x/y.stl", "99999999999999999999", "0x1p3",
-                                       "~", "null", "true", "#", ";", "=", "-", "1-", "7-2"};
+const std::vector<std::string> kTokens{"nan",
+                                       "-inf",
+                                       "1e400",
+                                       "-0",
+                                       "",
+                                       "\"",
+                                       "'",
+                                       ":",
+                                       "- ",
+                                       "[",
+                                       "]",
+                                       "{",
+                                       "}",
+                                       "&a",
+                                       "*a",
+                                       "!!binary",
+                                       "\t",
+                                       std::string(1, '\0'),
+                                       "\xff\xfe",
+                                       ",,,",
+                                       "\n\n",
+                                       "<",
+                                       ">",
+                                       "</robot>",
+                                       "package://x/y.stl",
+                                       "99999999999999999999",
+                                       "0x1p3",
+                                       "~",
+                                       "null",
+                                       "true",
+                                       "#",
+                                       ";",
+                                       "=",
+                                       "-",
+                                       "1-",
+                                       "7-2"};
 
 std::string mutate(std::string text, std::mt19937& random) {
   auto position = [&](std::size_t size) {
@@ -97,7 +132,8 @@ std::string mutate(std::string text, std::mt19937& random) {
         const auto start = text.find_first_of("0123456789", position(text.size()));
         if (start != std::string::npos) {
           const auto end = text.find_first_not_of("0123456789.-e", start);
-          text.replace(start, (end == std::string::npos ? text.size() : end) - start, kTokens[random() % kTokens.size()]);
+          text.replace(start, (end == std::string::npos ? text.size() : end) - start,
+                       kTokens[random() % kTokens.size()]);
         }
         break;
       }
@@ -122,8 +158,10 @@ std::string mutate(std::string text, std::mt19937& random) {
 std::string printable(const std::string& input) {
   std::string shown;
   for (const unsigned char c : input.substr(0, 400)) {
-    if (c == '\n' || (c >= 32 && c < 127)) shown += static_cast<char>(c);
-    else shown += "\\x" + std::string(1, "0123456789abcdef"[c >> 4]) + "0123456789abcdef"[c & 15];
+    if (c == '\n' || (c >= 32 && c < 127))
+      shown += static_cast<char>(c);
+    else
+      shown += "\\x" + std::string(1, "0123456789abcdef"[c >> 4]) + "0123456789abcdef"[c & 15];
   }
   return shown;
 }
@@ -147,7 +185,8 @@ TEST_P(ParserFuzz, MutatedInputsParseOrGiveAnArcplanError) {
       try {
         rejected += arcplan::fuzz::runParserTarget(target, input) ? 0 : 1;
       } catch (const std::exception& e) {
-        FAIL() << target.name << ": " << typeid(e).name() << " '" << e.what() << "' instead of arcplan::Error for input:\n"
+        FAIL() << target.name << ": " << typeid(e).name() << " '" << e.what()
+               << "' instead of arcplan::Error for input:\n"
                << printable(input);
       }
       ++total;

@@ -62,8 +62,8 @@ inline SimulatedPair simulatePair(const model::ModelSpec& truth, const model::Mo
   auto simulate = [&](unsigned s) {
     excitation.seed = s;
     simulation.seed = s;
-    return model::makeJointDataset(model::simulateLog(truth, model::excitationTrajectory(center, excitation), simulation),
-                                   base);
+    return model::makeJointDataset(
+        model::simulateLog(truth, model::excitationTrajectory(center, excitation), simulation), base);
   };
   return {simulate(seed), simulate(seed + 1)};
 }

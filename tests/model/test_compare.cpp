@@ -116,7 +116,8 @@ TEST(Compare, RegimesSeparateDirectionAndPowerFlow) {
   }
   std::vector<std::string> names;
   for (const auto& regime : joint.regimes) names.push_back(regime.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"direction", "power_flow", "speed", "load", "temperature", "joint_angle"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"direction", "power_flow", "speed", "load", "temperature", "joint_angle"}));
 }
 
 TEST(Compare, ResidualCorrelationsNameTheSignalTheResidualFollows) {
@@ -149,7 +150,8 @@ TEST(Compare, SeriesOfALongLogIsWrittenAsEveryKthSample) {
   ASSERT_EQ(indices.size(), 6u);
   for (const auto& [channel, written] : indices) {
     ASSERT_EQ(written.size(), 10001u) << channel;
-    for (std::size_t row = 0; row < written.size(); ++row) ASSERT_EQ(written[row], static_cast<long>(2 * row)) << channel;
+    for (std::size_t row = 0; row < written.size(); ++row)
+      ASSERT_EQ(written[row], static_cast<long>(2 * row)) << channel;
   }
 }
 

@@ -23,9 +23,9 @@ constexpr double kNoise = 0.05;  // A
 
 struct HiddenTerm {
   std::string name;
-  std::string expression;     // the truth, as a user expression (own joint bare, others name_j)
+  std::string expression;  // the truth, as a user expression (own joint bare, others name_j)
   std::vector<int> joints;
-  std::string coefficients;   // one per joint (0 where not applied)
+  std::string coefficients;  // one per joint (0 where not applied)
 };
 
 void PrintTo(const HiddenTerm& h, std::ostream* out) { *out << h.name << ": " << h.expression; }
@@ -37,10 +37,10 @@ TEST_P(OutsideTheCatalogue, DiscoveryProposesTheTermAndItReachesTheNoise) {
   std::string joints;
   for (int j : hidden.joints) joints += (joints.empty() ? "" : ", ") + std::to_string(j);
   const ModelSpec base = parseModelYaml(kHeader + "effects: [" + kBase + "]\n", "base.yaml");
-  const ModelSpec truth = parseModelYaml(kHeader + "effects: [" + kBase + ", {id: hidden, expression: \"" +
-                                             hidden.expression + "\", joints: [" + joints +
-                                             "], parameters: {c0: [" + hidden.coefficients + "]}}]\n",
-                                         "truth.yaml");
+  const ModelSpec truth =
+      parseModelYaml(kHeader + "effects: [" + kBase + ", {id: hidden, expression: \"" + hidden.expression +
+                         "\", joints: [" + joints + "], parameters: {c0: [" + hidden.coefficients + "]}}]\n",
+                     "truth.yaml");
   const auto [data, validation] = arcplan::testing::simulatePair(truth, base, kNoise);
 
   // The catalogue against discovery (effects other tests of this executable register are left out).
@@ -58,7 +58,8 @@ TEST_P(OutsideTheCatalogue, DiscoveryProposesTheTermAndItReachesTheNoise) {
   }
   // The ready-to-paste entry parses as a model-file effect and names the expression.
   EXPECT_NE(top.modelEntry.find("expression: \"" + hidden.expression + "\""), std::string::npos) << top.modelEntry;
-  const ModelSpec pasted = parseModelYaml(kHeader + "effects: [" + kBase + ", " + top.modelEntry + "]\n", "pasted.yaml");
+  const ModelSpec pasted =
+      parseModelYaml(kHeader + "effects: [" + kBase + ", " + top.modelEntry + "]\n", "pasted.yaml");
   EXPECT_EQ(pasted.effects.back().expressions, top.entry.expressions);
 
   const FitStep step = addEffectsAndFit(base, {pasted.effects.back()}, data, &validation);
@@ -94,7 +95,8 @@ TEST(Discovery, ProposesNothingOnCleanLogs) {
     for (const Dataset* held : {static_cast<const Dataset*>(&validation), static_cast<const Dataset*>(nullptr)}) {
       const Diagnosis diagnosis = diagnose(base, data, held);
       for (const auto& candidate : diagnosis.ranking) {
-        EXPECT_FALSE(candidate.suggested) << "seed " << seed << ": " << candidate.effect << " " << candidate.explanation;
+        EXPECT_FALSE(candidate.suggested)
+            << "seed " << seed << ": " << candidate.effect << " " << candidate.explanation;
       }
       // Nothing is left to explain: the residual is the simulated noise.
       EXPECT_LT(diagnosis.explainable, 0.05) << diagnosis.summary;
@@ -107,9 +109,10 @@ TEST(Discovery, ExplainableShareSeesTheHiddenTermAndTheCatalogueMissingIt) {
   // qd_1 on joint 2 at 0.3 A·s/rad: most of joint 2's held-out residual is explainable, and no
   // catalogue effect explains much of it.
   const ModelSpec base = parseModelYaml(kHeader + "effects: [" + kBase + "]\n", "base.yaml");
-  const ModelSpec truth = parseModelYaml(
-      kHeader + "effects: [" + kBase + ", {id: hose, expression: qd_1, joints: [2], parameters: {c0: [0, 0, 0.3, 0, 0, 0]}}]\n",
-      "truth.yaml");
+  const ModelSpec truth =
+      parseModelYaml(kHeader + "effects: [" + kBase +
+                         ", {id: hose, expression: qd_1, joints: [2], parameters: {c0: [0, 0, 0.3, 0, 0, 0]}}]\n",
+                     "truth.yaml");
   const auto [data, validation] = arcplan::testing::simulatePair(truth, base, kNoise);
   const Diagnosis diagnosis = diagnose(base, data, &validation);
   // Expected share from the numbers themselves: pooled RMS of the held-out residual vs the noise.

@@ -82,14 +82,20 @@ TEST(ModelFile, BadFilesNameTheFieldAndWhatWasExpected) {
   EXPECT_NE(unknownEffect.find("unknown effect 'frobnication'"), std::string::npos) << unknownEffect;
   EXPECT_NE(unknownEffect.find("load_friction"), std::string::npos);  // lists the known ones
   EXPECT_NE(unknownEffect.find("test.yaml"), std::string::npos);
-  EXPECT_NE(errorMessageOf([] { parseModelYaml("kind: joint_torque\neffects: []\n", "k.yaml"); }).find("unknown kind 'joint_torque'"),
+  EXPECT_NE(errorMessageOf([] {
+              parseModelYaml("kind: joint_torque\neffects: []\n", "k.yaml");
+            }).find("unknown kind 'joint_torque'"),
             std::string::npos);
-  EXPECT_NE(errorMessageOf([] { parseModelYaml("kind: joint_current\neffect: []\n", "k.yaml"); }).find("unknown key 'effect'"),
+  EXPECT_NE(errorMessageOf([] {
+              parseModelYaml("kind: joint_current\neffect: []\n", "k.yaml");
+            }).find("unknown key 'effect'"),
             std::string::npos);
-  EXPECT_NE(errorMessageOf([] { parseModelYaml("kind: joint_tracking\neffects: [coulomb]\n", "k.yaml"); })
-                .find("does not apply to kind joint_tracking"),
+  EXPECT_NE(errorMessageOf([] {
+              parseModelYaml("kind: joint_tracking\neffects: [coulomb]\n", "k.yaml");
+            }).find("does not apply to kind joint_tracking"),
             std::string::npos);
-  EXPECT_NE(errorMessageOf([] { currentModel("[{id: stribeck, width: 2}]"); }).find("unknown option 'width'"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { currentModel("[{id: stribeck, width: 2}]"); }).find("unknown option 'width'"),
+            std::string::npos);
   EXPECT_NE(errorMessageOf([] { currentModel("[coulomb, coulomb]"); }).find("listed twice"), std::string::npos);
   EXPECT_NE(errorMessageOf([] { parseModelYaml("kind: [\n", "bad.yaml"); }).find("bad.yaml:"), std::string::npos);
   EXPECT_NE(errorMessageOf([] { parseEffectArgument("coulomb:1,x"); }).find("not a finite number"), std::string::npos);
@@ -237,18 +243,20 @@ TEST(UserEffects, RegisteredClassAndExpressionAreFittedLikeCatalogueEffects) {
   if (!isRegisteredEffect("cubic_drag")) {
     registerEffect("cubic_drag", [](const EffectSpec& s) { return std::make_unique<CubicDrag>(s); });
   }
-  EXPECT_NE(errorMessageOf([] { registerEffect("coulomb", [](const EffectSpec& s) { return std::make_unique<CubicDrag>(s); }); })
-                .find("already registered"),
+  EXPECT_NE(errorMessageOf([] {
+              registerEffect("coulomb", [](const EffectSpec& s) { return std::make_unique<CubicDrag>(s); });
+            }).find("already registered"),
             std::string::npos);
   auto motion = arcplan::testing::makeMotionLog(3000, 200.0);
   const auto& qd = motion.log.vectors["actual_qd"];
   const auto& q = motion.log.vectors["actual_q"];
   auto& current = motion.log.vectors["actual_current"];
   for (Eigen::Index k = 0; k < qd.rows(); ++k) {
-    for (int j = 0; j < 6; ++j) current(k, j) = 0.3 * std::pow(qd(k, j), 3) - 0.2 * qd(k, j) * std::abs(qd(k, j)) + 0.1 * q(k, 1);
+    for (int j = 0; j < 6; ++j)
+      current(k, j) = 0.3 * std::pow(qd(k, j), 3) - 0.2 * qd(k, j) * std::abs(qd(k, j)) + 0.1 * q(k, 1);
   }
-  const auto spec = currentModel(
-      "[cubic_drag, {id: drag, expression: \"qd*abs(qd)\"}, {id: coupling, expression: \"q_1\"}]");
+  const auto spec =
+      currentModel("[cubic_drag, {id: drag, expression: \"qd*abs(qd)\"}, {id: coupling, expression: \"q_1\"}]");
   const Dataset data = makeJointDataset(motion.log, spec);
   const auto fitted = fitModel(spec, data);
   for (int j = 0; j < 6; ++j) {
@@ -262,7 +270,8 @@ TEST(UserEffects, RegisteredClassAndExpressionAreFittedLikeCatalogueEffects) {
   });
   EXPECT_NE(unknown.find("synthetic: effect 'broken': expression 'qd*torque' needs signal 'torque'"), std::string::npos)
       << unknown;
-  EXPECT_NE(errorMessageOf([] { currentModel("[{id: bad, expression: \"qd*(\"}]"); }).find("expression"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { currentModel("[{id: bad, expression: \"qd*(\"}]"); }).find("expression"),
+            std::string::npos);
 }
 
 TEST(Fitting, RecoversParametersWithHonestStandardErrors) {

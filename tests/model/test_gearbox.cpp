@@ -16,7 +16,8 @@ namespace {
 
 using namespace arcplan::model;
 
-const std::filesystem::path kThesisData = std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / "thesis/force_transfer_diagrams.csv";
+const std::filesystem::path kThesisData =
+    std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / "thesis/force_transfer_diagrams.csv";
 
 ModelSpec linearForceTransferModel() {
   // Each direction is a line: transfer coefficient (slope) and threshold (intercept).

@@ -35,8 +35,8 @@ class HiddenEffect : public ::testing::TestWithParam<Scenario> {};
 
 TEST_P(HiddenEffect, DiagnosisFindsItAndAddingItReachesTheNoiseLevel) {
   const auto& scenario = GetParam();
-  const std::string header = "kind: " + scenario.kind + "\n" +
-                             (scenario.kind == "joint_current" ? "load_torque: target_moment\n" : "");
+  const std::string header =
+      "kind: " + scenario.kind + "\n" + (scenario.kind == "joint_current" ? "load_torque: target_moment\n" : "");
   const ModelSpec base = parseModelYaml(header + "effects: [" + scenario.base + "]\n", "base.yaml");
   const std::string truthEffects =
       scenario.base + (scenario.hidden.empty() ? "" : (scenario.base.empty() ? "" : ", ") + scenario.hidden);

@@ -69,7 +69,7 @@ TEST(Measurements, ReadsHeaderlessLogsThroughAColumnMap) {
   EXPECT_DOUBLE_EQ(log.vector("actual_qd")(0, 5), 13.0);        // column 13
   EXPECT_DOUBLE_EQ(log.vector("actual_current")(1, 0), 114.0);  // column 14
   EXPECT_DOUBLE_EQ(log.vector("target_current")(0, 0), 20.0);
-  EXPECT_DOUBLE_EQ(log.vector("target_moment")(1, 5), 131.0);   // column 31
+  EXPECT_DOUBLE_EQ(log.vector("target_moment")(1, 5), 131.0);  // column 31
 }
 
 TEST(Measurements, LineNumbersCountTheCommentsAndBlankLinesBeforeTheFirstRow) {
@@ -161,15 +161,18 @@ TEST(Measurements, WrittenLogsReadBackIdentically) {
 
 TEST(Measurements, BadInputGivesClearErrors) {
   // Unknown column in a column map.
-  EXPECT_NE(errorMessageOf([] { parseColumnMap("timestamp=1, actual_torque=2-7"); }).find("unknown column 'actual_torque'"),
-            std::string::npos);
+  EXPECT_NE(
+      errorMessageOf([] { parseColumnMap("timestamp=1, actual_torque=2-7"); }).find("unknown column 'actual_torque'"),
+      std::string::npos);
   // A column map wider than the rows.
   LogReadOptions wide;
   wide.columns = parseColumnMap("timestamp=1, actual_q=2-7");
   const auto narrow = writeText("narrow.csv", "0,1,2,3\n1,1,2,3\n");
   EXPECT_NE(errorMessageOf([&] { readLog(narrow, wide); }).find("unknown column"), std::string::npos);
   // Mismatched joint counts.
-  EXPECT_NE(errorMessageOf([] { parseColumnMap("timestamp=1, actual_q=2-7, actual_current=8-12"); }).find("mismatched joint count"),
+  EXPECT_NE(errorMessageOf([] {
+              parseColumnMap("timestamp=1, actual_q=2-7, actual_current=8-12");
+            }).find("mismatched joint count"),
             std::string::npos);
   const auto mismatched = writeText("mismatch.csv", "timestamp,actual_q_0,actual_q_1,actual_current_0\n0,1,2,3\n");
   const auto mismatchMessage = errorMessageOf([&] { readLog(mismatched); });
@@ -180,13 +183,15 @@ TEST(Measurements, BadInputGivesClearErrors) {
   EXPECT_NE(errorMessageOf([] { readLog(writeText("header.csv", "timestamp,actual_q_0\n")); }).find("no data rows"),
             std::string::npos);
   // Every row invalid: the message carries the drop report.
-  const auto allBad = errorMessageOf([] { readLog(writeText("allbad.csv", "timestamp,actual_q_0\n0,nan\n1,1e300\n")); });
+  const auto allBad =
+      errorMessageOf([] { readLog(writeText("allbad.csv", "timestamp,actual_q_0\n0,nan\n1,1e300\n")); });
   EXPECT_NE(allBad.find("no valid rows"), std::string::npos) << allBad;
   EXPECT_NE(allBad.find("NaN"), std::string::npos) << allBad;
   // Headerless without a map; missing file; no timestamp column.
   EXPECT_NE(errorMessageOf([] { readLog(writeText("nomap.csv", "0,1\n1,2\n")); }).find("--columns"), std::string::npos);
   EXPECT_NE(errorMessageOf([] { readLog("/nonexistent/log.csv"); }).find("does not exist"), std::string::npos);
-  EXPECT_NE(errorMessageOf([] { readLog(writeText("notime.csv", "actual_q_0\n1\n")); }).find("timestamp"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { readLog(writeText("notime.csv", "actual_q_0\n1\n")); }).find("timestamp"),
+            std::string::npos);
 }
 
 }  // namespace

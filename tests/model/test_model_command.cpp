@@ -14,9 +14,9 @@ namespace {
 
 using arcplan::testing::CommandResult;
 using arcplan::testing::freshTempDirectory;
-using arcplan::testing::temporaryFilesBelow;
 using arcplan::testing::readFile;
 using arcplan::testing::runArcplan;
+using arcplan::testing::temporaryFilesBelow;
 
 void write(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
 
@@ -26,12 +26,14 @@ class ModelCommand : public ::testing::Test {
 protected:
   static void SetUpTestSuite() {
     dir = freshTempDirectory("model_command");
-    write(dir / "base.yaml", "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n");
+    write(dir / "base.yaml",
+          "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n");
     write(dir / "truth.yaml",
-          "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous, load_friction]\n");
-    const auto result = runArcplan({"model", "simulate", "--model", (dir / "truth.yaml").string(), "--data",
-                                    (dir / "fit.csv").string(), "--validate", (dir / "val.csv").string(), "--duration",
-                                    "12", "--rate", "200", "--seed", "4"});
+          "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous, "
+          "load_friction]\n");
+    const auto result =
+        runArcplan({"model", "simulate", "--model", (dir / "truth.yaml").string(), "--data", (dir / "fit.csv").string(),
+                    "--validate", (dir / "val.csv").string(), "--duration", "12", "--rate", "200", "--seed", "4"});
     ASSERT_EQ(result.exitCode, 0) << result.err;
   }
   CommandResult model(std::vector<std::string> arguments) {
@@ -55,8 +57,8 @@ TEST_F(ModelCommand, SimulateWritesRtdeLogsWithTheSignalsTheLoopNeeds) {
   const auto other = arcplan::model::readLog(dir / "val.csv");
   EXPECT_GT((other.vector("actual_q") - log.vector("actual_q")).cwiseAbs().maxCoeff(), 0.1);
   // record.py style is space-separated.
-  const auto record = model({"simulate", "--model", (dir / "base.yaml").string(), "--data", (dir / "record.csv").string(),
-                             "--duration", "1", "--rate", "100", "--format", "record"});
+  const auto record = model({"simulate", "--model", (dir / "base.yaml").string(), "--data",
+                             (dir / "record.csv").string(), "--duration", "1", "--rate", "100", "--format", "record"});
   ASSERT_EQ(record.exitCode, 0) << record.err;
   EXPECT_EQ(readFile(dir / "record.csv").substr(0, 19), "timestamp target_q_");
 }
@@ -71,8 +73,9 @@ TEST_F(ModelCommand, SimulateFollowsAPlannedTrajectoryFile) {
     text += ",0,0,0,0,0,0\n";
   }
   write(dir / "planned.csv", text);
-  const auto result = model({"simulate", "--model", (dir / "base.yaml").string(), "--data", (dir / "planned_log.csv").string(),
-                             "--trajectory", (dir / "planned.csv").string(), "--rate", "500"});
+  const auto result =
+      model({"simulate", "--model", (dir / "base.yaml").string(), "--data", (dir / "planned_log.csv").string(),
+             "--trajectory", (dir / "planned.csv").string(), "--rate", "500"});
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const auto log = arcplan::model::readLog(dir / "planned_log.csv");
   ASSERT_EQ(log.rows(), 1001u);  // 2 s at 500 Hz
@@ -101,14 +104,15 @@ TEST_F(ModelCommand, TheLoopCompareDiagnoseFitHistoryFollowsTheJsonContract) {
   EXPECT_FALSE(comparison["worst_windows"].empty());
   EXPECT_TRUE(comparison["regimes"]["actual_current_1"].contains("power_flow"));
 
-  const auto diagnose = model({"diagnose", "--model", base, "--data", data, "--validate", val, "--json",
-                               (session / "diagnose.json").string()});
+  const auto diagnose = model(
+      {"diagnose", "--model", base, "--data", data, "--validate", val, "--json", (session / "diagnose.json").string()});
   ASSERT_EQ(diagnose.exitCode, 0) << diagnose.err;
   const auto diagnosis = readJson(session / "diagnose.json");
   ASSERT_FALSE(diagnosis["ranking"].empty());
   const auto& top = diagnosis["ranking"][0];
   EXPECT_EQ(top["effect"], "load_friction");
-  for (const auto* key : {"effect", "joints", "heldout_reduction", "score", "explanation"}) EXPECT_TRUE(top.contains(key)) << key;
+  for (const auto* key : {"effect", "joints", "heldout_reduction", "score", "explanation"})
+    EXPECT_TRUE(top.contains(key)) << key;
   EXPECT_GT(top["heldout_reduction"].get<double>(), 0.0);
   EXPECT_LE(top["heldout_reduction"].get<double>(), 1.0);
   EXPECT_NE(diagnose.out.find("grows with |load torque|"), std::string::npos) << diagnose.out;
@@ -140,7 +144,8 @@ TEST_F(ModelCommand, TheLoopCompareDiagnoseFitHistoryFollowsTheJsonContract) {
   EXPECT_NE(history.out.find("fit +load_friction"), std::string::npos) << history.out;
   const auto steps = readJson(session / "history.json")["steps"];
   ASSERT_EQ(steps.size(), 2u);
-  EXPECT_LT(steps[1]["validation"]["overall_nrmse"].get<double>(), steps[0]["validation"]["overall_nrmse"].get<double>());
+  EXPECT_LT(steps[1]["validation"]["overall_nrmse"].get<double>(),
+            steps[0]["validation"]["overall_nrmse"].get<double>());
   const bool plotted = std::filesystem::exists(session / "history.png");
   EXPECT_TRUE(plotted || history.out.find("plots skipped") != std::string::npos) << history.out;
 }
@@ -157,8 +162,8 @@ TEST_F(ModelCommand, HeaderlessLogsLoadThroughTheColumnMap) {
     text += "\n";
   }
   write(dir / "headerless.csv", text);
-  const auto result = model({"compare", "--model", (dir / "base.yaml").string(), "--data", (dir / "headerless.csv").string(),
-                             "--columns", "ur10e_real", "--rows", "100-"});
+  const auto result = model({"compare", "--model", (dir / "base.yaml").string(), "--data",
+                             (dir / "headerless.csv").string(), "--columns", "ur10e_real", "--rows", "100-"});
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.out.find("kept 2302 of 2302 rows"), std::string::npos) << result.out;
 }
@@ -211,8 +216,9 @@ TEST_F(ModelCommandErrors, UnknownColumn) {
 }
 
 TEST_F(ModelCommandErrors, UnknownEffectName) {
-  expectFailure({"fit", "--model", (dir / "base.yaml").string(), "--data", (dir / "fit.csv").string(), "--add", "frobnication"},
-                "unknown effect 'frobnication'");
+  expectFailure(
+      {"fit", "--model", (dir / "base.yaml").string(), "--data", (dir / "fit.csv").string(), "--add", "frobnication"},
+      "unknown effect 'frobnication'");
   write(dir / "bad_model.yaml", "kind: joint_current\neffects: [drive_gain, warp_drive]\n");
   expectFailure({"diagnose", "--model", (dir / "bad_model.yaml").string(), "--data", (dir / "fit.csv").string()},
                 "unknown effect 'warp_drive'");
@@ -227,9 +233,11 @@ TEST_F(ModelCommandErrors, EmptyLog) {
 }
 
 TEST_F(ModelCommandErrors, AllRowsInvalid) {
-  write(dir / "invalid.csv", "timestamp,actual_q_0,actual_qd_0,actual_current_0,target_moment_0\n0,nan,0,0,0\n1,0,0,1e290,0\n1,0,0\n");
-  expectFailure({"fit", "--model", (dir / "base.yaml").string(), "--data", (dir / "invalid.csv").string(), "--add", "stribeck"},
-                "no valid rows");
+  write(dir / "invalid.csv",
+        "timestamp,actual_q_0,actual_qd_0,actual_current_0,target_moment_0\n0,nan,0,0,0\n1,0,0,1e290,0\n1,0,0\n");
+  expectFailure(
+      {"fit", "--model", (dir / "base.yaml").string(), "--data", (dir / "invalid.csv").string(), "--add", "stribeck"},
+      "no valid rows");
 }
 
 TEST_F(ModelCommandErrors, MismatchedJointCount) {
@@ -253,16 +261,17 @@ TEST_F(ModelCommandErrors, MismatchedJointCount) {
 
 TEST_F(ModelCommandErrors, ExpressionThatDoesNotParseNamesTheFileAndTheEntry) {
   write(dir / "bad_expression.yaml",
-        "kind: joint_current\nload_torque: target_moment\neffects:\n  - drive_gain\n  - {id: drag, expression: \"qd*(abs(qd)\"}\n");
-  expectFailure({"fit", "--model", (dir / "bad_expression.yaml").string(), "--data", (dir / "fit.csv").string(), "--add",
-                 "offset"},
+        "kind: joint_current\nload_torque: target_moment\neffects:\n  - drive_gain\n  - {id: drag, expression: "
+        "\"qd*(abs(qd)\"}\n");
+  expectFailure({"fit", "--model", (dir / "bad_expression.yaml").string(), "--data", (dir / "fit.csv").string(),
+                 "--add", "offset"},
                 "bad_expression.yaml:5: effects[1]: effect 'drag': expression 'qd*(abs(qd)'");
 }
 
 TEST_F(ModelCommandErrors, KeptModelWithoutFittedParametersNamesTheFileAndTheParameter) {
   for (const auto* command : {"diagnose", "fit", "compare"}) {
-    std::vector<std::string> arguments{command, "--model", (dir / "base.yaml").string(), "--data", (dir / "fit.csv").string(),
-                                       "--keep-parameters"};
+    std::vector<std::string> arguments{
+        command, "--model", (dir / "base.yaml").string(), "--data", (dir / "fit.csv").string(), "--keep-parameters"};
     if (std::string(command) == "fit") arguments.insert(arguments.end(), {"--add", "stribeck"});
     expectFailure(arguments, "base.yaml: effects[0] (drive_gain): parameters.per_torque: missing");
   }
@@ -273,11 +282,12 @@ TEST_F(ModelCommandErrors, LogMissingASignalATermNeedsNamesTheLogAndTheSignal) {
   log.vectors.erase("joint_temperatures");
   arcplan::model::writeLog(log, dir / "no_temperature.csv");
   write(dir / "warm.yaml",
-        "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, {id: warm, expression: \"temperature*qd\"}]\n");
+        "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, {id: warm, expression: "
+        "\"temperature*qd\"}]\n");
   expectFailure({"compare", "--model", (dir / "warm.yaml").string(), "--data", (dir / "no_temperature.csv").string()},
                 "no_temperature.csv: effect 'warm': expression 'temperature*qd' needs signal 'temperature'");
-  expectFailure({"fit", "--model", (dir / "base.yaml").string(), "--data", (dir / "no_temperature.csv").string(), "--add",
-                 "temperature_friction"},
+  expectFailure({"fit", "--model", (dir / "base.yaml").string(), "--data", (dir / "no_temperature.csv").string(),
+                 "--add", "temperature_friction"},
                 "no_temperature.csv: signal 'temperature' is not available");
 }
 

@@ -74,7 +74,8 @@ TEST(LeastSquares, AgreesWithHouseholderQrAndTheTextbookStandardErrors) {
   const Eigen::VectorXd residual = y - x * reference;
   EXPECT_NEAR(solution.residualSquares, residual.squaredNorm(), 1e-8 * residual.squaredNorm());
   const Eigen::MatrixXd covariance = residual.squaredNorm() / (n - p) * (x.transpose() * x).inverse();
-  for (int k = 0; k < p; ++k) EXPECT_NEAR(solution.standardErrors[k], std::sqrt(covariance(k, k)), 1e-9 * std::sqrt(covariance(k, k)));
+  for (int k = 0; k < p; ++k)
+    EXPECT_NEAR(solution.standardErrors[k], std::sqrt(covariance(k, k)), 1e-9 * std::sqrt(covariance(k, k)));
   EXPECT_EQ(solution.rank, p);
 }
 

@@ -22,7 +22,9 @@ const std::string kPayload =
 const Eigen::Vector3d kCenter(0.03, -0.02, 0.08);
 constexpr double kMass = 2.5, kNoise = 0.05;
 
-ModelSpec model(const std::string& effects) { return parseModelYaml(kHeader + "effects: [" + effects + "]\n", "m.yaml"); }
+ModelSpec model(const std::string& effects) {
+  return parseModelYaml(kHeader + "effects: [" + effects + "]\n", "m.yaml");
+}
 
 double quantity(const std::vector<PhysicalQuantity>& quantities, const std::string& name, std::size_t i = 0) {
   for (const auto& q : quantities) {
@@ -47,7 +49,8 @@ TEST(Payload, OneMassAndCentreOfMassAreFittedAcrossJoints) {
     for (std::size_t i = 0; i < q.values.size(); ++i) {
       EXPECT_GT(q.standardErrors[i], 0.0) << q.name;
       EXPECT_LT(q.standardErrors[i], q.name == "mass_kg" ? 0.02 * kMass : 0.005) << q.name;
-      RecordProperty(q.name + "_" + std::to_string(i), std::to_string(q.values[i]) + " +- " + std::to_string(q.standardErrors[i]));
+      RecordProperty(q.name + "_" + std::to_string(i),
+                     std::to_string(q.values[i]) + " +- " + std::to_string(q.standardErrors[i]));
     }
   }
   // Every joint sees the same mass through its own drive gain.
@@ -99,7 +102,7 @@ TEST(KeptModel, WhatChangedIsThePayloadInKilograms) {
   const auto& gains = saved.effects[0];
   for (int j = 0; j < 6; ++j) {
     RecordProperty("kept_gain_" + std::to_string(j), std::to_string(gains.parameters.at("per_torque")[j]) + " +- " +
-                                                        std::to_string(gains.standardErrors.at("per_torque")[j]));
+                                                         std::to_string(gains.standardErrors.at("per_torque")[j]));
   }
 }
 
@@ -107,8 +110,10 @@ TEST(KeptModel, WithoutFittedParametersIsAnErrorNamingTheFileAndField) {
   const auto [data, validation] = arcplan::testing::simulatePair(model(kBase), model(kBase), kNoise);
   DiagnoseOptions keep;
   keep.keepParameters = true;
-  const std::string message = arcplan::testing::errorMessageOf([&] { diagnose(model(kBase), data, &validation, keep); });
-  EXPECT_NE(message.find("m.yaml: effects[0] (drive_gain): parameters.per_torque: missing"), std::string::npos) << message;
+  const std::string message =
+      arcplan::testing::errorMessageOf([&] { diagnose(model(kBase), data, &validation, keep); });
+  EXPECT_NE(message.find("m.yaml: effects[0] (drive_gain): parameters.per_torque: missing"), std::string::npos)
+      << message;
 }
 
 // Dahl: dz/dq = ρ·(1 - z·sgn(dq)), integrated here with classical Runge–Kutta in small steps of q.
@@ -139,9 +144,9 @@ TEST(DahlFriction, StateFollowsTheDahlEquationAndHoldsAtRest) {
     }
     ASSERT_NEAR(column(k, 0), z, 1e-9) << "sample " << k;
   }
-  EXPECT_GT(column(199, 0), 0.99);                 // saturated while moving up
-  EXPECT_LT(column(299, 0), -0.6);                 // reversed: -1 + 2·exp(-40·0.05) = -0.73
-  EXPECT_EQ(column(599, 0), column(320, 0));       // at rest it keeps the value it stopped with
+  EXPECT_GT(column(199, 0), 0.99);            // saturated while moving up
+  EXPECT_LT(column(299, 0), -0.6);            // reversed: -1 + 2·exp(-40·0.05) = -0.73
+  EXPECT_EQ(column(599, 0), column(320, 0));  // at rest it keeps the value it stopped with
 }
 
 }  // namespace

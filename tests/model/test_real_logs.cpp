@@ -52,7 +52,8 @@ TEST(RealLogs, RigidBodyDynamicsIsCloseToTheControllersTargetMoment) {
 
 TEST(RealLogs, EveryProposedEffectLowersTheHeldOutError) {
   ModelSpec spec = parseModelYaml(
-      "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n", "base.yaml");
+      "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n",
+      "base.yaml");
   const LoadedData loaded = loadData(spec, realFiles());
   ASSERT_TRUE(loaded.validation);
   int added = 0;
@@ -79,11 +80,14 @@ TEST(RealLogs, FrictionWithMemoryLowersTheWristsHeldOutError) {
   // The wrists stand still in the point-to-point log holding a current that depends on how they
   // stopped (docs/model-results.md: 0.105 / 0.125 A held-out with the base model).
   const ModelSpec spec = parseModelYaml(
-      "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n", "base.yaml");
+      "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n",
+      "base.yaml");
   const LoadedData loaded = loadData(spec, realFiles());
-  const auto step = addEffectsAndFit(spec, {parseEffectArgument("dahl_friction:4,5")}, loaded.data, loaded.validationOrNull());
+  const auto step =
+      addEffectsAndFit(spec, {parseEffectArgument("dahl_friction:4,5")}, loaded.data, loaded.validationOrNull());
   for (int joint : {4, 5}) {
-    const double before = step.beforeValidation->channels[joint].rmse, after = step.afterValidation->channels[joint].rmse;
+    const double before = step.beforeValidation->channels[joint].rmse,
+                 after = step.afterValidation->channels[joint].rmse;
     RecordProperty("joint_" + std::to_string(joint), std::to_string(before) + " -> " + std::to_string(after));
     EXPECT_LT(after, before) << "joint " << joint;
   }

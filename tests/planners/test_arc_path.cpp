@@ -255,7 +255,10 @@ TEST(ArcPath, InvalidParametersAreRejectedWithTheirName) {
             }).find("h <= half_chord"),
             std::string::npos);
   EXPECT_NE(errorMessageOf([] { makeArcDetourProfile({0.0, 0.2, 0.1, 0.2}); }).find("sagitta"), std::string::npos);
-  EXPECT_NE(errorMessageOf([] { makeArcDetourProfile({0.1, 0.2, -0.1, 0.2}); }).find("entry_radius"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] {
+              makeArcDetourProfile({0.1, 0.2, -0.1, 0.2});
+            }).find("entry_radius"),
+            std::string::npos);
   EXPECT_NE(errorMessageOf([] { makeArcDetourProfile({0.1, 0.2, 0.1, NAN}); }).find("exit_radius"), std::string::npos);
   EXPECT_NE(errorMessageOf([] { makeArcDetourProfile({0.1, -1.0, 0.1, 0.1}); }).find("half_chord"), std::string::npos);
 }

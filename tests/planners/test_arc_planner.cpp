@@ -301,8 +301,9 @@ TEST(ArcPlanner, TallPillarIsPassedSideways) {
 }
 
 TEST(ArcPlanner, SeveralObstaclesOnTheLineArePassedInOneRoute) {
-  auto problem = freeSceneWith({sphere("first", thesisLinePoint(-0.2), 0.02), sphere("second", thesisLinePoint(0.0), 0.02),
-                                box("third", thesisLinePoint(0.2), {0.05, 0.05, 0.05})});
+  auto problem =
+      freeSceneWith({sphere("first", thesisLinePoint(-0.2), 0.02), sphere("second", thesisLinePoint(0.0), 0.02),
+                     box("third", thesisLinePoint(0.2), {0.05, 0.05, 0.05})});
   const auto [planner, status] = solve(problem, "arc");
   ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
   const auto& result = arcOf(planner).lastResult();
@@ -471,16 +472,22 @@ TEST(ArcPlanner, ShelfIsPassedWithTheClearanceOnASmoothPath) {
     obstacle.pose.linear() = yaw;
     return obstacle;
   };
-  scene->obstacles.push_back(panel("shelf_back", {0.593562317513646, 0.204946690382173, 0.277970677577637}, {0.02, width, height}));
-  scene->obstacles.push_back(panel("shelf_left", {0.686214596587107, 0.429596378159771, 0.277970677577637}, {depth, 0.02, height}));
-  scene->obstacles.push_back(panel("shelf_right", {0.351765283065967, 0.22915662983659, 0.277970677577637}, {depth, 0.02, height}));
-  for (const auto& [name, z] : {std::pair<std::string, double>{"shelf_bottom", 0.01}, {"shelf_middle", 0.277970677577637},
+  scene->obstacles.push_back(
+      panel("shelf_back", {0.593562317513646, 0.204946690382173, 0.277970677577637}, {0.02, width, height}));
+  scene->obstacles.push_back(
+      panel("shelf_left", {0.686214596587107, 0.429596378159771, 0.277970677577637}, {depth, 0.02, height}));
+  scene->obstacles.push_back(
+      panel("shelf_right", {0.351765283065967, 0.22915662983659, 0.277970677577637}, {depth, 0.02, height}));
+  for (const auto& [name, z] : {std::pair<std::string, double>{"shelf_bottom", 0.01},
+                                {"shelf_middle", 0.277970677577637},
                                 {"shelf_top", 0.545941355155275}}) {
     scene->obstacles.push_back(panel(name, {0.518989939826537, 0.329376503998181, z}, {depth, width, 0.02}));
   }
   arcplan::robot::Vector6 start, goal;
-  start << 1.07367532533337, -1.13982038660424, 1.82961550243109, -2.26059144262175, -1.57079632679489, 1.07367532533337;
-  goal << -0.391086349463711, -1.19936884167989, 1.8551187017125, -2.2265461868275, -1.5707963267949, -0.391086349463711;
+  start << 1.07367532533337, -1.13982038660424, 1.82961550243109, -2.26059144262175, -1.57079632679489,
+      1.07367532533337;
+  goal << -0.391086349463711, -1.19936884167989, 1.8551187017125, -2.2265461868275, -1.5707963267949,
+      -0.391086349463711;
   scene->queries[0].start = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, start};
   scene->queries[0].goal = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, goal};
   auto problem = arcplan::planners::makePlanningProblem(scene);

@@ -63,7 +63,8 @@ TEST(BlendedPath, SamplesKeepTheResolutionAndEndExactlyAtTheGoal) {
 }
 
 TEST(BlendedPath, LargestBlendsUseWholeEndLegsAndHalfSharedLegs) {
-  const std::vector<Vector3d> points{Vector3d(0, 0, 0), Vector3d(0.4, 0, 0), Vector3d(0.4, 0.2, 0), Vector3d(1, 0.2, 0)};
+  const std::vector<Vector3d> points{Vector3d(0, 0, 0), Vector3d(0.4, 0, 0), Vector3d(0.4, 0.2, 0),
+                                     Vector3d(1, 0.2, 0)};
   EXPECT_NEAR(BlendedPath::maxBlend(points, 0), 0.1, 1e-12);  // min(0.4 whole, 0.2 / 2)
   EXPECT_NEAR(BlendedPath::maxBlend(points, 1), 0.1, 1e-12);  // min(0.2 / 2, 0.6 whole)
   EXPECT_NEAR(BlendedPath::turningAngle(points, 1), M_PI_2, 1e-12);

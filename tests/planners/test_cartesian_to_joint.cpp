@@ -142,7 +142,8 @@ TEST(CartesianToJoint, BranchChangeNamesTheBranchesAndTheirDifference) {
   EXPECT_EQ(elbow.find("the wrist"), std::string::npos) << elbow;
   EXPECT_EQ(elbow.find("the shoulder"), std::string::npos) << elbow;
   const std::string all = arcplan::planners::describeBranchChange(0, 7);
-  for (const char* part : {"the shoulder", "the wrist", "the elbow"}) EXPECT_NE(all.find(part), std::string::npos) << all;
+  for (const char* part : {"the shoulder", "the wrist", "the elbow"})
+    EXPECT_NE(all.find(part), std::string::npos) << all;
 }
 
 }  // namespace

@@ -20,8 +20,9 @@ constexpr double kMargin = 0.01;
 
 PathValidator certifyingValidator(const arcplan::planners::PlanningProblem& problem,
                                   const arcplan::robot::UrInverseKinematics& ik) {
-  return PathValidator(*problem.collisionModel, ik, {}, kMargin, true, [](const arcplan::robot::Vector6&) { return true; },
-                       [] { return false; });
+  return PathValidator(
+      *problem.collisionModel, ik, {}, kMargin, true, [](const arcplan::robot::Vector6&) { return true; },
+      [] { return false; });
 }
 
 arcplan::planners::JointWaypoints startOnly(const arcplan::robot::Vector6& start) {

@@ -94,9 +94,11 @@ TEST(PlanCommand, FailedPlanSaysWhyWritesJsonAndNoPath) {
 TEST(PlanCommand, ApproximatePathNeedsAllowApproximate) {
   const auto dir = freshTempDirectory("plan_approximate");
   const auto json = dir / "plan.json", csv = dir / "path.csv";
-  const std::vector<std::string> arguments{"plan", "--scene", scene("thesis_free"), "--planner", "RRT", "--param",
-                                           "range=0.0001", "--time", "0.05", "--seed", "1", "--json", json.string(),
-                                           "--path-csv", csv.string()};
+  const std::vector<std::string> arguments{"plan",         "--scene",    scene("thesis_free"),
+                                           "--planner",    "RRT",        "--param",
+                                           "range=0.0001", "--time",     "0.05",
+                                           "--seed",       "1",          "--json",
+                                           json.string(),  "--path-csv", csv.string()};
   const auto refused = runArcplan(arguments);
   EXPECT_EQ(refused.exitCode, 1);
   EXPECT_NE(refused.err.find("found only an approximate path (--allow-approximate accepts it)"), std::string::npos)

@@ -96,7 +96,8 @@ TEST(PlannerRegistry, ValuesOutsideTheDeclaredRangeAreRejected) {
   EXPECT_NE(range.find("parameter 'range' does not accept '-1': expected a number in [0, 10000]"), std::string::npos)
       << range;
   const std::string neighbours = errorMessageOf([&] {
-    makePlanner("PRM", problem.setup->getSpaceInformation(), problem.plannerContext(), {{"max_nearest_neighbors", "3"}});
+    makePlanner("PRM", problem.setup->getSpaceInformation(), problem.plannerContext(),
+                {{"max_nearest_neighbors", "3"}});
   });
   EXPECT_NE(neighbours.find("[8, 1000]"), std::string::npos) << neighbours;
   EXPECT_NO_THROW(

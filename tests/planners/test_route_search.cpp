@@ -48,7 +48,8 @@ TEST(RouteSearch, ShortestRouteFirstAndFailedLegsArePruned) {
 TEST(RouteSearch, RoutesStopGrowingAtTheViaPointBound) {
   RouteSearch search(kStart, kGoal, 1);
   const auto straight = search.next();
-  search.legFailed(*straight, 0, {{{Vector3d(0.5, 0, 0.2)}, 0.02}, {{Vector3d(0.3, 0, 0.2), Vector3d(0.7, 0, 0.2)}, 0.02}});
+  search.legFailed(*straight, 0,
+                   {{{Vector3d(0.5, 0, 0.2)}, 0.02}, {{Vector3d(0.3, 0, 0.2), Vector3d(0.7, 0, 0.2)}, 0.02}});
   const auto single = search.next();
   ASSERT_TRUE(single.has_value());
   EXPECT_EQ(single->points.size(), 3u);
@@ -73,7 +74,8 @@ constexpr double kKeptDistance = 0.11;
 double closestApproach(const BlendedPath& path) {
   double closest = std::numeric_limits<double>::infinity();
   const int samples = static_cast<int>(std::ceil(path.length() / 0.0005));
-  for (int k = 0; k <= samples; ++k) closest = std::min(closest, (path.position(path.length() * k / samples) - kBallCentre).norm());
+  for (int k = 0; k <= samples; ++k)
+    closest = std::min(closest, (path.position(path.length() * k / samples) - kBallCentre).norm());
   return closest;
 }
 
@@ -110,7 +112,8 @@ TEST(RouteSearch, ShorteningNeverLengthensAndKeepsTheClearance) {
   }
   // Nothing validates: the route is returned as it was.
   const BlendedPath validated(start, goal, {Vector3d(0.5, 0, 0.3328)}, {0.05});
-  const BlendedPath unchanged = shortenRoute(start, goal, validated, {0.22}, 8, [](const BlendedPath&) { return false; });
+  const BlendedPath unchanged =
+      shortenRoute(start, goal, validated, {0.22}, 8, [](const BlendedPath&) { return false; });
   EXPECT_EQ(unchanged.points(), validated.points());
   EXPECT_EQ(unchanged.length(), validated.length());
 }

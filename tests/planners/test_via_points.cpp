@@ -38,7 +38,8 @@ TEST(ViaPoints, HullPointsContainTheBody) {
   rotated.pose.linear() = Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const auto corners = hullPoints(rotated);
   ASSERT_EQ(corners.size(), 8u);
-  for (const Vector3d& c : corners) EXPECT_NEAR((c - rotated.pose.translation()).norm(), rotated.boundingRadius(), 1e-12);
+  for (const Vector3d& c : corners)
+    EXPECT_NEAR((c - rotated.pose.translation()).norm(), rotated.boundingRadius(), 1e-12);
   Obstacle cylinder;
   cylinder.shape = Obstacle::Shape::Cylinder;
   cylinder.radius = 0.05;
@@ -87,7 +88,8 @@ TEST(ViaPoints, CandidatesPassTheBodyWithClearanceAndMargin) {
     }
     EXPECT_GE(closest, radius + clearance) << candidate.points.size() << " via points, margin " << candidate.margin;
     // The horizontal leg's "over" candidate in the plane of world up: at the cube's top + clearance + margin.
-    if (candidate.points.size() == 2 && std::abs(candidate.points[0].z() - (0.3 + radius + clearance + candidate.margin)) < 1e-12) {
+    if (candidate.points.size() == 2 &&
+        std::abs(candidate.points[0].z() - (0.3 + radius + clearance + candidate.margin)) < 1e-12) {
       liftsStraightUp = true;
     }
   }

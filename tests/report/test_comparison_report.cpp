@@ -20,8 +20,8 @@ std::vector<RunValues> runs(std::initializer_list<double> lengths) {
 TEST(ComparisonReport, DataHoldsTheRowsAndEachSidesRunsPerPlanner) {
   const auto base = arcplan::benchmarks::campaignResultsFromRuns(
       "base", {{"p", {{"RRT", runs({1.0, 1.1, 1.2})}, {"PRM", runs({2.0})}}}}, {{"p", {{"RRT", {{"runs", "4"}}}}}});
-  const auto current = arcplan::benchmarks::campaignResultsFromRuns(
-      "new", {{"p", {{"RRT", runs({1.3, 1.4})}}}}, {{"p", {{"RRT", {{"runs", "3"}}}}}});
+  const auto current = arcplan::benchmarks::campaignResultsFromRuns("new", {{"p", {{"RRT", runs({1.3, 1.4})}}}},
+                                                                    {{"p", {{"RRT", {{"runs", "3"}}}}}});
   arcplan::benchmarks::ComparisonOptions options;
   options.metrics = {"tcp_path_length_m", "min_clearance_m"};
   const auto comparison = arcplan::benchmarks::compareCampaigns(base, current, options);

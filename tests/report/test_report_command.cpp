@@ -40,8 +40,8 @@ TEST(ReportCommand, DatabaseThatIsNotOneLeavesNoFile) {
   const auto folder = freshTempDirectory("report_bad_db");
   std::ofstream(folder / "benchmark.db") << "not sqlite\n";
   const auto output = folder / "out.html";
-  expectOneLineError(runArcplan({"report", folder.string(), "--out", output.string()}), "not an OMPL benchmark database",
-                     output);
+  expectOneLineError(runArcplan({"report", folder.string(), "--out", output.string()}),
+                     "not an OMPL benchmark database", output);
 }
 
 TEST(ReportCommand, BrokenSessionFileLeavesNoFile) {
@@ -55,9 +55,10 @@ TEST(ReportCommand, MissingLibraryIsNamedWithItsPackage) {
   std::ofstream(folder / "benchmark.db") << "";
   const auto result = runArcplan({"report", folder.string()}, {{"ARCPLAN_THREE_DIR", (folder / "nowhere").string()}});
   EXPECT_EQ(result.exitCode, 1);
-  EXPECT_EQ(result.err, "arcplan: error: " + (folder / "nowhere" / "three.min.js").string() +
-                            ": three.js not found (Debian package libjs-three; scripts/setup installs it, ARCPLAN_THREE_DIR "
-                            "names another copy)\n");
+  EXPECT_EQ(result.err,
+            "arcplan: error: " + (folder / "nowhere" / "three.min.js").string() +
+                ": three.js not found (Debian package libjs-three; scripts/setup installs it, ARCPLAN_THREE_DIR "
+                "names another copy)\n");
   EXPECT_FALSE(std::filesystem::exists(folder / "report.html"));
 }
 

@@ -77,7 +77,8 @@ std::filesystem::path plainOmplDatabase(const std::filesystem::path& file) {
   sqlite3* db = nullptr;
   EXPECT_EQ(sqlite3_open(file.string().c_str(), &db), SQLITE_OK);
   const char* sql =
-      "CREATE TABLE experiments (id INTEGER PRIMARY KEY, name VARCHAR(512), totaltime REAL, timelimit REAL, version VARCHAR(128));"
+      "CREATE TABLE experiments (id INTEGER PRIMARY KEY, name VARCHAR(512), totaltime REAL, timelimit REAL, version "
+      "VARCHAR(128));"
       "CREATE TABLE plannerConfigs (id INTEGER PRIMARY KEY, name VARCHAR(512), settings TEXT);"
       "CREATE TABLE runs (id INTEGER PRIMARY KEY, experimentid INTEGER, plannerid INTEGER, time REAL, memory REAL,"
       " solved BOOLEAN, solution_length REAL);"

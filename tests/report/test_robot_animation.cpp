@@ -92,7 +92,8 @@ TEST(LinkPoseFrames, SamplesTheMotionAtTheRate) {
   // rad about the base z axis (joint 0 turns the whole arm about it).
   arcplan::robot::KinematicsData data(robot);
   arcplan::robot::forwardKinematics(robot, start, data);
-  const Eigen::Vector3d atStart = data.linkPoses[static_cast<std::size_t>(robot.linkIndex("wrist_3_link"))].translation();
+  const Eigen::Vector3d atStart =
+      data.linkPoses[static_cast<std::size_t>(robot.linkIndex("wrist_3_link"))].translation();
   const Eigen::Vector3d expected = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) * atStart;
   const std::size_t wrist3 = 6;  // the seventh meshed link
   const std::size_t at = (25 * 7 + wrist3) * 7;
@@ -100,13 +101,15 @@ TEST(LinkPoseFrames, SamplesTheMotionAtTheRate) {
   EXPECT_NEAR(poses[at + 1], expected.y(), 1e-5);
   EXPECT_NEAR(poses[at + 2], expected.z(), 1e-5);
   // Quaternions are unit length.
-  EXPECT_NEAR(std::hypot(std::hypot(poses[at + 3], poses[at + 4]), std::hypot(poses[at + 5], poses[at + 6])), 1.0, 1e-5);
+  EXPECT_NEAR(std::hypot(std::hypot(poses[at + 3], poses[at + 4]), std::hypot(poses[at + 5], poses[at + 6])), 1.0,
+              1e-5);
 }
 
 TEST(LinkPoseFrames, RejectsMismatchedInput) {
   const auto& robot = arcplan::robot::ur10e();
-  EXPECT_NE(arcplan::testing::errorMessageOf([&] { linkPoseFrames(robot, {0.0, 1.0}, {arcplan::robot::Vector6::Zero()}, 25.0); })
-                .find("2 times for 1 joint vectors"),
+  EXPECT_NE(arcplan::testing::errorMessageOf([&] {
+              linkPoseFrames(robot, {0.0, 1.0}, {arcplan::robot::Vector6::Zero()}, 25.0);
+            }).find("2 times for 1 joint vectors"),
             std::string::npos);
 }
 

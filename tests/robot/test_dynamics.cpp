@@ -166,13 +166,15 @@ TEST(Dynamics, InverseDynamicsSatisfiesLagrangesEquations) {
       return p;
     };
     const VectorXd momentumRate = (momentum(q + h * qd + 0.5 * h * h * qdd, qd + h * qdd) -
-                                   momentum(q - h * qd + 0.5 * h * h * qdd, qd - h * qdd)) / (2 * h);
+                                   momentum(q - h * qd + 0.5 * h * h * qdd, qd - h * qdd)) /
+                                  (2 * h);
     VectorXd kineticGradient(6);
     for (int j = 0; j < 6; ++j) {
       VectorXd plus = q, minus = q;
       plus[j] += h;
       minus[j] -= h;
-      kineticGradient[j] = (kineticEnergy(model, plus, qd, parameters) - kineticEnergy(model, minus, qd, parameters)) / (2 * h);
+      kineticGradient[j] =
+          (kineticEnergy(model, plus, qd, parameters) - kineticEnergy(model, minus, qd, parameters)) / (2 * h);
     }
     const VectorXd expected = momentumRate - kineticGradient + potentialGradient(model, q, parameters);
     const VectorXd actual = arcplan::robot::inverseDynamics(model, q, qd, qdd, data, parameters);
@@ -268,7 +270,8 @@ TEST(Dynamics, PayloadTorqueIsTheForceOnAPointMassThroughTheJacobian) {
       arcplan::robot::forwardKinematics(model, q + h * qd, ahead);
       arcplan::robot::forwardKinematics(model, q - h * qd, behind);
       jdotQd = (arcplan::robot::jacobian(model, ahead, model.tipLink()) -
-                arcplan::robot::jacobian(model, behind, model.tipLink())) / (2 * h) * qd;
+                arcplan::robot::jacobian(model, behind, model.tipLink())) /
+               (2 * h) * qd;
     }
     const Vector3d alpha = full.bottomRows(3) * qdd + jdotQd.tail<3>();
     const Vector3d c = kin.linkPoses[model.tipLink()].linear() * payload.payload.centerOfMass;

@@ -77,8 +77,9 @@ TEST(ForwardKinematics, EveryLinkIsComputed) {
   EXPECT_NEAR((elbow - shoulder).norm(), 0.6127, 1e-12);
   // Fixed frames off the chain move rigidly: `base` is base_link turned by pi, flange = tool0 origin.
   EXPECT_NEAR(data.linkPoses[model.linkIndex("base")].linear()(0, 0), -1.0, 1e-12);
-  EXPECT_LT((data.linkPoses[model.linkIndex("flange")].translation() - data.linkPoses[model.tipLink()].translation()).norm(),
-            1e-12);
+  EXPECT_LT(
+      (data.linkPoses[model.linkIndex("flange")].translation() - data.linkPoses[model.tipLink()].translation()).norm(),
+      1e-12);
 }
 
 TEST(Jacobian, MatchesFiniteDifferencesOfForwardKinematics) {

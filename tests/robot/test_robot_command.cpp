@@ -60,17 +60,21 @@ TEST_P(RobotCommandBadInput, OneClearLineAndNonZeroExit) {
 INSTANTIATE_TEST_SUITE_P(
     Errors, RobotCommandBadInput,
     ::testing::Values(
-        BadInput{"FiveJoints", {"robot", "fk", "--joints", "0,0,0,0,0"}, "expected 6 comma-separated numbers, got 5", 2},
+        BadInput{
+            "FiveJoints", {"robot", "fk", "--joints", "0,0,0,0,0"}, "expected 6 comma-separated numbers, got 5", 2},
         BadInput{"NotANumber", {"robot", "fk", "--joints", "0,0,zero,0,0,0"}, "'zero' is not a finite number", 2},
         BadInput{"OutsideLimits", {"robot", "fk", "--joints", "0,0,4,0,0,0"}, "outside its limits", 2},
         BadInput{"MissingUrdf",
                  {"robot", "fk", "--joints", "0,0,0,0,0,0", "--urdf", "/nonexistent/robot.urdf"},
-                 "/nonexistent/robot.urdf does not exist", 1},
-        BadInput{"UnknownTip", {"robot", "fk", "--joints", "0,0,0,0,0,0", "--tip", "gripper"}, "'gripper' not found", 1},
+                 "/nonexistent/robot.urdf does not exist",
+                 1},
+        BadInput{
+            "UnknownTip", {"robot", "fk", "--joints", "0,0,0,0,0,0", "--tip", "gripper"}, "'gripper' not found", 1},
         BadInput{"OutOfReach", {"robot", "ik", "--pose", "2.5,0,0.3,0,-3.14159,0"}, "out of reach", 1},
         BadInput{"ShortSeed",
                  {"robot", "ik", "--pose", "0.4,-0.4,0.25,0,-3.14159,1.57", "--seed", "1,2"},
-                 "--seed: expected 6", 2}),
+                 "--seed: expected 6",
+                 2}),
     [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
 
 TEST(RobotCommand, MalformedUrdfSaysWhere) {

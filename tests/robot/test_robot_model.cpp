@@ -74,8 +74,10 @@ public:
     setenv(name, value.c_str(), 1);
   }
   ~ScopedEnvironment() {
-    if (previous_) setenv(name_, previous_->c_str(), 1);
-    else unsetenv(name_);
+    if (previous_)
+      setenv(name_, previous_->c_str(), 1);
+    else
+      unsetenv(name_);
   }
 
 private:
@@ -255,11 +257,16 @@ TEST(RobotModel, JointLoopAboveTheTipIsAnError) {
 // Found by fuzzing: TinyXML skips the bytes a UTF-8 lead byte announces, so a sequence cut short at
 // the end of the text made it read past the buffer. Such text is rejected before TinyXML sees it.
 TEST(RobotModel, TextThatIsNotUtf8IsRejectedWithItsLine) {
-  const std::string truncatedSequence = "<robot name=\"r\">\n<link name=\"base_link\"/>\n<\xEF" "2";
+  const std::string truncatedSequence =
+      "<robot name=\"r\">\n<link name=\"base_link\"/>\n<\xEF"
+      "2";
   const std::string overlong = "<robot name=\"\xC0\xAF\"/>";
   const std::string nulByte = std::string("<robot name=\"r\"/>\n") + '\0' + "x";
   const std::string validMultiByte = "<robot name=\"r\xC3\xA9\xE2\x82\xAC\xF0\x9F\x98\x80\"/>";
-  struct Case { std::string text; std::string expected; };
+  struct Case {
+    std::string text;
+    std::string expected;
+  };
   for (const Case& c : {Case{truncatedSequence, "bad.urdf:3: expected UTF-8 text, found byte 0xef"},
                         Case{overlong, "bad.urdf:1: expected UTF-8 text, found byte 0xc0"},
                         Case{nulByte, "bad.urdf:2: expected UTF-8 text, found byte 0x0 at offset 18 (a NUL byte)"}}) {

@@ -15,9 +15,9 @@
 namespace {
 
 using arcplan::robot::rotationDistance;
+using arcplan::robot::ur10e;
 using arcplan::robot::UrInverseKinematics;
 using arcplan::robot::Vector6;
-using arcplan::robot::ur10e;
 
 Vector6 randomInLimits(std::mt19937& random, const arcplan::robot::RobotModel& model) {
   Vector6 q;
@@ -217,9 +217,10 @@ TEST(UrInverseKinematics, RejectsAChainThatIsNotUrType) {
   std::string parent = "base_link";
   for (int j = 0; j < 6; ++j) {
     const std::string child = j == 5 ? "tool0" : "l" + std::to_string(j);
-    urdf += "<link name=\"" + child + "\"/><joint name=\"j" + std::to_string(j) + "\" type=\"revolute\"><parent link=\"" +
-            parent + "\"/><child link=\"" + child +
-            "\"/><origin xyz=\"0.3 0 0\"/><axis xyz=\"0 0 1\"/><limit lower=\"-3\" upper=\"3\" effort=\"1\" velocity=\"1\"/></joint>";
+    urdf += "<link name=\"" + child + "\"/><joint name=\"j" + std::to_string(j) +
+            "\" type=\"revolute\"><parent link=\"" + parent + "\"/><child link=\"" + child +
+            "\"/><origin xyz=\"0.3 0 0\"/><axis xyz=\"0 0 1\"/><limit lower=\"-3\" upper=\"3\" effort=\"1\" "
+            "velocity=\"1\"/></joint>";
     parent = child;
   }
   urdf += "</robot>";
@@ -242,7 +243,8 @@ TEST(UrInverseKinematics, SolveBranchEqualsThatBranchOfSolveBranches) {
     const auto all = ik.solveBranches(target);
     for (int branch = 0; branch < 8; ++branch) {
       const auto single = ik.solveBranch(target, branch);
-      const auto inAll = std::find_if(all.begin(), all.end(), [&](const Vector6& s) { return ik.branchOf(s) == branch; });
+      const auto inAll =
+          std::find_if(all.begin(), all.end(), [&](const Vector6& s) { return ik.branchOf(s) == branch; });
       ASSERT_EQ(single.has_value(), inAll != all.end()) << "branch " << branch;
       if (single) {
         EXPECT_EQ(ik.branchOf(*single), branch);

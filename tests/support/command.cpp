@@ -78,7 +78,8 @@ std::vector<std::filesystem::path> filesBelow(const std::filesystem::path& root,
   std::vector<std::filesystem::path> files;
   if (!std::filesystem::exists(root)) return files;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
-    if (entry.is_regular_file() && (extension.empty() || entry.path().extension() == extension)) files.push_back(entry.path());
+    if (entry.is_regular_file() && (extension.empty() || entry.path().extension() == extension))
+      files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   return files;

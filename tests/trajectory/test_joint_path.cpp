@@ -56,8 +56,8 @@ TEST(JointPathCsv, RoundTripIsExact) {
 
 TEST(JointPathCsv, CommentsBlankLinesAndSpacesAreAllowed) {
   const auto dir = testing::freshTempDirectory("joint_path_comments");
-  const auto file = writeText(dir / "path.csv",
-                              "# planner: arc\n\n q0, q1 ,q2,q3,q4,q5\n# start\n0,0,0,0,0,0\n\n1, 2.5e-1 ,-3,4,5,+6\r\n");
+  const auto file = writeText(
+      dir / "path.csv", "# planner: arc\n\n q0, q1 ,q2,q3,q4,q5\n# start\n0,0,0,0,0,0\n\n1, 2.5e-1 ,-3,4,5,+6\r\n");
   const JointPath path = readJointPathCsv(file);
   ASSERT_EQ(path.size(), 2u);
   EXPECT_EQ(path[1][1], 0.25);
@@ -71,7 +71,8 @@ TEST(JointPathCsv, NanNamesFileLineAndColumn) {
   const std::string message = readError(file);
   EXPECT_EQ(message.rfind(file.string() + ":4: column q2: ", 0), 0u) << message;
   EXPECT_NE(message.find("not a finite"), std::string::npos) << message;
-  EXPECT_NE(readError(writeText(dir / "inf.csv", "q0,q1,q2,q3,q4,q5\n0,0,0,0,0,inf\n0,0,0,0,0,0\n")).find("inf.csv:2: column q5"),
+  EXPECT_NE(readError(writeText(dir / "inf.csv", "q0,q1,q2,q3,q4,q5\n0,0,0,0,0,inf\n0,0,0,0,0,0\n"))
+                .find("inf.csv:2: column q5"),
             std::string::npos);
 }
 
@@ -87,7 +88,8 @@ TEST(JointPathCsv, WrongColumnCount) {
 
 TEST(JointPathCsv, NonNumber) {
   const auto dir = testing::freshTempDirectory("joint_path_text");
-  const std::string message = readError(writeText(dir / "path.csv", "q0,q1,q2,q3,q4,q5\n0,0,0,0,0,0\n0,0,0,1.5rad,0,0\n"));
+  const std::string message =
+      readError(writeText(dir / "path.csv", "q0,q1,q2,q3,q4,q5\n0,0,0,0,0,0\n0,0,0,1.5rad,0,0\n"));
   EXPECT_NE(message.find("path.csv:3: column q3: '1.5rad' is not a number"), std::string::npos) << message;
 }
 

@@ -55,7 +55,8 @@ TEST(PathDensification, StepsAreBoundedAndWaypointsKept) {
       ++nextOriginal;
     } else {
       ASSERT_LT(segment + 1, path.size());
-      EXPECT_LT(distanceToSegment(q, path[segment], path[segment + 1]), 1e-12) << "waypoint " << k << " off its segment";
+      EXPECT_LT(distanceToSegment(q, path[segment], path[segment + 1]), 1e-12)
+          << "waypoint " << k << " off its segment";
     }
     robot::forwardKinematics(model, q, kinematics);
     EXPECT_LT((kinematics.linkPoses[model.tipLink()].translation() - dense.tcpPositions[k]).norm(), 1e-12);

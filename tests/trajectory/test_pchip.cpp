@@ -104,7 +104,7 @@ TEST(Pchip, MonotoneDataStaysMonotoneWithoutOvershoot) {
   // A sharp step with uneven spacing: a cubic spline rings here, PCHIP must not.
   const std::vector<double> knots{0.0, 0.3, 1.0, 1.1, 2.0, 4.0, 4.2};
   MatrixXd values(7, 2);
-  values.col(0) << 0.0, 0.0, 0.1, 1.0, 1.0, 1.2, 5.0;   // non-decreasing
+  values.col(0) << 0.0, 0.0, 0.1, 1.0, 1.0, 1.2, 5.0;      // non-decreasing
   values.col(1) << 3.0, 2.0, 1.9, -1.0, -1.0, -1.5, -1.6;  // non-increasing
   const Pchip pchip(knots, values);
   VectorXd value(2), first(2), second(2);

@@ -34,9 +34,9 @@ fs::path writeText(const fs::path& file, const std::string& text) {
 TEST(ScaleCommand, ThesisLineMetricsTrajectoryAndPlot) {
   const auto dir = arcplan::testing::freshTempDirectory("scale_line");
   const auto path = writeLinePath(dir);
-  const auto result = runArcplan({"scale", "--scene", kScene, "--path-csv", path.string(), "--json",
-                                  (dir / "m.json").string(), "--traj-csv", (dir / "t.csv").string(), "--plot",
-                                  (dir / "speed.png").string()});
+  const auto result =
+      runArcplan({"scale", "--scene", kScene, "--path-csv", path.string(), "--json", (dir / "m.json").string(),
+                  "--traj-csv", (dir / "t.csv").string(), "--plot", (dir / "speed.png").string()});
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.out.find("execution time"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("peak tcp speed"), std::string::npos);
@@ -74,7 +74,8 @@ TEST(ScaleCommand, ThesisLineMetricsTrajectoryAndPlot) {
 TEST(ScaleCommand, SpeedRiseAndAccelerationOptions) {
   const auto dir = arcplan::testing::freshTempDirectory("scale_options");
   const auto path = writeLinePath(dir);
-  const auto slow = runArcplan({"scale", "--path-csv", path.string(), "--vmax", "0.149", "--rise", "0.5", "--json", "-"});
+  const auto slow =
+      runArcplan({"scale", "--path-csv", path.string(), "--vmax", "0.149", "--rise", "0.5", "--json", "-"});
   ASSERT_EQ(slow.exitCode, 0) << slow.err;
   const auto json = nlohmann::json::parse(slow.out.substr(slow.out.find('{')));
   EXPECT_GE(json["execution_time_s"].get<double>(), 0.8331 / 0.149 + 0.5 - 1e-3);
@@ -110,19 +111,22 @@ TEST(ScaleCommand, NonPositiveSpeedLimit) {
 
 TEST(ScaleCommand, NanInThePathFile) {
   const auto dir = arcplan::testing::freshTempDirectory("scale_nan");
-  const auto file = writeText(dir / "bad.csv", "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.3,-2.4,-1.57,-1.1\n-1.1,nan,2.3,-2.4,-1.57,-1.1\n");
+  const auto file =
+      writeText(dir / "bad.csv", "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.3,-2.4,-1.57,-1.1\n-1.1,nan,2.3,-2.4,-1.57,-1.1\n");
   expectFailure({"scale", "--path-csv", file.string()}, dir, file.string() + ":3: column q1");
 }
 
 TEST(ScaleCommand, WrongColumnCount) {
   const auto dir = arcplan::testing::freshTempDirectory("scale_columns");
-  const auto file = writeText(dir / "bad.csv", "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.3,-2.4,-1.57,-1.1\n-1.1,-1.5,2.3,-2.4,-1.57\n");
+  const auto file =
+      writeText(dir / "bad.csv", "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.3,-2.4,-1.57,-1.1\n-1.1,-1.5,2.3,-2.4,-1.57\n");
   expectFailure({"scale", "--path-csv", file.string()}, dir, ":3: expected 6 comma-separated joint angles");
 }
 
 TEST(ScaleCommand, PathLeavingTheJointLimits) {
   const auto dir = arcplan::testing::freshTempDirectory("scale_limits");
-  const auto file = writeText(dir / "bad.csv", "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.3,-2.4,-1.57,-1.1\n-1.1,-1.5,3.3,-2.4,-1.57,-1.1\n");
+  const auto file =
+      writeText(dir / "bad.csv", "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.3,-2.4,-1.57,-1.1\n-1.1,-1.5,3.3,-2.4,-1.57,-1.1\n");
   expectFailure({"scale", "--scene", kScene, "--path-csv", file.string()}, dir,
                 ":3: q2 (elbow_joint) = 3.3 rad is outside its limits");
 }
@@ -139,8 +143,8 @@ TEST(ScaleCommand, MissingFilesAndBadOptions) {
 TEST(ScaleCommand, HelpDescribesTheOptions) {
   const auto result = runArcplan({"scale", "--help"});
   EXPECT_EQ(result.exitCode, 0);
-  for (const char* option : {"--scene", "--urdf", "--path-csv", "--vmax", "--rise", "--max-acc", "--json", "--traj-csv",
-                             "--plot"}) {
+  for (const char* option :
+       {"--scene", "--urdf", "--path-csv", "--vmax", "--rise", "--max-acc", "--json", "--traj-csv", "--plot"}) {
     EXPECT_NE(result.out.find(option), std::string::npos) << option;
   }
 }

@@ -130,8 +130,8 @@ TEST(ThesisCases, NoSampleAboveTheCollaborativeLimit) {
 TEST(ThesisCases, ExecutionTimesAtTheCollaborativeLimit) {
   const double straight = metricsOf('a', 0.25).executionTime;
   const double lowArc = metricsOf('d', 0.25).executionTime;
-  EXPECT_LE(straight, 3.55);  // thesis: 3.5 s measured
-  EXPECT_LE(lowArc, 3.75);    // thesis: 3.95 s
+  EXPECT_LE(straight, 3.55);           // thesis: 3.5 s measured
+  EXPECT_LE(lowArc, 3.75);             // thesis: 3.95 s
   EXPECT_LE(lowArc - straight, 0.22);  // thesis: 0.45 s
   EXPECT_GT(metricsOf('b', 0.25).executionTime, metricsOf('c', 0.25).executionTime);
   EXPECT_GT(metricsOf('c', 0.25).executionTime, lowArc);
@@ -151,7 +151,8 @@ TEST(ThesisCases, MeanSpeedAndOrderOfTimesAtEveryThesisSpeed) {
     std::map<char, double> ours;
     for (const auto& thesisCase : kCases) {
       const auto& metrics = metricsOf(thesisCase.name, speed);
-      EXPECT_GE(metrics.meanTcpSpeed, 0.93 * speed) << "case " << thesisCase.name << " at " << speed;  // thesis 0.89–0.98
+      EXPECT_GE(metrics.meanTcpSpeed, 0.93 * speed)
+          << "case " << thesisCase.name << " at " << speed;  // thesis 0.89–0.98
       EXPECT_LE(metrics.peakTcpSpeed, speed);
       ours[thesisCase.name] = metrics.executionTime;
     }

@@ -97,7 +97,8 @@ TEST(TimeScaling, SamplesAreConsistentWithFiniteDifferencesAndKinematics) {
     if (i + 1 == n || intervalOf(trajectory.time[i]) != intervalOf(trajectory.time[i - 1])) continue;
     ++pairsChecked;
     const double chordSpeed = (trajectory.tcpPosition[i] - trajectory.tcpPosition[i - 1]).norm() / dt;
-    EXPECT_NEAR(chordSpeed, 0.5 * (trajectory.tcpSpeed[i] + trajectory.tcpSpeed[i - 1]), 2e-4) << "t = " << trajectory.time[i];
+    EXPECT_NEAR(chordSpeed, 0.5 * (trajectory.tcpSpeed[i] + trajectory.tcpSpeed[i - 1]), 2e-4)
+        << "t = " << trajectory.time[i];
     const robot::Vector6 jointRate = (trajectory.position[i] - trajectory.position[i - 1]) / dt;
     const robot::Vector6 trapezoid = 0.5 * (trajectory.velocity[i] + trajectory.velocity[i - 1]) -
                                      dt / 12.0 * (trajectory.acceleration[i] - trajectory.acceleration[i - 1]);
@@ -140,7 +141,7 @@ TEST(TimeScaling, RiseTimeAndAccelerationLimit) {
   EXPECT_LE(slow, kLineLength / 0.25 + 0.6 + 0.01);
 
   TimeScalingOptions accelerationLimited;
-  accelerationLimited.riseTime = 5.0;  // ignored when an acceleration limit is given
+  accelerationLimited.riseTime = 5.0;            // ignored when an acceleration limit is given
   accelerationLimited.maxTcpAcceleration = 0.5;  // ramps of 0.25/0.5 = 0.5 s
   const TimedTrajectory trajectory = scaleToTcpSpeed(robot::ur10e(), linePath(), accelerationLimited);
   EXPECT_GE(trajectory.duration(), kLineLength / 0.25 + 0.5 - 1e-6);

@@ -22,8 +22,9 @@ std::string limitViolation(const robot::RobotModel& model, const robot::Vector6&
   for (int j = 0; j < 6; ++j) {
     const auto& joint = model.joints()[j];
     if (q[j] < joint.limits.lower - kLimitTolerance || q[j] > joint.limits.upper + kLimitTolerance) {
-      return "q" + std::to_string(j) + " (" + joint.name + ") = " + formatNumber(q[j], 9) + " rad is outside its limits [" +
-             formatNumber(joint.limits.lower, 9) + ", " + formatNumber(joint.limits.upper, 9) + "]";
+      return "q" + std::to_string(j) + " (" + joint.name + ") = " + formatNumber(q[j], 9) +
+             " rad is outside its limits [" + formatNumber(joint.limits.lower, 9) + ", " +
+             formatNumber(joint.limits.upper, 9) + "]";
     }
   }
   return {};
@@ -82,7 +83,8 @@ JointPath readPath(const std::filesystem::path& file, const robot::RobotModel* m
     path.push_back(q);
   }
   if (in.bad()) throw Error(where + ": read error");
-  if (!headerSeen) throw Error(where + ": empty file, expected the header '" + std::string(kHeader) + "' and waypoints");
+  if (!headerSeen)
+    throw Error(where + ": empty file, expected the header '" + std::string(kHeader) + "' and waypoints");
   if (path.size() < 2) {
     throw Error(where + ": a path needs at least 2 waypoints, found " + std::to_string(path.size()));
   }

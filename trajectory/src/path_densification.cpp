@@ -27,7 +27,8 @@ DensePath densifyJointPath(const robot::RobotModel& model, const JointPath& path
     throw Error("path densification: smoothWaypointSpacing (rad) must be >= 0, got " +
                 std::to_string(options.smoothWaypointSpacing));
   }
-  if (path.size() < 2) throw Error("path densification: a path needs at least 2 waypoints, got " + std::to_string(path.size()));
+  if (path.size() < 2)
+    throw Error("path densification: a path needs at least 2 waypoints, got " + std::to_string(path.size()));
 
   JointPath distinct{path.front()};
   for (std::size_t i = 1; i < path.size(); ++i) {

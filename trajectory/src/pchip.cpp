@@ -72,7 +72,8 @@ void Pchip::fit(const std::vector<double>& knots, const Eigen::MatrixXd& values,
       }
       const auto secant = [&](std::size_t k) { return (values(k + 1, c) - values(k, c)) / (knots[k + 1] - knots[k]); };
       slopes_(0, c) = endSlope(knots[1] - knots[0], knots[2] - knots[1], secant(0), secant(1));
-      slopes_(n - 1, c) = endSlope(knots[n - 1] - knots[n - 2], knots[n - 2] - knots[n - 3], secant(n - 2), secant(n - 3));
+      slopes_(n - 1, c) =
+          endSlope(knots[n - 1] - knots[n - 2], knots[n - 2] - knots[n - 3], secant(n - 2), secant(n - 3));
     }
     if (ends == PchipEnds::ZeroSlope) slopes_(0, c) = slopes_(n - 1, c) = 0.0;
   }

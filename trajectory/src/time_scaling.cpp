@@ -178,7 +178,10 @@ class LimitCheck {
 public:
   LimitCheck(const robot::RobotModel& model, const TimeScalingOptions& options, const robot::Vector6& jointSpeedLimits,
              std::size_t intervals)
-      : model_(model), kinematics_(model), maxTcpSpeed_(options.maxTcpSpeed), jointSpeedLimits_(jointSpeedLimits),
+      : model_(model),
+        kinematics_(model),
+        maxTcpSpeed_(options.maxTcpSpeed),
+        jointSpeedLimits_(jointSpeedLimits),
         stretch_(intervals, 1.0) {}
 
   // Samples the uniform output grid (step <= checkTimeStep) into `result`.

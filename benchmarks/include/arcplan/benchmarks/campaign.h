@@ -48,7 +48,7 @@ std::filesystem::path jobLogPath(const std::filesystem::path& outDirectory, cons
 struct CampaignOptions {
   std::filesystem::path outDirectory;
   Shard shard;
-  unsigned workers = 1;      // processes running jobs in parallel (each job stays in one process)
+  unsigned workers = 1;  // processes running jobs in parallel (each job stays in one process)
   bool plots = true;
   bool showProgress = true;  // on stderr
 };
@@ -60,7 +60,7 @@ struct CampaignResult {
   std::size_t jobsInCampaign = 0;
   std::size_t jobsDoneInCampaign = 0;  // logs present for all shards together
   bool interrupted = false;
-  double wallTime = 0.0;  // s
+  double wallTime = 0.0;           // s
   std::optional<Ranking> ranking;  // when every job of the campaign is done
   std::vector<std::string> notes;  // for the user: plots skipped, how to merge shards, ...
 };
@@ -74,7 +74,7 @@ struct CampaignResult {
 CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options);
 
 struct ReportOptions {
-  std::filesystem::path outDirectory;      // ranking files and plots/
+  std::filesystem::path outDirectory;                  // ranking files and plots/
   std::vector<std::filesystem::path> pathDirectories;  // campaign "paths" folders for profile and 3D plots
   bool plots = true;
 };

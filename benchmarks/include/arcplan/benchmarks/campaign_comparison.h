@@ -24,8 +24,8 @@ struct PlannerResults {
   int runs = 0;
   int successes = 0;
   std::map<std::string, std::vector<double>> values;  // metric key -> values of the successful runs
-  std::map<std::string, std::string> settings;         // see RecordedRuns::settings
-  std::filesystem::path medianRun;                     // median-run CSV (paths/), empty when none
+  std::map<std::string, std::string> settings;        // see RecordedRuns::settings
+  std::filesystem::path medianRun;                    // median-run CSV (paths/), empty when none
 };
 
 struct CampaignResults {
@@ -48,9 +48,9 @@ const std::vector<std::string>& defaultComparedMetrics();
 inline const std::string kSuccessRateKey = "success_rate";
 
 struct ComparisonOptions {
-  double alpha = 0.01;        // family-wise error rate of the stochastic tests (Holm)
-  double minEffect = 0.05;    // relative median change / success-rate difference below which nothing is flagged
-  double tolerance = 1e-6;    // exact comparison, in the metric's SI unit (m, s, ...)
+  double alpha = 0.01;      // family-wise error rate of the stochastic tests (Holm)
+  double minEffect = 0.05;  // relative median change / success-rate difference below which nothing is flagged
+  double tolerance = 1e-6;  // exact comparison, in the metric's SI unit (m, s, ...)
   // Solve time is the machine's wall clock: changes of the median below this many seconds are never
   // flagged, since scheduling on a loaded machine moves sub-millisecond solve times by more than 5 %.
   double solveTimeFloor = 0.005;
@@ -68,7 +68,7 @@ struct ComparisonRow {
   std::string planner;
   std::string metric;  // kSuccessRateKey or a metric key
   ComparisonMethod method = ComparisonMethod::None;
-  int baseCount = 0, newCount = 0;  // runs (success rate) or successful runs (metrics)
+  int baseCount = 0, newCount = 0;   // runs (success rate) or successful runs (metrics)
   double base = 0.0, current = 0.0;  // success rate, the exact value, or the median
   // Success rate: new - base. Metrics: relative change of the value / median, new / base - 1.
   double effect = 0.0;
@@ -83,8 +83,8 @@ struct ComparisonRow {
 
 struct SettingDifference {
   std::string setting;
-  std::string base, current;          // "(none)" where one side did not record it
-  std::vector<std::string> pairs;     // "problem · planner"; empty = every matched pair
+  std::string base, current;       // "(none)" where one side did not record it
+  std::vector<std::string> pairs;  // "problem · planner"; empty = every matched pair
 };
 
 struct CampaignComparison {

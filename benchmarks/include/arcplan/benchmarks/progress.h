@@ -13,9 +13,9 @@ namespace arcplan::benchmarks {
 struct ProgressEvent {
   enum class Kind : int { RunFinished, JobFinished, JobFailed };
   Kind kind = Kind::RunFinished;
-  std::size_t job = 0;   // index into the list of jobs being run
-  unsigned run = 0;      // 1-based run number (RunFinished)
-  bool solved = false;   // RunFinished: the run succeeded
+  std::size_t job = 0;      // index into the list of jobs being run
+  unsigned run = 0;         // 1-based run number (RunFinished)
+  bool solved = false;      // RunFinished: the run succeeded
   unsigned solvedRuns = 0;  // JobFinished: successful runs of the job
 };
 

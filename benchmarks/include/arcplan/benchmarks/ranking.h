@@ -37,17 +37,17 @@ struct PlannerStanding {
   int runs = 0;
   int successes = 0;
   double successRate = 0.0;
-  double medianExecutionTime = 0.0;  // over all runs, failures as +inf (see above)
+  double medianExecutionTime = 0.0;              // over all runs, failures as +inf (see above)
   std::map<std::string, MetricSummary> metrics;  // by RankedMetric::key, over successful runs
   // Overall standing only:
   double meanRank = 0.0;
-  int problems = 0;    // problems this planner ran on
-  int firstPlaces = 0; // problems where it ranked 1
+  int problems = 0;     // problems this planner ran on
+  int firstPlaces = 0;  // problems where it ranked 1
 };
 
 struct ProblemRanking {
-  std::string problem;                   // experiment name ("thesis/obstacle")
-  std::vector<PlannerStanding> planners; // best first
+  std::string problem;                    // experiment name ("thesis/obstacle")
+  std::vector<PlannerStanding> planners;  // best first
 };
 
 // The overall standing restricted to one problem family ("pillar", "line-box", ...): mean rank and
@@ -77,9 +77,9 @@ struct RecordedRuns {
   std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>> runs;
   std::map<std::string, std::string> families;  // problem -> family, where the experiments name one
   // problem -> planner -> setting -> value, as the logs recorded them: "runs", "time limit (s)",
-  // "vmax (m/s)", "clearance (m)", iteration budget, seeds, library versions, host, and "parameter <name>" for each planner
-  // parameter (OMPL's projection cell sizes left out: OMPL derives them from random samples).
-  // Settings that differ between the jobs of one pair are joined with " | ".
+  // "vmax (m/s)", "clearance (m)", iteration budget, seeds, library versions, host, and "parameter <name>" for each
+  // planner parameter (OMPL's projection cell sizes left out: OMPL derives them from random samples). Settings that
+  // differ between the jobs of one pair are joined with " | ".
   std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> settings;
 };
 // Throws arcplan::Error as rankDatabase does.

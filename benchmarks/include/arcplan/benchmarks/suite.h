@@ -14,8 +14,8 @@ namespace arcplan::benchmarks {
 
 // One planner as it appears in the logs and the ranking: a registry planner with fixed parameters.
 struct PlannerConfiguration {
-  std::string label;    // unique in the suite; the planner name in the logs ("arc-h0.75r")
-  std::string planner;  // planner registry name ("arc", "RRTConnect")
+  std::string label;                              // unique in the suite; the planner name in the logs ("arc-h0.75r")
+  std::string planner;                            // planner registry name ("arc", "RRTConnect")
   std::map<std::string, std::string> parameters;  // OMPL declared parameters, set by name
 };
 
@@ -25,7 +25,7 @@ struct Problem {
   std::string kind;    // "scene file", or the generator's family ("line-sphere", "pillar", "shelf", ...)
   std::string origin;  // where it came from: the scene file, or "generator seed S problem I"
   collision::Scene scene;
-  std::string query;   // query name in `scene`
+  std::string query;  // query name in `scene`
 };
 
 // Seeded random problems around the UR10e on its table (generated_problems.h).
@@ -58,7 +58,7 @@ struct Suite {
   // ompl::base::IterationTerminationCondition counts them): a run ends after this many whatever the
   // machine's load, so single-threaded planners give the same runs everywhere (docs/reproducibility.md).
   std::optional<unsigned> iterationBudget;
-  double vMax = 0.25;      // TCP speed limit of the time scaling, m/s
+  double vMax = 0.25;  // TCP speed limit of the time scaling, m/s
   // m every planner's states and motions keep from obstacles and between links (the validity checker
   // and motion validator of every job); a run whose executed path comes closer is not a success.
   double clearance = 0.01;

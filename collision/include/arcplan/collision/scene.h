@@ -20,11 +20,11 @@ struct Obstacle {
   enum class Shape { Sphere, Box, Cylinder, Mesh };
   std::string name;
   Shape shape = Shape::Sphere;
-  double radius = 0.0;                                   // sphere, cylinder
-  double length = 0.0;                                   // cylinder, along its local z, centred
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();        // box edge lengths
-  std::filesystem::path meshFile;                        // mesh (resolved path)
-  Eigen::Vector3d meshScale = Eigen::Vector3d::Ones();   // mesh
+  double radius = 0.0;                                  // sphere, cylinder
+  double length = 0.0;                                  // cylinder, along its local z, centred
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();       // box edge lengths
+  std::filesystem::path meshFile;                       // mesh (resolved path)
+  Eigen::Vector3d meshScale = Eigen::Vector3d::Ones();  // mesh
   // The mesh, scaled, in the obstacle frame; loadScene fills it (checking the file once). When it
   // is empty, users of the obstacle load meshFile themselves.
   std::shared_ptr<const robot::TriangleMesh> meshData;

@@ -73,7 +73,8 @@ struct Comparison {
 std::vector<WorstWindow> worstWindows(const Dataset& data, const std::vector<Eigen::VectorXd>& residuals,
                                       std::size_t count = 5);
 std::vector<ChannelRegimes> residualRegimes(const Dataset& data, const std::vector<Eigen::VectorXd>& residuals);
-std::vector<ResidualCorrelation> residualCorrelations(const Dataset& data, const std::vector<Eigen::VectorXd>& residuals,
+std::vector<ResidualCorrelation> residualCorrelations(const Dataset& data,
+                                                      const std::vector<Eigen::VectorXd>& residuals,
                                                       double minimum = 0.1);
 
 // The model predicts `data` (and `validation`); failures are analysed on the validation data when

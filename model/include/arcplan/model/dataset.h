@@ -74,7 +74,7 @@ private:
   std::vector<std::string> notes_;
   bool timeOrdered_ = true;
   std::vector<Channel> channels_;
-  mutable std::shared_ptr<const robot::RobotModel> robot_;  // loaded on first use
+  mutable std::shared_ptr<const robot::RobotModel> robot_;                    // loaded on first use
   mutable std::vector<std::map<std::string, Eigen::VectorXd>> robotSignals_;  // filled on first use
 };
 

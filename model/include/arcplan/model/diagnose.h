@@ -35,8 +35,8 @@
 namespace arcplan::model {
 
 struct DiagnoseOptions {
-  int folds = 5;                   // cross-validation folds when there is no validation data
-  double minimumReduction = 0.01;  // per channel, fraction of the held-out residual RMS
+  int folds = 5;                        // cross-validation folds when there is no validation data
+  double minimumReduction = 0.01;       // per channel, fraction of the held-out residual RMS
   std::vector<std::string> candidates;  // empty: every registered effect not in the model
   bool discover = true;                 // also search the term library (joint logs)
   int screenedPerChannel = 6;           // library terms per channel scored on held-out data
@@ -44,13 +44,13 @@ struct DiagnoseOptions {
 };
 
 struct EffectCandidate {
-  std::string effect;                 // catalogue id, or the id of a discovered term
-  bool discovered = false;            // a library term, not a registered effect
-  EffectSpec entry;                   // what to add: id, joints and (discovered) the expression
-  std::string modelEntry;             // the same as a model-file line: {id: ..., expression: "...", joints: [...]}
-  std::vector<int> joints;            // channels where it helps significantly
-  double heldoutReduction = 0.0;      // fraction (0–1) of the held-out residual RMS removed
-  double score = 0.0;                 // Σ ΔIC over its channels (negative: better)
+  std::string effect;             // catalogue id, or the id of a discovered term
+  bool discovered = false;        // a library term, not a registered effect
+  EffectSpec entry;               // what to add: id, joints and (discovered) the expression
+  std::string modelEntry;         // the same as a model-file line: {id: ..., expression: "...", joints: [...]}
+  std::vector<int> joints;        // channels where it helps significantly
+  double heldoutReduction = 0.0;  // fraction (0–1) of the held-out residual RMS removed
+  double score = 0.0;             // Σ ΔIC over its channels (negative: better)
   bool suggested = false;
   std::vector<double> channelReduction;  // per channel, fraction of that channel's held-out RMS
   std::vector<double> nonlinear;         // searched value per channel (NaN if none)
@@ -60,15 +60,15 @@ struct EffectCandidate {
 };
 
 struct Diagnosis {
-  std::string heldout;  // "validation data (V.csv)" or "5-fold time-blocked cross-validation"
-  ErrorSummary heldoutBase;  // held-out error of the model as it is
+  std::string heldout;                   // "validation data (V.csv)" or "5-fold time-blocked cross-validation"
+  ErrorSummary heldoutBase;              // held-out error of the model as it is
   std::vector<EffectCandidate> ranking;  // suggested first (best first), then the rest
   std::vector<std::string> skipped;      // "temperature_friction: the log has no joint_temperatures"
   std::vector<ResidualCorrelation> residualFollows;  // what the held-out residual still correlates with
-  std::vector<double> noiseFloor;  // per channel, of the held-out residual (NaN without time)
-  double explainable = 0.0;        // fraction of the held-out residual RMS above the noise floor
-  double catalogueExplains = 0.0;  // fraction the suggested catalogue effects remove together
-  std::string summary;  // the top suggestions in words, or why nothing is suggested
+  std::vector<double> noiseFloor;                    // per channel, of the held-out residual (NaN without time)
+  double explainable = 0.0;                          // fraction of the held-out residual RMS above the noise floor
+  double catalogueExplains = 0.0;                    // fraction the suggested catalogue effects remove together
+  std::string summary;                               // the top suggestions in words, or why nothing is suggested
 };
 
 Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* validation,

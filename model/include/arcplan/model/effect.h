@@ -63,7 +63,8 @@ public:
 
   // Regressor columns (samples x parameterNames().size()) of `channel`; `nonlinear` is the value of
   // the nonlinear parameter (ignored by linear effects).
-  virtual void regressor(const Dataset& data, int channel, double nonlinear, Eigen::Ref<Eigen::MatrixXd> columns) const = 0;
+  virtual void regressor(const Dataset& data, int channel, double nonlinear,
+                         Eigen::Ref<Eigen::MatrixXd> columns) const = 0;
 
   // Chooses the nonlinear parameter that best explains `residual` (samples of `channel`): the
   // default tries every grid value, fits the columns by least squares and refines around the best

@@ -11,12 +11,12 @@ namespace arcplan::model {
 
 struct ForceTransferPoint {
   std::string gearbox;
-  double ratio = 0.0;        // ideal velocity ratio i (output torque / input torque without friction)
-  int series = 1;            // repeat of the measurement
-  bool direct = true;        // DIRECT (motoring) or INDIRECT (regenerating)
-  double outputTorque = 0.0; // N·m
-  double inputTorque = 0.0;  // N·m
-  std::size_t line = 0;      // 1-based line in the file
+  double ratio = 0.0;         // ideal velocity ratio i (output torque / input torque without friction)
+  int series = 1;             // repeat of the measurement
+  bool direct = true;         // DIRECT (motoring) or INDIRECT (regenerating)
+  double outputTorque = 0.0;  // N·m
+  double inputTorque = 0.0;   // N·m
+  std::size_t line = 0;       // 1-based line in the file
 };
 
 // Reads the CSV of shared/data/thesis/force_transfer_diagrams.csv (columns gearbox, ratio,

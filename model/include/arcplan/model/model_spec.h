@@ -29,11 +29,11 @@ std::string toString(ModelKind kind);
 std::string toString(LoadTorqueSource source);
 
 struct EffectSpec {
-  std::string id;                        // catalogue id, registered C++ effect, or user effect name
-  std::vector<int> joints;               // channels it applies to; empty = all
-  std::vector<std::string> expressions;  // user regressor columns over the log's signals
-  std::string explanation;               // user text for expression effects
-  std::map<std::string, double> options; // effect-specific numbers (harmonics, fixed nonlinear values)
+  std::string id;                         // catalogue id, registered C++ effect, or user effect name
+  std::vector<int> joints;                // channels it applies to; empty = all
+  std::vector<std::string> expressions;   // user regressor columns over the log's signals
+  std::string explanation;                // user text for expression effects
+  std::map<std::string, double> options;  // effect-specific numbers (harmonics, fixed nonlinear values)
   // Per-channel values, keyed by parameter name (the nonlinear one included); NaN = not applied.
   std::map<std::string, std::vector<double>> parameters;
   std::map<std::string, std::vector<double>> standardErrors;
@@ -43,14 +43,14 @@ struct ModelSpec {
   std::string name;
   ModelKind kind = ModelKind::JointCurrent;
   LoadTorqueSource loadTorque = LoadTorqueSource::TargetMoment;
-  int joints = 0;              // expected joint (channel) count of the data; 0 = take the data's
-  std::filesystem::path urdf;  // empty: arcplan's UR10e
+  int joints = 0;                      // expected joint (channel) count of the data; 0 = take the data's
+  std::filesystem::path urdf;          // empty: arcplan's UR10e
   robot::DynamicsParameters dynamics;  // gravity and a known payload for the rigid-body load torque
   double derivativeCutoffHz = 10.0;    // zero-phase filter of derived velocities/accelerations
   double velocitySmoothing = 0.01;     // rad/s: sgn(qd) is smoothed as tanh(qd / this)
   double referenceTemperature = 25.0;  // °C, T0 of temperature_friction
   std::vector<EffectSpec> effects;
-  std::filesystem::path source;        // file it was read from, for messages
+  std::filesystem::path source;  // file it was read from, for messages
 
   bool hasEffect(const std::string& id) const;
 };

@@ -19,6 +19,7 @@ Eigen::MatrixXd zeroPhaseLowPass(const Eigen::MatrixXd& values, double sampleRat
 Eigen::MatrixXd smoothDerivative(const Eigen::VectorXd& time, const Eigen::MatrixXd& values, double cutoffHz);
 
 // Linear interpolation of every column at `at` (clamped to the first/last sample outside).
-Eigen::MatrixXd interpolateLinear(const Eigen::VectorXd& time, const Eigen::MatrixXd& values, const Eigen::VectorXd& at);
+Eigen::MatrixXd interpolateLinear(const Eigen::VectorXd& time, const Eigen::MatrixXd& values,
+                                  const Eigen::VectorXd& at);
 
 }  // namespace arcplan::model

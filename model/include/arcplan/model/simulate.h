@@ -22,8 +22,8 @@ struct Trajectory {
 // ω_l = 2π·l·baseFrequency, random coefficients from `seed`, scaled so that every joint stays
 // within `amplitude` of its centre, `maxSpeed` and `maxAcceleration`. Not collision-checked.
 struct ExcitationOptions {
-  double duration = 60.0;        // s
-  double rate = 500.0;           // Hz (UR e-Series RTDE runs at 500 Hz)
+  double duration = 60.0;  // s
+  double rate = 500.0;     // Hz (UR e-Series RTDE runs at 500 Hz)
   int harmonics = 5;
   double baseFrequency = 0.1;    // Hz: a 10 s period
   double amplitude = 1.2;        // rad about the centre

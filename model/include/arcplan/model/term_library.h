@@ -24,13 +24,13 @@ namespace arcplan::model {
 struct CandidateTerm {
   enum class Transform { Identity, Magnitude, Sign, SignedSquare, Square, Sine, Cosine, Product };
   Transform transform = Transform::Identity;
-  std::string signal;         // dataset signal name: q, qd, qdd, tau, temperature, time
-  int joint = -1;             // -1: the channel's own joint
-  int harmonic = 1;           // k of sin/cos(k·q)
-  std::string otherSignal;    // second factor of a product
+  std::string signal;       // dataset signal name: q, qd, qdd, tau, temperature, time
+  int joint = -1;           // -1: the channel's own joint
+  int harmonic = 1;         // k of sin/cos(k·q)
+  std::string otherSignal;  // second factor of a product
   int otherJoint = -1;
-  std::string expression;     // "qd_1", "qd*abs(qd)", "sin(2*q_3)", "qd_0*qd_2"
-  std::string words;          // "joint 1's speed", "its own speed squared, with its sign"
+  std::string expression;  // "qd_1", "qd*abs(qd)", "sin(2*q_3)", "qd_0*qd_2"
+  std::string words;       // "joint 1's speed", "its own speed squared, with its sign"
 };
 
 // The library for one channel. Data without time (gearbox directions, whose channels do not share

@@ -78,7 +78,7 @@ Eigen::Vector3d avoidanceDirection(const Eigen::Vector3d& lineDirection, double 
 
 // The TCP path from start to goal: the straight line with the given detours (none: a LIN move).
 class ArcPath : public TcpPath {
- public:
+public:
   // Throws arcplan::Error for invalid shapes, detours out of order, overlapping, or not fitting
   // between A and B (bx2 <= |AO|, bx3 <= |OB|), and detours on a zero-length line. Its length() is
   // |AB| + the extra length of every detour.
@@ -93,7 +93,7 @@ class ArcPath : public TcpPath {
   // Arc lengths where detour i leaves the line and where it rejoins it.
   std::pair<double, double> detourSpan(std::size_t i) const { return detourSpans_.at(i); }
 
- private:
+private:
   Eigen::Isometry3d start_, goal_;
   std::vector<Detour> detours_;
   Eigen::Vector3d lineDirection_ = Eigen::Vector3d::Zero();

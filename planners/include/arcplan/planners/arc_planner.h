@@ -13,8 +13,8 @@
 //     from the obstacles' geometry (via_points.h), the fastest route found by a lazy search
 //     (route_search.h); where no such route exists, the joint-space fallback: RRTConnect on a
 //     SpaceInformation keeping the planner's margin, its random draws seeded by `seed`, simplified,
-//     each of its segments replaced by a straight TCP line where that validates. lastResult().mode says which ("arc" or "fallback"), cartesianFraction how much of
-//     the TCP path is lines and arcs.
+//     each of its segments replaced by a straight TCP line where that validates. lastResult().mode says which ("arc" or
+//     "fallback"), cartesianFraction how much of the TCP path is lines and arcs.
 // A path keeps `clearance` (or the motion validator's margin if larger) everywhere, except that a
 // start or goal closer than that to an obstacle lowers it to its own clearance.
 // Failures say why (lastResult().reason; also OMPL_INFORM); the status is then ABORT, TIMEOUT when
@@ -60,7 +60,7 @@ struct ArcPlannerResult {
 };
 
 class ArcPlanner : public ompl::base::Planner {
- public:
+public:
   // `collisionModel` names the bodies behind a failed motion and `obstacles` (the scene's) give the
   // via points and detour positions; both must describe the robot and scene of the SpaceInformation's
   // validity checker.
@@ -106,7 +106,7 @@ class ArcPlanner : public ompl::base::Planner {
   void setSeed(unsigned int seed) { seed_ = seed; }
   unsigned int getSeed() const { return seed_; }
 
- private:
+private:
   ompl::base::PlannerStatus fail(ompl::base::PlannerStatus status, const std::string& reason);
   void setSolution(const JointWaypoints& waypoints);
   double checkedParameter(const std::string& name, double value) const;
@@ -127,9 +127,9 @@ class ArcPlanner : public ompl::base::Planner {
   // A path that grazes an obstacle is valid but useless next to people: 1 cm by default.
   double clearance_ = 0.01;
   ArcPlannerResult result_;
-  std::vector<robot::Vector6> solutionJoints_;  // the last solution's waypoints
+  std::vector<robot::Vector6> solutionJoints_;                        // the last solution's waypoints
   mutable std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
-  unsigned int seed_ = 1;  // of the fallback's random draws
+  unsigned int seed_ = 1;                                             // of the fallback's random draws
 };
 
 }  // namespace arcplan::planners

@@ -12,7 +12,7 @@
 namespace arcplan::planners {
 
 class BlendedPath : public TcpPath {
- public:
+public:
   // `vias` between the start's and the goal's positions; `blends[i]` is the tangent length of the
   // corner at vias[i] (m, > 0 and at most maxBlend(i)). Throws arcplan::Error for mismatched sizes,
   // consecutive points closer than 1 mm, non-positive blends or blends that overlap.
@@ -33,7 +33,7 @@ class BlendedPath : public TcpPath {
   // Arc length where leg k (points[k] -> points[k+1]) begins: 0, or where the previous corner's blend ends.
   double legStart(std::size_t k) const { return k == 0 ? 0.0 : blendSpans_.at(k - 1).second; }
 
- private:
+private:
   std::vector<Eigen::Vector3d> points_;
   std::vector<double> blends_;
   std::vector<std::pair<double, double>> blendSpans_;

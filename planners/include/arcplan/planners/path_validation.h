@@ -27,7 +27,7 @@ struct Rejection {
 };
 
 class PathValidator {
- public:
+public:
   using StateCheck = std::function<bool(const robot::Vector6&)>;
   using StopRequest = std::function<bool()>;
   // Certified with `margin` when `certify`, else every waypoint by `waypointValid`. `stop` (the
@@ -49,7 +49,7 @@ class PathValidator {
   Rejection rejection();
   double margin() const { return margin_; }
 
- private:
+private:
   bool validMotion(const robot::Vector6& previous, const robot::Vector6& q);
 
   const collision::CollisionModel& model_;

@@ -29,7 +29,7 @@ struct Route {
 };
 
 class RouteSearch {
- public:
+public:
   // Starts with the straight route start -> goal. `maxViaPoints` bounds a route's via points.
   RouteSearch(const Eigen::Vector3d& start, const Eigen::Vector3d& goal, std::size_t maxViaPoints);
 
@@ -43,7 +43,7 @@ class RouteSearch {
   std::size_t routesTried() const { return tried_; }
   std::size_t routesQueued() const { return queued_; }
 
- private:
+private:
   using Point = std::array<double, 3>;
   using Leg = std::pair<Point, Point>;
   static Leg legOf(const Route& route, std::size_t k);

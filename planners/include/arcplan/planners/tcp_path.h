@@ -30,7 +30,7 @@ struct PathPiece {
 };
 
 class TcpPath {
- public:
+public:
   virtual ~TcpPath() = default;
   // Analytic length (m).
   double length() const { return length_; }
@@ -47,7 +47,7 @@ class TcpPath {
   // the goal. Throws arcplan::Error if resolution is not positive.
   std::vector<PathSample> sample(double resolution) const;
 
- protected:
+protected:
   // The end poses (positions and the orientation rule); then the pieces are appended in order.
   TcpPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal);
   // Pieces shorter than 1e-12 m are left out.
@@ -57,7 +57,7 @@ class TcpPath {
   void appendArc(const Eigen::Vector3d& centre, double radius, const Eigen::Vector3d& towardStart,
                  const Eigen::Vector3d& startTangent, double sweep);
 
- private:
+private:
   const PathPiece& pieceAt(double arcLength) const;
 
   Eigen::Vector3d startPoint_, goalPoint_;

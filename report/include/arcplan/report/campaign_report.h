@@ -11,8 +11,8 @@
 namespace arcplan::report {
 
 struct CampaignReportOptions {
-  double animationRate = 25.0;      // Hz of the link-pose frames of the 3D view
-  std::size_t profileSamples = 300; // at most this many speed-profile / TCP-path samples per planner
+  double animationRate = 25.0;       // Hz of the link-pose frames of the 3D view
+  std::size_t profileSamples = 300;  // at most this many speed-profile / TCP-path samples per planner
 };
 
 // `input` is a campaign folder (with benchmark.db) or a benchmark database. `output` is where the

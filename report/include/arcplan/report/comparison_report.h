@@ -15,7 +15,8 @@ namespace arcplan::report {
 // lower_is_better}], values: {problem: {planner: {base|new: {runs, successes, <metric key>: [values
 // of the successful runs]}}}}, missing: [...]}.
 nlohmann::json comparisonReportData(const benchmarks::CampaignComparison& comparison,
-                                    const benchmarks::CampaignResults& base, const benchmarks::CampaignResults& current);
+                                    const benchmarks::CampaignResults& base,
+                                    const benchmarks::CampaignResults& current);
 
 // Writes the page atomically. Throws arcplan::Error before writing when plotly.js or a page file is missing.
 void writeComparisonReport(const std::filesystem::path& file, const benchmarks::CampaignComparison& comparison,

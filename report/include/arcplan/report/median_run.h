@@ -16,11 +16,11 @@
 namespace arcplan::report {
 
 struct MedianRun {
-  std::string planner;                     // the file name without .csv
+  std::string planner;                       // the file name without .csv
   std::map<std::string, std::string> notes;  // comment lines "key: value" ("run" -> "3")
-  std::vector<double> time, tcpSpeed;      // s, m/s
-  std::vector<Eigen::Vector3d> tcp;        // m
-  std::vector<robot::Vector6> joints;      // rad; empty when the file has no q0..q5 columns
+  std::vector<double> time, tcpSpeed;        // s, m/s
+  std::vector<Eigen::Vector3d> tcp;          // m
+  std::vector<robot::Vector6> joints;        // rad; empty when the file has no q0..q5 columns
 };
 
 // Throws arcplan::Error naming the file and line for a missing column or a malformed number.

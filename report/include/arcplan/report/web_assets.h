@@ -10,15 +10,15 @@
 namespace arcplan::report {
 
 struct InlinedScript {
-  std::string name;     // "plotly.js", shown in the page's "made with" line
-  std::string source;   // the file's text
+  std::string name;    // "plotly.js", shown in the page's "made with" line
+  std::string source;  // the file's text
 };
 
 struct WebAssets {
-  std::string pageTemplate;               // page.html with the {{...}} slots
-  std::string style;                      // report.css
-  std::vector<InlinedScript> libraries;   // in load order
-  std::vector<InlinedScript> pageScripts; // common.js, then robot_view.js + campaign.js, model.js or comparison.js
+  std::string pageTemplate;                // page.html with the {{...}} slots
+  std::string style;                       // report.css
+  std::vector<InlinedScript> libraries;    // in load order
+  std::vector<InlinedScript> pageScripts;  // common.js, then robot_view.js + campaign.js, model.js or comparison.js
 };
 
 enum class ReportKind { Campaign, ModelSession, Comparison };  // Comparison: bench compare --html

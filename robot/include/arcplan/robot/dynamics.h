@@ -17,8 +17,8 @@ namespace arcplan::robot {
 
 // A point mass rigidly attached to the tip link (a tool or a carried part).
 struct Payload {
-  double mass = 0.0;                                         // kg
-  Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();    // m, in the tip link frame
+  double mass = 0.0;                                       // kg
+  Eigen::Vector3d centerOfMass = Eigen::Vector3d::Zero();  // m, in the tip link frame
 };
 
 struct DynamicsParameters {
@@ -29,12 +29,12 @@ struct DynamicsParameters {
 // Scratch space of the Newton–Euler passes; one per thread, reused across calls.
 struct DynamicsData {
   explicit DynamicsData(const RobotModel& model);
-  std::vector<Eigen::Matrix3d> rotationToParent;   // child axes expressed in the parent frame
-  std::vector<Eigen::Vector3d> angularVelocity;    // in the link frame
+  std::vector<Eigen::Matrix3d> rotationToParent;  // child axes expressed in the parent frame
+  std::vector<Eigen::Vector3d> angularVelocity;   // in the link frame
   std::vector<Eigen::Vector3d> angularAcceleration;
-  std::vector<Eigen::Vector3d> linearAcceleration; // of the link origin, gravity folded in (a - g)
-  std::vector<Eigen::Vector3d> force;              // wrench the parent exerts on the link, link frame
-  std::vector<Eigen::Vector3d> moment;             // about the link origin
+  std::vector<Eigen::Vector3d> linearAcceleration;  // of the link origin, gravity folded in (a - g)
+  std::vector<Eigen::Vector3d> force;               // wrench the parent exerts on the link, link frame
+  std::vector<Eigen::Vector3d> moment;              // about the link origin
 };
 
 // τ(q, qd, qdd) by recursive Newton–Euler over every link of the model (a tree ordered parents

@@ -42,9 +42,9 @@ struct CollisionGeometry {
 // included; links behind other moving joints are not.
 struct Link {
   std::string name;
-  int parent = -1;                       // index into RobotModel::links(), -1 for the chain base
+  int parent = -1;  // index into RobotModel::links(), -1 for the chain base
   Eigen::Isometry3d originInParent = Eigen::Isometry3d::Identity();
-  int joint = -1;                        // index of the moving joint into q, -1 if fixed
+  int joint = -1;                                   // index of the moving joint into q, -1 if fixed
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit joint axis in this link's frame
   bool hasInertial = false;
   Inertial inertial;

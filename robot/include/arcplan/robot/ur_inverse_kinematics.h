@@ -43,7 +43,8 @@ public:
   // One branch (numbered as branchOf) of the same closed form, angles in (-pi, pi]; nullopt when
   // that branch cannot reach the pose. Eight times cheaper than solveBranches: what a path tracker
   // that must stay on its start's branch needs.
-  std::optional<Vector6> solveBranch(const Eigen::Isometry3d& tipPose, int branch, double q6AtWristSingularity = 0.0) const;
+  std::optional<Vector6> solveBranch(const Eigen::Isometry3d& tipPose, int branch,
+                                     double q6AtWristSingularity = 0.0) const;
 
   // Every solution inside the joint limits: each branch in all of its 2·pi representations.
   std::vector<Vector6> solveAll(const Eigen::Isometry3d& tipPose) const;
@@ -67,7 +68,8 @@ private:
   struct WristStep;
   TargetFrame targetFrame(const Eigen::Isometry3d& tipPose) const;
   std::optional<ShoulderStep> shoulderStep(const TargetFrame& target, int shoulder) const;
-  WristStep wristStep(const TargetFrame& target, const ShoulderStep& shoulder, int wrist, double q6AtWristSingularity) const;
+  WristStep wristStep(const TargetFrame& target, const ShoulderStep& shoulder, int wrist,
+                      double q6AtWristSingularity) const;
   std::optional<Vector6> elbowStep(const TargetFrame& target, const ShoulderStep& shoulder, const WristStep& wrist,
                                    int elbow) const;
 

@@ -13,8 +13,8 @@ struct MetricDescriptor {
   // Where the value lives in TrajectoryMetrics; nullptr for the solve time, which is not a property
   // of the trajectory (the planner measures it and writes its own run property).
   double TrajectoryMetrics::*member;
-  std::string key;           // JSON key and ranking key, unit last: "tcp_path_length_m"
-  std::string unit;          // SI unit, "1" for ratios
+  std::string key;   // JSON key and ranking key, unit last: "tcp_path_length_m"
+  std::string unit;  // SI unit, "1" for ratios
   // Benchmark run property arcplan writes ("tcp path length REAL"): only [A-Za-z0-9 ] and the SQL
   // type, because ompl_benchmark_statistics pastes it unquoted into SQL; empty when OMPL writes
   // the value itself (the joint path length is OMPL's "solution length").

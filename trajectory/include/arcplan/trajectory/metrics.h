@@ -12,12 +12,12 @@
 namespace arcplan::trajectory {
 
 struct TrajectoryMetrics {
-  double tcpPathLength = 0.0;       // m, TCP curve of the densified path
-  double jointPathLength = 0.0;     // rad, joint-space length of the planner's path
-  double executionTime = 0.0;       // s
-  double meanTcpSpeed = 0.0;        // m/s, tcpPathLength / executionTime
-  double peakTcpSpeed = 0.0;        // m/s, largest sampled TCP speed
-  double timeAboveLimit = 0.0;      // s, time with TCP speed above the trajectory's limit
+  double tcpPathLength = 0.0;    // m, TCP curve of the densified path
+  double jointPathLength = 0.0;  // rad, joint-space length of the planner's path
+  double executionTime = 0.0;    // s
+  double meanTcpSpeed = 0.0;     // m/s, tcpPathLength / executionTime
+  double peakTcpSpeed = 0.0;     // m/s, largest sampled TCP speed
+  double timeAboveLimit = 0.0;   // s, time with TCP speed above the trajectory's limit
   double minClearance = std::numeric_limits<double>::quiet_NaN();  // m, NaN when not computed
   double maxJointSpeedRatio = 0.0;  // max over samples and joints of |qd| / joint speed limit
 };

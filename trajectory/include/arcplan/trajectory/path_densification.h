@@ -22,8 +22,8 @@
 namespace arcplan::trajectory {
 
 struct DensificationOptions {
-  double maxJointStep = 0.01;  // rad, largest change of any joint between consecutive waypoints
-  double maxTcpStep = 0.002;   // m, largest TCP displacement between consecutive waypoints
+  double maxJointStep = 0.01;           // rad, largest change of any joint between consecutive waypoints
+  double maxTcpStep = 0.002;            // m, largest TCP displacement between consecutive waypoints
   double smoothWaypointSpacing = 0.05;  // rad, see above; 0 keeps every segment straight
 };
 

@@ -32,7 +32,8 @@ public:
   Pchip(const std::vector<double>& knots, const Eigen::MatrixXd& values, PchipEnds ends = PchipEnds::ShapePreserving);
 
   // Refits in place (reusing the storage when the sizes do not change).
-  void fit(const std::vector<double>& knots, const Eigen::MatrixXd& values, PchipEnds ends = PchipEnds::ShapePreserving);
+  void fit(const std::vector<double>& knots, const Eigen::MatrixXd& values,
+           PchipEnds ends = PchipEnds::ShapePreserving);
 
   std::size_t knotCount() const { return knots_.size(); }
   Eigen::Index dimension() const { return values_.cols(); }
@@ -52,7 +53,8 @@ public:
                 Eigen::Ref<Eigen::VectorXd> secondDerivative) const;
   // Same on a known interval (skips the search; for sequential sampling).
   void evaluateInInterval(std::size_t interval, double t, Eigen::Ref<Eigen::VectorXd> value,
-                          Eigen::Ref<Eigen::VectorXd> firstDerivative, Eigen::Ref<Eigen::VectorXd> secondDerivative) const;
+                          Eigen::Ref<Eigen::VectorXd> firstDerivative,
+                          Eigen::Ref<Eigen::VectorXd> secondDerivative) const;
 
 private:
   std::vector<double> knots_;

@@ -19,13 +19,13 @@
 namespace arcplan::trajectory {
 
 struct TimeScalingOptions {
-  double maxTcpSpeed = 0.25;                  // m/s, ISO/TS 15066 collaborative limit used by the thesis
-  double riseTime = 0.2;                      // s, time to reach maxTcpSpeed from rest (and to brake)
-  std::optional<double> maxTcpAcceleration;   // m/s², replaces maxTcpSpeed / riseTime when set
-  double checkTimeStep = 0.002;               // s, grid of the verification and of the output samples
-  double maxJointStep = 0.01;                 // rad, densification
-  double maxTcpStep = 0.002;                  // m, densification
-  double smoothWaypointSpacing = 0.05;        // rad, densification: closer waypoints are joined smoothly
+  double maxTcpSpeed = 0.25;                 // m/s, ISO/TS 15066 collaborative limit used by the thesis
+  double riseTime = 0.2;                     // s, time to reach maxTcpSpeed from rest (and to brake)
+  std::optional<double> maxTcpAcceleration;  // m/s², replaces maxTcpSpeed / riseTime when set
+  double checkTimeStep = 0.002;              // s, grid of the verification and of the output samples
+  double maxJointStep = 0.01;                // rad, densification
+  double maxTcpStep = 0.002;                 // m, densification
+  double smoothWaypointSpacing = 0.05;       // rad, densification: closer waypoints are joined smoothly
 };
 
 // Throws arcplan::Error naming the option for invalid options (non-positive or non-finite speed,

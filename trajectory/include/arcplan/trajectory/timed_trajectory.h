@@ -20,15 +20,15 @@ struct TimedTrajectory {
   std::vector<double> knotTimes;  // s, strictly increasing, starts at 0
 
   // Samples on a uniform grid from 0 to duration() (step ≤ the check step).
-  std::vector<double> time;                    // s
-  std::vector<robot::Vector6> position;        // rad
-  std::vector<robot::Vector6> velocity;        // rad/s
-  std::vector<robot::Vector6> acceleration;    // rad/s² (PCHIP is C¹: jumps at knots)
-  std::vector<double> tcpSpeed;                // m/s, |linear velocity of the tip link|
-  std::vector<Eigen::Vector3d> tcpPosition;    // m, base frame
+  std::vector<double> time;                  // s
+  std::vector<robot::Vector6> position;      // rad
+  std::vector<robot::Vector6> velocity;      // rad/s
+  std::vector<robot::Vector6> acceleration;  // rad/s² (PCHIP is C¹: jumps at knots)
+  std::vector<double> tcpSpeed;              // m/s, |linear velocity of the tip link|
+  std::vector<Eigen::Vector3d> tcpPosition;  // m, base frame
 
   // The limits the trajectory was scaled for (metrics compare against them).
-  double tcpSpeedLimit = 0.0;       // m/s
+  double tcpSpeedLimit = 0.0;                                // m/s
   robot::Vector6 jointSpeedLimits = robot::Vector6::Zero();  // rad/s
 
   double duration() const { return knotTimes.empty() ? 0.0 : knotTimes.back(); }
