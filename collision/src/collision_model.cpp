@@ -11,6 +11,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_formatting.h"
 #include "model_implementation.h"
+#include "sphere_prefilter.h"
 
 namespace arcplan::collision {
 namespace {
@@ -44,6 +45,10 @@ Workspace::Workspace(const CollisionModel& model)
       motionPairs(implementationOf(model).groups.size()),
       motionJoints(model.robot().dof()) {
   distanceOrder.reserve(implementationOf(model).partPairs.size());
+  if (const auto& prefilter = implementationOf(model).prefilter) {
+    spheres = std::make_shared<SphereWorkspace>();
+    prefilter->prepare(*spheres);
+  }
 }
 
 void updateRobot(const CollisionModel& model, Workspace& data, const robot::JointRef& q) {
@@ -318,6 +323,8 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
   checkAllowedNames(allowed_, *robot_, obstacleNames_);
   addPairGroups(allowed_, linkNames_, obstacleNames_, impl);
   detail::computeMotionBounds(*robot_, impl);
+  if (options_.spherePrefilter)
+    impl.prefilter = std::make_shared<const detail::SpherePrefilter>(*robot_, impl, linkNames_);
 }
 
 CollisionModel::~CollisionModel() = default;
@@ -343,8 +350,9 @@ std::string describeCollisions(const CollisionReport& report) {
   return joinText(pairs, ", ");
 }
 
-bool isCollisionFree(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
-  Workspace& data = detail::workspaceOf(workspace);
+namespace detail {
+
+bool exactlyCollisionFree(const CollisionModel& model, Workspace& data, const robot::JointRef& q) {
   updateRobot(model, data, q);
   const Implementation& impl = detail::implementationOf(model);
   for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
@@ -355,11 +363,21 @@ bool isCollisionFree(const CollisionModel& model, CollisionData& workspace, cons
   return true;
 }
 
+}  // namespace detail
+
+bool isCollisionFree(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
+  Workspace& data = detail::workspaceOf(workspace);
+  const Implementation& impl = detail::implementationOf(model);
+  if (impl.prefilter && detail::sphereFree(*impl.prefilter, *data.spheres, q)) return true;
+  return detail::exactlyCollisionFree(model, data, q);
+}
+
 CollisionReport collide(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
   Workspace& data = detail::workspaceOf(workspace);
-  updateRobot(model, data, q);
   const Implementation& impl = detail::implementationOf(model);
   CollisionReport report;
+  if (impl.prefilter && detail::sphereFree(*impl.prefilter, *data.spheres, q)) return report;
+  updateRobot(model, data, q);
   for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
     for (const auto& group : *groups) {
       if (groupCollides(model, data, group)) report.collisions.push_back(namesOf(model, group));

@@ -4,6 +4,7 @@
 // groups, the motion bounds, the per-thread workspace, and the building blocks of a query (forward
 // kinematics, bounding-volume gaps, exact part distances).
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -13,6 +14,9 @@
 #include "parts.h"
 
 namespace arcplan::collision::detail {
+
+class SpherePrefilter;  // sphere_prefilter.h
+struct SphereWorkspace;
 
 // Robot parts move with their link; obstacle parts are fixed in base_link, so their bounding
 // volumes are precomputed in world coordinates.
@@ -51,6 +55,8 @@ struct ModelImplementation {
     int first, second;
   };
   std::vector<PartPair> partPairs;
+  // The SIMD sphere prefilter in front of FCL (null with CollisionModelOptions::spherePrefilter off).
+  std::shared_ptr<const SpherePrefilter> prefilter;
 };
 
 using Implementation = ModelImplementation;
@@ -77,6 +83,7 @@ struct Workspace {
   };
   std::vector<MotionPair> motionPairs;
   robot::JointVector motionJoints;  // the configuration on the motion being checked
+  std::shared_ptr<SphereWorkspace> spheres;  // the prefilter's scratch (null without a prefilter)
 };
 
 // Forward kinematics and the link capsules; part poses are computed on first use (ensurePart), so

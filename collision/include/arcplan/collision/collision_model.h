@@ -57,6 +57,10 @@ struct CollisionModelOptions {
   bool convexDistance = true;
   // false sends every non-allowed pair straight to FCL (the naive baseline, for measurements).
   bool broadPhase = true;
+  // A SIMD sphere prefilter answers "free" for states (and certifies motions) whose conservative
+  // spheres are clear of everything; all else goes to FCL, so answers are the same either way
+  // (docs/collision.md). false: FCL only (`--collision exact-only`).
+  bool spherePrefilter = true;
 };
 
 class CollisionModel {

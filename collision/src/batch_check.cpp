@@ -1,0 +1,37 @@
+#include "arcplan/collision/batch_check.h"
+
+#include <algorithm>
+#include <string>
+
+#include "arcplan/common/error.h"
+#include "model_implementation.h"
+#include "sphere_prefilter.h"
+
+namespace arcplan::collision {
+
+void areCollisionFree(const CollisionModel& model, CollisionData& data, const Eigen::Ref<const Eigen::MatrixXd>& states,
+                      std::vector<bool>& free) {
+  if (states.rows() != model.robot().dof()) {
+    throw Error("collision query: expected states with " + std::to_string(model.robot().dof()) + " joint values, got " +
+                std::to_string(states.rows()));
+  }
+  const auto& prefilter = detail::implementationOf(model).prefilter;
+  detail::Workspace& workspace = detail::workspaceOf(data);
+  const Eigen::Index count = states.cols();
+  free.assign(static_cast<std::size_t>(count), false);
+  for (Eigen::Index first = 0; first < count; first += detail::prefilter::kLanes) {
+    const int lanes = static_cast<int>(std::min<Eigen::Index>(detail::prefilter::kLanes, count - first));
+    std::uint32_t cleared = 0;
+    if (prefilter) {
+      for (int lane = 0; lane < lanes; ++lane)
+        prefilter->loadLane(*workspace.spheres, lane, states.col(first + lane).data());
+      cleared = prefilter->freeLanes(*workspace.spheres, lanes);
+    }
+    for (int lane = 0; lane < lanes; ++lane) {
+      free[first + lane] =
+          ((cleared >> lane) & 1u) != 0 || detail::exactlyCollisionFree(model, workspace, states.col(first + lane));
+    }
+  }
+}
+
+}  // namespace arcplan::collision

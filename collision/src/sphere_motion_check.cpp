@@ -1,0 +1,133 @@
+// Batched, certified motion checks through the sphere prefilter (sphere_prefilter.h): the
+// certificate of motion_check.cpp with states evaluated 8 at a time, coarse to fine.
+//
+// On the motion q(s) = qa + s (qb − qa) a pair whose geometry is at least g apart at s_i stays more
+// than minimumClearance + kSlack apart for |s − s_i| <= r_i = (g − minimumClearance − kSlack) / rate,
+// rate being the motion bound of motion_check.h (how fast the pair's distance can shrink per unit of
+// s). The spheres give g (their gaps, less the float margin) for 8 states per kernel call. An interval
+// between two samples is covered for a pair when r_i + r_j >= s_j − s_i; the motion is free when every
+// interval is covered for every pair. Uncovered intervals get new samples inside them, 8 per batch
+// spread over them, until all are covered, a state's spheres come too close (FCL then checks that
+// state: a collision rejects the motion) or kMaxSamples are spent.
+#include <algorithm>
+#include <limits>
+
+#include "model_implementation.h"
+#include "sphere_prefilter.h"
+
+namespace arcplan::collision::detail {
+namespace {
+
+using prefilter::kLanes;
+
+// Beyond minimumClearance: the exact check measures distances to 1e-6 m, so with 10 µm more every
+// pair is measured at least minimumClearance apart by it as well and it accepts the motion too.
+constexpr double kSlack = 1e-5;
+// Samples before the exact check takes over (a motion grazing an obstacle would need many).
+constexpr int kMaxSamples = 256;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct Rake {
+  const CollisionModel& model;
+  const SpherePrefilter& prefilter;
+  Workspace& data;
+  SphereWorkspace& work;
+  const robot::JointRef& qa;
+  const robot::JointRef& qb;
+  double minimumClearance;
+  int pairs;
+
+  // Evaluates work.pending (sample indices, spacing h to their neighbours); Unknown while all is well.
+  SphereMotion evaluate(double h) {
+    for (std::size_t first = 0; first < work.pending.size(); first += kLanes) {
+      const int lanes = static_cast<int>(std::min<std::size_t>(kLanes, work.pending.size() - first));
+      for (int lane = 0; lane < kLanes; ++lane) {
+        const double s = work.samples[work.pending[first + std::min(lane, lanes - 1)]];
+        data.motionJoints = qa + s * (qb - qa);
+        prefilter.loadLane(work, lane, data.motionJoints.data());
+      }
+      for (int p = 0; p < pairs; ++p)
+        work.enough[p] = static_cast<float>(minimumClearance + kSlack + work.rates[p] * h + prefilter.margin());
+      prefilter.gaps(work);
+      for (int lane = 0; lane < lanes; ++lane) {
+        const int sample = work.pending[first + lane];
+        bool clear = true;
+        for (int p = 0; p < pairs; ++p) {
+          const double room = static_cast<double>(work.gaps[p * kLanes + lane]) - minimumClearance - kSlack;
+          clear = clear && room > 0.0;
+          work.reach[sample * pairs + p] = work.rates[p] > 0.0 ? room / work.rates[p] : kInfinity;
+        }
+        if (clear) continue;
+        data.motionJoints = qa + work.samples[sample] * (qb - qa);
+        return exactlyCollisionFree(model, data, data.motionJoints) ? SphereMotion::Unknown : SphereMotion::Collides;
+      }
+    }
+    return SphereMotion::Free;
+  }
+
+  bool covered(int i, int j) const {
+    const double length = work.samples[j] - work.samples[i];
+    for (int p = 0; p < pairs; ++p) {
+      if (work.reach[i * pairs + p] + work.reach[j * pairs + p] < length) return false;
+    }
+    return true;
+  }
+
+  int addSample(double s) {
+    work.samples.push_back(s);
+    work.reach.resize(work.samples.size() * pairs);
+    work.pending.push_back(static_cast<int>(work.samples.size()) - 1);
+    return static_cast<int>(work.samples.size()) - 1;
+  }
+};
+
+}  // namespace
+
+SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const robot::JointRef& qa,
+                          const robot::JointRef& qb, double minimumClearance) {
+  const Implementation& impl = implementationOf(model);
+  if (!impl.prefilter || !impl.prefilter->usable()) return SphereMotion::Unknown;
+  const SpherePrefilter& prefilter = *impl.prefilter;
+  SphereWorkspace& work = *data.spheres;
+  const int bodies = prefilter.tables().bodyCount, pairs = prefilter.pairCount();
+  const Eigen::VectorXd step = (qb - qa).cwiseAbs();
+  work.rates.resize(pairs);
+  for (int b = 0; b < bodies; ++b) work.rates[b] = impl.jointReach.row(b).dot(step);
+  for (int p = bodies; p < pairs; ++p) work.rates[p] = impl.selfGroups[p - bodies].relativeReach.dot(step);
+
+  Rake rake{model, prefilter, data, work, qa, qb, minimumClearance, pairs};
+  work.samples.clear();
+  work.reach.clear();
+  work.pending.clear();
+  work.intervals.clear();
+  for (int k = 0; k < kLanes; ++k) rake.addSample(static_cast<double>(k) / (kLanes - 1));
+  for (int k = 0; k + 1 < kLanes; ++k) work.intervals.emplace_back(k, k + 1);
+  double h = 1.0 / (kLanes - 1);
+  while (true) {
+    const SphereMotion outcome = rake.evaluate(h);
+    if (outcome != SphereMotion::Free) return outcome;
+    work.pending.clear();
+    work.next.clear();
+    for (const auto& interval : work.intervals)
+      if (!rake.covered(interval.first, interval.second)) work.next.push_back(interval);
+    if (work.next.empty()) return SphereMotion::Free;
+    // Spread a batch's worth of new samples over the uncovered intervals (at least one each).
+    const int each = std::max(1, kLanes / static_cast<int>(work.next.size()));
+    if (static_cast<int>(work.samples.size() + work.next.size() * each) > kMaxSamples) return SphereMotion::Unknown;
+    work.intervals.clear();
+    h = 0.0;
+    for (const auto& [i, j] : work.next) {
+      const double from = work.samples[i], length = (work.samples[j] - from) / (each + 1);
+      h = std::max(h, length);
+      int previous = i;
+      for (int k = 1; k <= each; ++k) {
+        const int sample = rake.addSample(from + k * length);
+        work.intervals.emplace_back(previous, sample);
+        previous = sample;
+      }
+      work.intervals.emplace_back(previous, j);
+    }
+  }
+}
+
+}  // namespace arcplan::collision::detail

@@ -1,0 +1,236 @@
+#include "sphere_prefilter.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace arcplan::collision::detail {
+namespace {
+
+using prefilter::kLanes;
+
+// The float rounding margin. With u = 2^-24 (float unit roundoff), per link row of the chain (sphere_kernel.h):
+//   - sin and cos are within 5e-7 of the truth (tests), the angle's rounding to float adds at most
+//     pi·u = 2e-7; kTrigError = 2e-6 is taken for both together;
+//   - the local rotation c0 + cos·c1 + sin·c2 (c0, c1, c2 from an orthonormal origin rotation, so
+//     each of norm <= 1) is off by at most 2·kTrigError + 12u in each entry, the product with the
+//     parent's rotation adds 9u per entry; summed over the 9 entries (a bound of the spectral norm)
+//     the rotation error grows by at most 2·kTrigError + 64u per moving link, 64u per fixed one;
+//   - the translation is off by the parent's (rotation error × |offset|) plus 8u × the chain's
+//     reach so far (3 products and 3 sums of terms no larger than that reach);
+// a sphere centre c of a link is then off by eT + eR·|c| + 8u·(reach + |c|); the distance from an
+// obstacle's frame (one more rotation and translation, a square root) adds 16u × the extent of the
+// robot and obstacles; a sum of two radii 2u × their sum. The kernels require the spheres to be
+// clear by twice all that, and the radii are rounded up to float.
+constexpr double kUnitRoundoff = 1.0 / 16777216.0;
+constexpr double kTrigError = 2e-6;
+
+// Cross-product matrix [a]× (row-major into out) and the row-major copy of a 3×3 matrix.
+void rowMajor(const Eigen::Matrix3d& m, float* out) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out[3 * i + j] = static_cast<float>(m(i, j));
+}
+
+float roundedUp(double x) {
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) >= x ? f : std::nextafter(f, INFINITY);
+}
+
+// The bounding volume of one obstacle part in its own frame, as a kernel row placed in the world.
+prefilter::ObstacleRow obstacleRow(const Part& part) {
+  prefilter::ObstacleRow row{};
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  switch (part.solid.kind) {
+    case Solid::Kind::Sphere:
+      row.kind = 0;
+      row.size[0] = roundedUp(part.solid.radius);
+      break;
+    case Solid::Kind::Cylinder:
+      row.kind = 2;
+      row.size[0] = roundedUp(part.solid.radius);
+      row.size[1] = roundedUp(part.solid.halfLength);
+      break;
+    case Solid::Kind::Box:
+      row.kind = 1;
+      for (int i = 0; i < 3; ++i) row.size[i] = roundedUp(part.solid.halfExtents[i]);
+      break;
+    default: {
+      // A mesh: the box around its vertices (or its capsule) in its own frame.
+      Eigen::Vector3d lower = Eigen::Vector3d::Constant(INFINITY), upper = -lower;
+      for (const auto& p : part.hullPoints) {
+        lower = lower.cwiseMin(p);
+        upper = upper.cwiseMax(p);
+      }
+      if (part.hullPoints.empty()) {
+        lower = part.capsule.start.cwiseMin(part.capsule.end).array() - part.capsule.radius;
+        upper = part.capsule.start.cwiseMax(part.capsule.end).array() + part.capsule.radius;
+      }
+      row.kind = 1;
+      centre = (lower + upper) / 2.0;
+      for (int i = 0; i < 3; ++i) row.size[i] = roundedUp((upper[i] - lower[i]) / 2.0 + 1e-7);
+    }
+  }
+  // local = R^T (p - t) - centre
+  const Eigen::Matrix3d toLocal = part.offset.linear().transpose();
+  rowMajor(toLocal, row.rotation);
+  const Eigen::Vector3d translation = -(toLocal * part.offset.translation()) - centre;
+  for (int i = 0; i < 3; ++i) row.translation[i] = static_cast<float>(translation[i]);
+  return row;
+}
+
+prefilter::LinkRow linkRow(const robot::Link& link, int parentRow) {
+  prefilter::LinkRow row{};
+  row.parent = parentRow;
+  row.joint = link.joint;
+  const Eigen::Matrix3d origin = link.originInParent.linear();
+  if (link.joint >= 0) {
+    const Eigen::Vector3d a = link.axis.normalized();
+    Eigen::Matrix3d cross;
+    cross << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+    const Eigen::Matrix3d along = origin * a * a.transpose();
+    rowMajor(along, row.c0);
+    rowMajor(origin - along, row.c1);
+    rowMajor(origin * cross, row.c2);
+  } else {
+    rowMajor(origin, row.c0);
+  }
+  for (int i = 0; i < 3; ++i) row.t[i] = static_cast<float>(link.originInParent.translation()[i]);
+  return row;
+}
+
+}  // namespace
+
+SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImplementation& impl,
+                                 const std::vector<std::string>& linkNames)
+    : spheres_(robotSphereModel(impl, linkNames)) {
+  // Chain rows: links with geometry and their ancestors, parents first.
+  const auto& links = robot.links();
+  std::vector<bool> needed(links.size(), false);
+  for (const int link : impl.linkCapsuleLink)
+    for (int l = link; l >= 0 && !needed[l]; l = links[l].parent) needed[l] = true;
+  std::vector<int> rowOf(links.size(), -1);
+  std::vector<double> eR, eT, reach;
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    if (!needed[l]) continue;
+    const int parent = links[l].parent < 0 ? -1 : rowOf[links[l].parent];
+    rowOf[l] = static_cast<int>(links_.size());
+    links_.push_back(linkRow(links[l], parent));
+    const double offset = links[l].originInParent.translation().norm();
+    const double parentR = parent < 0 ? 0.0 : eR[parent], parentT = parent < 0 ? 0.0 : eT[parent];
+    reach.push_back((parent < 0 ? 0.0 : reach[parent]) + offset);
+    eR.push_back(parentR + (links[l].joint >= 0 ? 2.0 * kTrigError : 0.0) + 64.0 * kUnitRoundoff);
+    eT.push_back(parentT + parentR * offset + 8.0 * kUnitRoundoff * reach.back());
+  }
+  // Bodies and their fine spheres.
+  double centreError = 0.0, robotExtent = 0.0, radiusSum = 0.0;
+  for (std::size_t b = 0; b < spheres_->size(); ++b) {
+    const BodySpheres& body = (*spheres_)[b];
+    const int row = rowOf[impl.linkCapsuleLink[b]];
+    prefilter::BodyRow bodyRow{};
+    bodyRow.link = row;
+    for (int i = 0; i < 3; ++i) bodyRow.coarse[i] = static_cast<float>(body.coarse.centre[i]);
+    bodyRow.coarse[3] = roundedUp(body.coarse.radius);
+    bodyRow.fineBegin = static_cast<int>(fineX_.size());
+    bodyRow.fineCount = static_cast<int>(body.fine.size());
+    std::vector<Sphere> all = body.fine;
+    all.push_back(body.coarse);
+    for (const auto& s : all) {
+      const double c = s.centre.norm();
+      centreError = std::max(centreError, eT[row] + eR[row] * c + 8.0 * kUnitRoundoff * (reach[row] + c));
+      robotExtent = std::max(robotExtent, reach[row] + c + s.radius);
+      radiusSum = std::max(radiusSum, 2.0 * s.radius);
+    }
+    for (const auto& s : body.fine) {
+      fineX_.push_back(static_cast<float>(s.centre.x()));
+      fineY_.push_back(static_cast<float>(s.centre.y()));
+      fineZ_.push_back(static_cast<float>(s.centre.z()));
+      fineR_.push_back(roundedUp(s.radius));
+    }
+    usable_ = usable_ || !body.fine.empty();
+    if (bodyRow.fineCount > prefilter::kMaxFinePerBody) usable_ = false;
+    bodies_.push_back(bodyRow);
+  }
+  // Obstacles: the bounding volume of every part, and per body the parts of its non-allowed obstacles.
+  double obstacleExtent = 0.0;
+  for (const Part& part : impl.obstacleParts) {
+    obstacles_.push_back(obstacleRow(part));
+    const auto& row = obstacles_.back();
+    obstacleExtent =
+        std::max(obstacleExtent,
+                 part.offset.translation().norm() + Eigen::Vector3f(row.size[0], row.size[1], row.size[2]).norm() +
+                     Eigen::Vector3f(row.translation[0], row.translation[1], row.translation[2]).norm());
+  }
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    bodies_[b].obstacleBegin = static_cast<int>(obstacleIndex_.size());
+    for (const auto& group : impl.obstacleGroups) {
+      if (group.firstBody == static_cast<int>(b))
+        obstacleIndex_.insert(obstacleIndex_.end(), group.obstacleParts.begin(), group.obstacleParts.end());
+    }
+    bodies_[b].obstacleCount = static_cast<int>(obstacleIndex_.size()) - bodies_[b].obstacleBegin;
+  }
+  for (const auto& group : impl.selfGroups) selfPairs_.insert(selfPairs_.end(), {group.firstBody, group.secondBody});
+  if (links_.size() > static_cast<std::size_t>(prefilter::kMaxLinks)) usable_ = false;
+
+  centreErrorBound_ = centreError;
+  const double rounding = 16.0 * kUnitRoundoff * (robotExtent + obstacleExtent) + 2.0 * kUnitRoundoff * radiusSum;
+  tables_.margin = roundedUp(2.0 * (2.0 * centreError + rounding));
+  tables_.dof = robot.dof();
+  tables_.linkCount = static_cast<int>(links_.size());
+  tables_.bodyCount = static_cast<int>(bodies_.size());
+  tables_.obstacleCount = static_cast<int>(obstacles_.size());
+  tables_.selfPairCount = static_cast<int>(selfPairs_.size() / 2);
+  tables_.links = links_.data();
+  tables_.bodies = bodies_.data();
+  tables_.fineX = fineX_.data();
+  tables_.fineY = fineY_.data();
+  tables_.fineZ = fineZ_.data();
+  tables_.fineR = fineR_.data();
+  tables_.obstacles = obstacles_.data();
+  tables_.obstacleIndex = obstacleIndex_.data();
+  tables_.selfPairs = selfPairs_.data();
+#ifdef ARCPLAN_HAVE_AVX2_KERNEL
+  __builtin_cpu_init();
+  avx2_ = __builtin_cpu_supports("avx2");
+#endif
+}
+
+void SpherePrefilter::prepare(SphereWorkspace& workspace) const {
+  workspace.q.assign(static_cast<std::size_t>(tables_.dof) * kLanes, 0.0f);
+  workspace.gaps.assign(static_cast<std::size_t>(pairCount()) * kLanes, 0.0f);
+  workspace.enough.assign(static_cast<std::size_t>(pairCount()), 0.0f);
+}
+
+void SpherePrefilter::loadLane(SphereWorkspace& workspace, int lane, const double* joints) const {
+  for (int j = 0; j < tables_.dof; ++j) {
+    // The kernels' sine and cosine take |angle| <= pi: larger angles are reduced in double first.
+    double angle = joints[j];
+    if (!(std::abs(angle) <= M_PI)) angle = std::remainder(angle, 2.0 * M_PI);
+    workspace.q[static_cast<std::size_t>(j * kLanes + lane)] = static_cast<float>(angle);
+  }
+}
+
+std::uint32_t SpherePrefilter::freeLanes(SphereWorkspace& workspace, int lanes) const {
+  if (!usable_) return 0;
+  // Unused lanes repeat the first state, so the kernels never see garbage.
+  for (int j = 0; j < tables_.dof; ++j) {
+    for (int lane = lanes; lane < kLanes; ++lane) workspace.q[j * kLanes + lane] = workspace.q[j * kLanes];
+  }
+#ifdef ARCPLAN_HAVE_AVX2_KERNEL
+  if (avx2_ && lanes > 1) return prefilter::freeLanesAvx2(tables_, workspace.q.data(), lanes);
+#endif
+  return prefilter::freeLanesPortable(tables_, workspace.q.data(), lanes);
+}
+
+void SpherePrefilter::gaps(SphereWorkspace& workspace) const {
+#ifdef ARCPLAN_HAVE_AVX2_KERNEL
+  if (avx2_) return prefilter::gapsAvx2(tables_, workspace.q.data(), workspace.enough.data(), workspace.gaps.data());
+#endif
+  prefilter::gapsPortable(tables_, workspace.q.data(), workspace.enough.data(), workspace.gaps.data());
+}
+
+bool sphereFree(const SpherePrefilter& prefilter, SphereWorkspace& workspace, const robot::JointRef& q) {
+  if (q.size() != prefilter.dof()) return false;
+  prefilter.loadLane(workspace, 0, q.data());
+  return prefilter.freeLanes(workspace, 1) != 0;
+}
+
+}  // namespace arcplan::collision::detail

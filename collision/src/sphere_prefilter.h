@@ -1,0 +1,84 @@
+#pragma once
+// The SIMD sphere prefilter in front of FCL (docs/collision.md, "Sphere prefilter"): the robot's
+// sphere model (sphere_model.h) and the obstacles' bounding volumes as float tables, the float
+// rounding margin, and the kernels (sphere_kernel.h) chosen at run time: AVX2 where the CPU has it,
+// the portable path otherwise; both take the same decisions. The prefilter only ever says "free"
+// (every sphere clear of every checked obstacle and sphere by more than the margin) or "ask FCL";
+// with spheres that contain the geometry that keeps every answer exactly FCL's.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "arcplan/robot/kinematics.h"
+#include "sphere_model.h"
+#include "sphere_tables.h"
+
+namespace arcplan::collision::detail {
+
+// Per-thread scratch of the prefilter queries (part of CollisionData's workspace).
+struct SphereWorkspace {
+  std::vector<float> q;       // dof × kLanes, joint-major
+  std::vector<float> gaps;    // pairs × kLanes
+  std::vector<float> enough;  // per pair
+  // Batched motion checks (sphere_motion_check.cpp): sample fractions, per sample and pair the
+  // fraction its clearance certifies each way, and the work list of intervals.
+  std::vector<double> rates, samples, reach;
+  std::vector<std::pair<int, int>> intervals, next;
+  std::vector<int> pending;
+};
+
+class SpherePrefilter {
+public:
+  SpherePrefilter(const robot::RobotModel& robot, const ModelImplementation& impl,
+                  const std::vector<std::string>& linkNames);
+
+  // false for a robot beyond the kernels' fixed limits (sphere_tables.h): every query goes to FCL.
+  bool usable() const { return usable_; }
+  bool usesAvx2() const { return avx2_; }
+  const prefilter::Tables& tables() const { return tables_; }
+  const SphereModel& spheres() const { return *spheres_; }
+  // Bound of the float error of a sphere centre in the world frame [m] (tests compare it with the
+  // measured error), and the margin the kernels require beyond it (sphere_prefilter.cpp).
+  double centreErrorBound() const { return centreErrorBound_; }
+  double margin() const { return tables_.margin; }
+  // Pairs of gaps(): one per body (against its obstacles), then the self pairs (ModelImplementation::selfGroups order).
+  int pairCount() const { return tables_.bodyCount + tables_.selfPairCount; }
+  int dof() const { return tables_.dof; }
+
+  void prepare(SphereWorkspace& workspace) const;
+  // Puts joint vector `joints` (dof values) into lane `lane` of workspace.q.
+  void loadLane(SphereWorkspace& workspace, int lane, const double* joints) const;
+  // Lanes (bit k) of the first `lanes` loaded states that the spheres prove free.
+  std::uint32_t freeLanes(SphereWorkspace& workspace, int lanes) const;
+  // workspace.gaps for all kLanes loaded lanes (workspace.enough set per pair).
+  void gaps(SphereWorkspace& workspace) const;
+
+private:
+  bool usable_ = false, avx2_ = false;
+  std::shared_ptr<const SphereModel> spheres_;
+  std::vector<prefilter::LinkRow> links_;
+  std::vector<prefilter::BodyRow> bodies_;
+  std::vector<float> fineX_, fineY_, fineZ_, fineR_;
+  std::vector<prefilter::ObstacleRow> obstacles_;
+  std::vector<int> obstacleIndex_, selfPairs_;
+  prefilter::Tables tables_;
+  double centreErrorBound_ = 0.0;
+};
+
+// Whether the spheres prove q free (false: FCL decides). q must have robot().dof() values.
+bool sphereFree(const SpherePrefilter& prefilter, SphereWorkspace& workspace, const robot::JointRef& q);
+
+// What the spheres tell about a straight motion qa -> qb (sphere_motion_check.cpp).
+enum class SphereMotion {
+  Free,      // every pair keeps more than minimumClearance all along: the certified check accepts it too
+  Collides,  // a state on it collides (FCL said so): the certified check rejects it too
+  Unknown    // the certified check decides
+};
+SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const robot::JointRef& qa,
+                          const robot::JointRef& qb, double minimumClearance);
+
+// isCollisionFree without the prefilter (collision_model.cpp).
+bool exactlyCollisionFree(const CollisionModel& model, Workspace& data, const robot::JointRef& q);
+
+}  // namespace arcplan::collision::detail

@@ -1,0 +1,71 @@
+#pragma once
+// The sphere prefilter's data as the SIMD kernels see it: plain float tables behind raw pointers,
+// owned by SpherePrefilter (sphere_prefilter.h). This header includes nothing from the standard
+// library but <cstdint>'s type names on purpose: it is also compiled into the AVX2 translation
+// unit, where any inline function
+// shared with the rest of the library could be emitted with AVX2 instructions and picked by the
+// linker for a CPU without them.
+#include <cstdint>
+
+namespace arcplan::collision::detail::prefilter {
+
+// Lanes of one batch: 8 float lanes of AVX2 (the portable path computes the same 8 lanes one by one).
+constexpr int kLanes = 8;
+// Fixed bounds that keep the kernels' scratch space on the stack; SpherePrefilter switches itself
+// off (every query goes to FCL) for a robot beyond them.
+constexpr int kMaxLinks = 32;
+constexpr int kMaxFinePerBody = 128;
+
+// One link of the chain: rotation in the parent frame = c0 + cos q·c1 + sin q·c2 (row-major 3×3;
+// c1 = c2 = 0 for a fixed joint), translation t in the parent frame. Parents come first.
+struct LinkRow {
+  int parent;  // row index, -1 for the base
+  int joint;   // index into q, -1 for a fixed joint
+  float c0[9], c1[9], c2[9];
+  float t[3];
+};
+
+// A link with collision geometry: its coarse sphere (x, y, z, r in the link frame) and its fine
+// spheres (rows fineBegin .. fineBegin + fineCount of the fine arrays), the obstacles it is checked
+// against (obstacleIndex[obstacleBegin .. + obstacleCount]).
+struct BodyRow {
+  int link;
+  float coarse[4];
+  int fineBegin, fineCount;
+  int obstacleBegin, obstacleCount;
+};
+
+// An obstacle's bounding volume: a world point p is at local = rotation·p + translation.
+// kind 0: sphere of radius size[0] at the local origin; 1: box of half extents size; 2: cylinder
+// along local z of radius size[0] and half length size[1].
+struct ObstacleRow {
+  int kind;
+  float rotation[9];
+  float translation[3];
+  float size[3];
+};
+
+struct Tables {
+  int dof = 0;
+  int linkCount = 0, bodyCount = 0, obstacleCount = 0, selfPairCount = 0;
+  const LinkRow* links = nullptr;
+  const BodyRow* bodies = nullptr;
+  const float *fineX = nullptr, *fineY = nullptr, *fineZ = nullptr, *fineR = nullptr;
+  const ObstacleRow* obstacles = nullptr;
+  const int* obstacleIndex = nullptr;
+  const int* selfPairs = nullptr;  // (body a, body b) pairs, 2 per pair
+  float margin = 0.0f;             // clearance that covers every float rounding [m] (sphere_prefilter.cpp)
+};
+
+// q: dof × kLanes floats, joint-major (q[j * kLanes + lane]), each |q| <= pi + 1e-6.
+// The lanes whose spheres are clear of every checked obstacle and every checked body pair by more
+// than the margin: bit k set = lane k is free (only lanes < `lanes` are reported).
+std::uint32_t freeLanesPortable(const Tables& tables, const float* q, int lanes);
+std::uint32_t freeLanesAvx2(const Tables& tables, const float* q, int lanes);
+// Lower bounds of the pairs' distances, already reduced by the margin: for each body its smallest
+// distance to its obstacles, then each self pair, as gaps[pair * kLanes + lane]. A pair whose coarse
+// bound reaches enough[pair] in every lane keeps that bound; otherwise its fine spheres are measured.
+void gapsPortable(const Tables& tables, const float* q, const float* enough, float* gaps);
+void gapsAvx2(const Tables& tables, const float* q, const float* enough, float* gaps);
+
+}  // namespace arcplan::collision::detail::prefilter

@@ -1,0 +1,267 @@
+// The sphere prefilter (collision/src/sphere_prefilter.h) against independent references: the
+// spheres contain random points of every part's convex hull (not only the vertices the generator
+// checks); the float kernels' gaps agree with the same gaps computed here in double from
+// robot::forwardKinematics, within the error bound the margin is built on; the AVX2 and portable
+// kernels and every batch composition give the same decisions; and every answer (states one by one,
+// batches, certified motions) is FCL's, compared with a model built with the prefilter off, on the
+// thesis scenes and seeded random scenes with boxes, cylinders, spheres and meshes.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "arcplan/collision/batch_check.h"
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/motion_check.h"
+#include "arcplan/common/error.h"
+#include "arcplan/common/resources.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/primitive_mesh.h"
+#include "model_implementation.h"  // collision/src
+#include "sphere_prefilter.h"
+
+namespace {
+
+using namespace arcplan::collision;
+using Eigen::VectorXd;
+
+Scene sceneFile(const char* name) { return loadScene(arcplan::dataDirectory() / "scenes" / name); }
+
+VectorXd randomState(const arcplan::robot::RobotModel& robot, std::mt19937_64& random) {
+  VectorXd q(robot.dof());
+  for (int j = 0; j < robot.dof(); ++j) {
+    const auto& limits = robot.joints()[j].limits;
+    q[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
+  }
+  return q;
+}
+
+// A seeded workcell: the table of the thesis and `count` obstacles of every kind in reach of the arm.
+Scene randomScene(unsigned seed, int count) {
+  Scene scene = sceneFile("thesis_free.yaml");
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k = 0; k < count; ++k) {
+    Obstacle o;
+    o.name = "random_" + std::to_string(k);
+    const double radius = 0.02 + 0.12 * unit(random);
+    switch (k % 4) {
+      case 0:
+        o.shape = Obstacle::Shape::Sphere;
+        o.radius = radius;
+        break;
+      case 1:
+        o.shape = Obstacle::Shape::Box;
+        o.size = Eigen::Vector3d(0.05 + 0.3 * unit(random), 0.05 + 0.3 * unit(random), 0.05 + 0.3 * unit(random));
+        break;
+      case 2:
+        o.shape = Obstacle::Shape::Cylinder;
+        o.radius = radius;
+        o.length = 0.05 + 0.4 * unit(random);
+        break;
+      default:
+        o.shape = Obstacle::Shape::Mesh;
+        o.meshData = std::make_shared<arcplan::robot::TriangleMesh>(
+            arcplan::robot::cylinderMesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.1, 0.2, 0.3), radius, 12));
+    }
+    const double angle = 2.0 * M_PI * unit(random), distance = 0.35 + 0.8 * unit(random);
+    o.pose = Eigen::Translation3d(distance * std::cos(angle), distance * std::sin(angle), 0.1 + 0.9 * unit(random)) *
+             Eigen::AngleAxisd(3.0 * unit(random), Eigen::Vector3d(unit(random), unit(random), 1.0).normalized());
+    scene.obstacles.push_back(std::move(o));
+  }
+  return scene;
+}
+
+std::shared_ptr<const CollisionModel> modelOf(const Scene& scene, bool prefilter) {
+  CollisionModelOptions options;
+  options.spherePrefilter = prefilter;
+  return makeCollisionModel(scene, options);
+}
+
+const detail::SpherePrefilter& prefilterOf(const CollisionModel& model) {
+  return *detail::implementationOf(model).prefilter;
+}
+
+TEST(SphereModel, ContainsRandomPointsOfEveryPartsHull) {
+  const auto model = modelOf(sceneFile("thesis_obstacle.yaml"), true);
+  const auto& impl = detail::implementationOf(*model);
+  const auto& spheres = prefilterOf(*model).spheres();
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked = 0;
+  for (const auto& part : impl.robotParts) {
+    const auto& body = spheres[static_cast<std::size_t>(part.body)];
+    ASSERT_FALSE(part.hullPoints.empty());
+    std::uniform_int_distribution<std::size_t> pick(0, part.hullPoints.size() - 1);
+    for (int sample = 0; sample < 2000; ++sample) {
+      // A point of the hull: a random convex combination of up to 4 vertices (edges, faces, inside).
+      const int corners = 1 + sample % 4;
+      Eigen::Vector3d point = Eigen::Vector3d::Zero();
+      double total = 0.0;
+      for (int c = 0; c < corners; ++c) {
+        const double weight = unit(random);
+        point += weight * part.hullPoints[pick(random)];
+        total += weight;
+      }
+      const Eigen::Vector3d inLink = part.offset * (point / total);
+      const bool inside = std::any_of(body.fine.begin(), body.fine.end(),
+                                      [&](const detail::Sphere& s) { return (inLink - s.centre).norm() <= s.radius; });
+      ASSERT_TRUE(inside) << "link " << model->linkNames()[part.body] << " point " << inLink.transpose();
+      ASSERT_LE((inLink - body.coarse.centre).norm(), body.coarse.radius);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 10000);
+  // Within the kernels' fixed limit per link.
+  for (std::size_t b = 0; b < spheres.size(); ++b) EXPECT_LE(spheres[b].fine.size(), 128u);
+}
+
+// Distance from a point to the thesis obstacles' volumes, in double, written here.
+double boxDistance(const Eigen::Vector3d& local, const Eigen::Vector3d& half) {
+  return (local.cwiseAbs() - half).cwiseMax(0.0).norm();
+}
+
+TEST(SpherePrefilter, FloatGapsAgreeWithDoubleWithinTheMargin) {
+  const Scene scene = sceneFile("thesis_obstacle.yaml");
+  const auto model = modelOf(scene, true);
+  const auto& prefilter = prefilterOf(*model);
+  const auto& impl = detail::implementationOf(*model);
+  const auto& spheres = prefilter.spheres();
+  detail::SphereWorkspace work;
+  prefilter.prepare(work);
+  std::fill(work.enough.begin(), work.enough.end(), 1e30f);  // fine spheres for every pair
+  arcplan::robot::KinematicsData kinematics(model->robot());
+  std::mt19937_64 random(9);
+  double largestError = 0.0;
+  for (int batch = 0; batch < 200; ++batch) {
+    std::vector<VectorXd> qs;
+    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
+      qs.push_back(randomState(model->robot(), random));
+      prefilter.loadLane(work, lane, qs.back().data());
+    }
+    prefilter.gaps(work);
+    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
+      arcplan::robot::forwardKinematics(model->robot(), qs[lane], kinematics);
+      for (std::size_t b = 0; b < spheres.size(); ++b) {
+        const auto& pose = kinematics.linkPoses[impl.linkCapsuleLink[b]];
+        double expected = INFINITY;
+        for (const auto& group : impl.obstacleGroups) {
+          if (group.firstBody != static_cast<int>(b)) continue;
+          const Obstacle& obstacle = scene.obstacles[group.secondBody];
+          for (const auto& s : spheres[b].fine) {
+            const Eigen::Vector3d local = obstacle.pose.inverse() * (pose * s.centre);
+            const double d = obstacle.shape == Obstacle::Shape::Box ? boxDistance(local, obstacle.size / 2.0)
+                                                                    : local.norm() - obstacle.radius;
+            expected = std::min(expected, d - s.radius);
+          }
+        }
+        if (!std::isfinite(expected)) continue;
+        const double measured = work.gaps[b * detail::prefilter::kLanes + lane] + prefilter.margin();
+        largestError = std::max(largestError, std::abs(measured - expected));
+      }
+    }
+  }
+  // The margin is twice the derived bound: the measured error must stay below half of it.
+  EXPECT_LT(largestError, prefilter.margin() / 2.0);
+  EXPECT_GT(largestError, 0.0);         // float really differs from double: the comparison measured something
+  EXPECT_LT(prefilter.margin(), 1e-3);  // and the margin stays small enough to clear most free states
+}
+
+TEST(SpherePrefilter, KernelsAndBatchesTakeTheSameDecisions) {
+  const auto model = modelOf(randomScene(3, 12), true);
+  const auto& prefilter = prefilterOf(*model);
+  const auto& tables = prefilter.tables();
+  detail::SphereWorkspace work, single;
+  prefilter.prepare(work);
+  prefilter.prepare(single);
+  std::mt19937_64 random(17);
+  std::vector<float> portableGaps(work.gaps.size()), avx2Gaps(work.gaps.size());
+  int freeCount = 0;
+  for (int batch = 0; batch < 300; ++batch) {
+    std::vector<VectorXd> qs;
+    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
+      qs.push_back(randomState(model->robot(), random));
+      prefilter.loadLane(work, lane, qs.back().data());
+    }
+    const std::uint32_t portable = detail::prefilter::freeLanesPortable(tables, work.q.data(), 8);
+    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
+      prefilter.loadLane(single, 0, qs[lane].data());
+      const bool alone = detail::prefilter::freeLanesPortable(tables, single.q.data(), 1) != 0;
+      ASSERT_EQ(alone, ((portable >> lane) & 1u) != 0) << "batch " << batch << " lane " << lane;
+      freeCount += alone;
+    }
+    std::fill(work.enough.begin(), work.enough.end(), static_cast<float>(batch % 5) * 0.05f);
+    detail::prefilter::gapsPortable(tables, work.q.data(), work.enough.data(), portableGaps.data());
+#if defined(__x86_64__)
+    ASSERT_EQ(prefilter.usesAvx2(), __builtin_cpu_supports("avx2") != 0);
+    if (prefilter.usesAvx2()) {
+      ASSERT_EQ(detail::prefilter::freeLanesAvx2(tables, work.q.data(), 8), portable) << "batch " << batch;
+      detail::prefilter::gapsAvx2(tables, work.q.data(), work.enough.data(), avx2Gaps.data());
+      ASSERT_EQ(portableGaps, avx2Gaps) << "batch " << batch;  // the very same bits
+    }
+#endif
+  }
+  EXPECT_GT(freeCount, 300);  // the prefilter cleared states, so the comparison compared decisions
+}
+
+// Every answer of the prefiltered model is the exact model's, for random states (one by one and in
+// batches) and certified motions; the prefilter must also have answered a good share itself.
+void expectSameAnswers(const Scene& scene, unsigned seed, int states, int motions) {
+  const auto fast = modelOf(scene, true), exact = modelOf(scene, false);
+  CollisionData fastData(*fast), exactData(*exact);
+  auto& work = *detail::workspaceOf(fastData).spheres;
+  std::mt19937_64 random(seed);
+  Eigen::MatrixXd batch(fast->robot().dof(), states);
+  int cleared = 0, valid = 0;
+  for (int k = 0; k < states; ++k) {
+    batch.col(k) = randomState(fast->robot(), random);
+    const bool expected = isCollisionFree(*exact, exactData, batch.col(k));
+    ASSERT_EQ(isCollisionFree(*fast, fastData, batch.col(k)), expected) << scene.name << " state " << k;
+    ASSERT_EQ(collide(*fast, fastData, batch.col(k)).valid, expected);
+    cleared += detail::sphereFree(prefilterOf(*fast), work, batch.col(k));
+    valid += expected;
+  }
+  std::vector<bool> free;
+  areCollisionFree(*fast, fastData, batch, free);
+  for (int k = 0; k < states; ++k) ASSERT_EQ(free[k], isCollisionFree(*exact, exactData, batch.col(k))) << k;
+  EXPECT_GT(cleared, valid / 4) << scene.name << ": the prefilter cleared " << cleared << " of " << valid;
+
+  int freeMotions = 0, certified = 0;
+  for (int k = 0; k < motions; ++k) {
+    VectorXd qa = randomState(fast->robot(), random);
+    if (!isCollisionFree(*exact, exactData, qa)) continue;
+    const VectorXd qb = qa + 0.1 * (randomState(fast->robot(), random) - qa) * (1 + k % 4);
+    const bool expected = isMotionCollisionFree(*exact, exactData, qa, qb);
+    ASSERT_EQ(isMotionCollisionFree(*fast, fastData, qa, qb), expected) << scene.name << " motion " << k;
+    double fastLast = -1.0, exactLast = -1.0;
+    ASSERT_EQ(isMotionCollisionFree(*fast, fastData, qa, qb, &fastLast),
+              isMotionCollisionFree(*exact, exactData, qa, qb, &exactLast));
+    EXPECT_EQ(fastLast, exactLast);
+    freeMotions += expected;
+    certified +=
+        detail::sphereMotion(*fast, detail::workspaceOf(fastData), qa, qb, 0.001) == detail::SphereMotion::Free;
+  }
+  // Motions were free, and the spheres certified some themselves (the batched check was exercised).
+  EXPECT_GE(freeMotions, 5) << scene.name;
+  EXPECT_GT(certified, freeMotions / 4) << scene.name << ": " << certified << " of " << freeMotions;
+}
+
+TEST(SpherePrefilter, SameAnswersAsFclOnTheThesisScenes) {
+  expectSameAnswers(sceneFile("thesis_obstacle.yaml"), 1, 3000, 150);
+  expectSameAnswers(sceneFile("thesis_free.yaml"), 2, 3000, 150);
+}
+
+TEST(SpherePrefilter, SameAnswersAsFclWithBoxesCylindersSpheresAndMeshes) {
+  for (unsigned seed = 10; seed < 13; ++seed) expectSameAnswers(randomScene(seed, 5), seed, 2000, 100);
+}
+
+TEST(SpherePrefilter, ExactOnlyModelHasNoPrefilterAndABatchNeedsTheRightRowCount) {
+  const auto exact = modelOf(sceneFile("thesis_obstacle.yaml"), false);
+  EXPECT_EQ(detail::implementationOf(*exact).prefilter, nullptr);
+  CollisionData data(*exact);
+  std::vector<bool> free;
+  EXPECT_THROW(areCollisionFree(*exact, data, Eigen::MatrixXd::Zero(5, 3), free), arcplan::Error);
+}
+
+}  // namespace
