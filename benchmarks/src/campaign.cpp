@@ -28,8 +28,7 @@ void writeProblemFiles(const Suite& suite, const std::filesystem::path& out) {
   for (const auto& problem : suite.problems) {
     if (suite.generator) {
       const auto file = out / "scenes" / (problem.name + ".yaml");
-      if (problem.kind != "scene file" && !std::filesystem::exists(file))
-        writeFileAtomically(file, sceneToYaml(problem.scene));
+      if (problem.kind != "scene file" && !std::filesystem::exists(file)) collision::writeScene(problem.scene, file);
     }
     if (detail::isPlotProblem(suite, problem)) {
       const auto file = detail::pathsDirectory(out, suite, problem) / "scene.json";

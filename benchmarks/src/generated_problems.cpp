@@ -6,8 +6,6 @@
 #include <optional>
 #include <random>
 
-#include <yaml-cpp/yaml.h>
-
 #include "arcplan/common/error.h"
 #include "problem_factory.h"
 
@@ -155,12 +153,6 @@ Problem shelfProblem(const ProblemFactory& factory, std::uint64_t seed, int inde
               " for seed " + std::to_string(seed));
 }
 
-void emitVector(YAML::Emitter& out, const double* values, int count) {
-  out << YAML::Flow << YAML::BeginSeq;
-  for (int i = 0; i < count; ++i) out << values[i] + 0.0;  // + 0.0 writes -0 as 0
-  out << YAML::EndSeq;
-}
-
 }  // namespace
 
 std::vector<Problem> generateProblems(const GeneratorSettings& settings) {
@@ -189,83 +181,6 @@ std::vector<Problem> generateProblems(const GeneratorSettings& settings) {
     for (int i = 0; i < count; ++i) problems.push_back(make(factory, settings.seed, i));
   }
   return problems;
-}
-
-std::string sceneToYaml(const collision::Scene& scene) {
-  YAML::Emitter out;
-  out.SetDoublePrecision(15);  // readable (0.05, not 0.050000000000000003) and within 1e-15 of the value
-  out << YAML::BeginMap;
-  out << YAML::Key << "name" << YAML::Value << scene.name;
-  out << YAML::Key << "robot" << YAML::Value;
-  if (scene.robotUrdf.empty()) {
-    out << "ur10e";
-  } else {
-    out << YAML::BeginMap << YAML::Key << "urdf" << YAML::Value << scene.robotUrdf.string() << YAML::EndMap;
-  }
-  out << YAML::Key << "obstacles" << YAML::Value << YAML::BeginSeq;
-  for (const auto& obstacle : scene.obstacles) {
-    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << obstacle.name;
-    switch (obstacle.shape) {
-      case collision::Obstacle::Shape::Sphere:
-        out << YAML::Key << "sphere" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "radius"
-            << YAML::Value << obstacle.radius << YAML::EndMap;
-        break;
-      case collision::Obstacle::Shape::Box:
-        out << YAML::Key << "box" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "size" << YAML::Value;
-        emitVector(out, obstacle.size.data(), 3);
-        out << YAML::EndMap;
-        break;
-      case collision::Obstacle::Shape::Cylinder:
-        out << YAML::Key << "cylinder" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "radius"
-            << YAML::Value << obstacle.radius << YAML::Key << "length" << YAML::Value << obstacle.length
-            << YAML::EndMap;
-        break;
-      case collision::Obstacle::Shape::Mesh: {
-        out << YAML::Key << "mesh" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "file" << YAML::Value
-            << obstacle.meshFile.string() << YAML::Key << "scale" << YAML::Value;
-        emitVector(out, obstacle.meshScale.data(), 3);
-        out << YAML::EndMap;
-        break;
-      }
-    }
-    const Vector3d position = obstacle.pose.translation();
-    const Vector3d rpy = robot::rpyFromRotation(obstacle.pose.linear());
-    out << YAML::Key << "position" << YAML::Value;
-    emitVector(out, position.data(), 3);
-    out << YAML::Key << "rpy" << YAML::Value;
-    emitVector(out, rpy.data(), 3);
-    out << YAML::EndMap;
-  }
-  out << YAML::EndSeq;
-  if (!scene.allowedCollisions.empty()) {
-    out << YAML::Key << "allowed_collisions" << YAML::Value << YAML::BeginSeq;
-    for (const auto& [first, second] : scene.allowedCollisions) {
-      out << YAML::Flow << YAML::BeginSeq << first << second << YAML::EndSeq;
-    }
-    out << YAML::EndSeq;
-  }
-  out << YAML::Key << "queries" << YAML::Value << YAML::BeginSeq;
-  for (const auto& query : scene.queries) {
-    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << query.name;
-    for (const auto& [key, endpoint] : {std::pair{"start", &query.start}, {"goal", &query.goal}}) {
-      out << YAML::Key << key << YAML::Value << YAML::BeginMap;
-      if (endpoint->joints) {
-        out << YAML::Key << "joints" << YAML::Value;
-        emitVector(out, endpoint->joints->data(), 6);
-      } else if (endpoint->pose) {
-        out << YAML::Key << "pose" << YAML::Value;
-        emitVector(out, endpoint->pose->data(), 6);
-        if (endpoint->seed) {
-          out << YAML::Key << "seed" << YAML::Value;
-          emitVector(out, endpoint->seed->data(), 6);
-        }
-      }
-      out << YAML::EndMap;
-    }
-    out << YAML::EndMap;
-  }
-  out << YAML::EndSeq << YAML::EndMap;
-  return std::string(out.c_str()) + "\n";
 }
 
 }  // namespace arcplan::benchmarks

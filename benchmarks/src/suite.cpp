@@ -6,11 +6,11 @@
 #include <limits>
 #include <set>
 
-#include <yaml-cpp/yaml.h>
-
 #include "arcplan/benchmarks/generated_problems.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
+#include "arcplan/common/yaml_reading.h"
+#include "moveit_suite_entry.h"
 
 namespace arcplan::benchmarks {
 namespace {
@@ -18,93 +18,53 @@ namespace {
 // Bounds that keep a typo from starting a campaign of months or generating problems for hours.
 constexpr long long kMaximumGeneratedPerKind = 1000;
 
-// Reading context for messages: "suites/x.yaml:12: field 'runs': ..."
+// Reading context for messages: "suites/x.yaml:12:3: runs: must be between 1 and 100000".
 struct SuiteReader {
-  std::filesystem::path file;
-
-  std::string at(const YAML::Node& node) const {
-    const auto mark = node.Mark();
-    return file.string() + (mark.line >= 0 ? ":" + std::to_string(mark.line + 1) : std::string());
-  }
+  YamlReader yaml;
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
-    throw Error(at(node) + ": " + message);
+    throw Error(yaml.position(node) + ": " + message);
   }
 
-  void expectKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what) const {
-    if (!map.IsMap()) fail(map, what + " must be a map");
-    for (const auto& entry : map) {
-      const auto key = entry.first.as<std::string>();
-      if (allowed.count(key) == 0) {
-        std::string list;
-        for (const auto& name : allowed) list += (list.empty() ? "" : ", ") + name;
-        fail(entry.first, "unknown field '" + key + "' in " + what + " (expected one of: " + list + ")");
-      }
-    }
+  // The value of `key` in `map` ("what" names the map in messages, e.g. "problem").
+  YAML::Node field(const YAML::Node& map, const std::string& key, const std::string& what) const {
+    return yaml.required(map, key.c_str(), what);
   }
 
   std::string text(const YAML::Node& map, const std::string& key, const std::string& what) const {
-    const auto node = map[key];
-    if (!node) fail(map, what + ": missing field '" + key + "'");
-    if (!node.IsScalar()) fail(node, what + ": field '" + key + "' must be a text value");
-    return node.as<std::string>();
+    return yaml.text(field(map, key, what), what + "." + key);
   }
 
   std::string name(const YAML::Node& map, const std::string& key, const std::string& what) const {
     auto value = text(map, key, what);
     if (!isPlainName(value)) {
-      fail(map[key], what + ": field '" + key + "' is '" + value +
-                         "', expected a plain name of letters, digits and _ . + - (it names files and log entries)");
+      yaml.fail(map[key], what + "." + key,
+                "'" + value + "' is not a plain name of letters, digits and _ . + - (it names files and log entries)");
     }
     return value;
   }
 
   double positive(const YAML::Node& map, const std::string& key, const std::string& what) const {
-    const auto node = map[key];
-    double value = 0.0;
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(node, what + ": field '" + key + "' must be a number");
-    }
-    if (!std::isfinite(value) || value <= 0.0) fail(node, what + ": field '" + key + "' must be > 0");
-    return value;
+    return yaml.positive(field(map, key, what), what + "." + key);
   }
 
   // A length in metres, >= 0 and below a metre (more would leave no room to move).
   double distance(const YAML::Node& map, const std::string& key, const std::string& what) const {
-    const auto node = map[key];
-    double value = 0.0;
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(node, what + ": field '" + key + "' must be a number (m)");
-    }
-    if (!std::isfinite(value) || value < 0.0 || value >= 1.0)
-      fail(node, what + ": field '" + key + "' must be in [0, 1) m");
+    const auto node = field(map, key, what);
+    const double value = yaml.number(node, what + "." + key);
+    if (value < 0.0 || value >= 1.0) yaml.fail(node, what + "." + key, "must be in [0, 1) m");
     return value;
   }
 
   long long count(const YAML::Node& map, const std::string& key, const std::string& what, long long minimum,
                   long long maximum) const {
-    const auto node = map[key];
-    long long value = 0;
-    try {
-      value = node.as<long long>();
-    } catch (const YAML::Exception&) {
-      fail(node, what + ": field '" + key + "' must be a whole number");
-    }
-    if (value < minimum || value > maximum) {
-      fail(node, what + ": field '" + key + "' must be between " + std::to_string(minimum) + " and " +
-                     std::to_string(maximum));
-    }
-    return value;
+    return yaml.wholeNumber(field(map, key, what), what + "." + key, minimum, maximum);
   }
 
   std::filesystem::path scenePath(const YAML::Node& problem) const {
     const std::filesystem::path given = text(problem, "scene", "problem");
     if (given.is_absolute()) return given;
-    const auto besideSuite = file.parent_path() / given;
+    const auto besideSuite = yaml.file().parent_path() / given;
     if (std::filesystem::exists(besideSuite)) return besideSuite;
     const auto inData = resolveDataPath(given);
     if (std::filesystem::exists(inData)) return inData;
@@ -113,7 +73,7 @@ struct SuiteReader {
   }
 
   Problem problemFromFile(const YAML::Node& node) const {
-    expectKeys(node, {"name", "scene", "query"}, "problem");
+    yaml.checkKeys(node, "problem", {"name", "scene", "query"});
     Problem problem;
     problem.name = name(node, "name", "problem");
     problem.kind = "scene file";
@@ -136,22 +96,21 @@ struct SuiteReader {
   PlannerConfiguration planner(const YAML::Node& node) const {
     PlannerConfiguration configuration;
     if (node.IsScalar()) {  // "- RRTConnect": the planner with its defaults, labelled by its name
-      configuration.label = node.as<std::string>();
+      configuration.label = yaml.text(node, "planner");
       configuration.planner = configuration.label;
       if (!isPlainName(configuration.label))
         fail(node, "planner name '" + configuration.label + "' is not a plain name");
       return configuration;
     }
-    expectKeys(node, {"name", "planner", "params"}, "planner");
+    yaml.checkKeys(node, "planner", {"name", "planner", "params"});
     configuration.label = name(node, "name", "planner");
     configuration.planner = node["planner"] ? text(node, "planner", "planner") : configuration.label;
     if (const auto params = node["params"]) {
-      if (!params.IsMap()) fail(params, "planner '" + configuration.label + "': params must be a map name: value");
+      const std::string field = "planner '" + configuration.label + "'.params";
+      yaml.expectMap(params, field);
       for (const auto& entry : params) {
-        if (!entry.second.IsScalar())
-          fail(entry.second, "planner '" + configuration.label + "': parameter '" + entry.first.as<std::string>() +
-                                 "' must be a single value");
-        configuration.parameters[entry.first.as<std::string>()] = entry.second.as<std::string>();
+        const auto key = yaml.text(entry.first, field);
+        configuration.parameters[key] = yaml.text(entry.second, field + "." + key);
       }
     }
     return configuration;
@@ -170,10 +129,10 @@ struct SuiteReader {
         {"tall_pillars", &settings.tallPillars},
         {"deep_shelves", &settings.deepShelves},
     };
-    std::set<std::string> keys{"seed"};
-    for (const auto& [key, field] : counts) keys.insert(key);
-    expectKeys(node, keys, "generate");
-    if (!node["seed"]) fail(node, "generate: missing field 'seed' (problems must be reproducible)");
+    std::vector<std::string> keys{"seed"};
+    for (const auto& [key, field] : counts) keys.emplace_back(key);
+    yaml.checkKeys(node, "generate", keys);
+    if (!node["seed"]) fail(node, "generate: missing 'seed' (problems must be reproducible)");
     settings.seed =
         static_cast<std::uint64_t>(count(node, "seed", "generate", 0, std::numeric_limits<long long>::max()));
     for (const auto& [key, field] : counts) {
@@ -202,17 +161,15 @@ const Problem& Suite::problem(const std::string& wanted) const {
 
 namespace {
 
-Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
-  const SuiteReader reader{file};
+Suite readSuite(const SuiteReader& reader, const YAML::Node& root) {
   if (!root || !root.IsMap())
-    throw Error(file.string() + ": a suite must be a YAML map (name, runs, problems, planners)");
-  reader.expectKeys(root,
-                    {"name", "description", "runs", "time_limit", "budget", "v_max", "clearance", "problems",
-                     "generate", "planners", "plots"},
-                    "suite");
+    throw Error(reader.yaml.file().string() + ": a suite must be a YAML map (name, runs, problems, planners)");
+  reader.yaml.checkKeys(root, "suite",
+                        {"name", "description", "runs", "time_limit", "budget", "v_max", "clearance", "problems",
+                         "generate", "moveit_problems", "planners", "plots"});
 
   Suite suite;
-  suite.sourceFile = file;
+  suite.sourceFile = reader.yaml.file();
   suite.name = reader.name(root, "name", "suite");
   if (root["description"]) suite.description = reader.text(root, "description", "suite");
   if (root["runs"]) suite.runs = static_cast<unsigned>(reader.count(root, "runs", "suite", 1, kMaximumRuns));
@@ -231,8 +188,9 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
     suite.generator = reader.generator(generate);
     for (auto& problem : generateProblems(*suite.generator)) suite.problems.push_back(std::move(problem));
   }
+  if (const auto moveit = root["moveit_problems"]) detail::addMoveItSuiteEntry(reader.yaml, moveit, suite);
   if (suite.problems.empty())
-    reader.fail(root, "suite '" + suite.name + "' has no problems (give 'problems' or 'generate')");
+    reader.fail(root, "suite '" + suite.name + "' has no problems (give 'problems', 'generate' or 'moveit_problems')");
   std::set<std::string> problemNames;
   for (const auto& problem : suite.problems) {
     if (!problemNames.insert(problem.name).second)
@@ -254,7 +212,7 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
   if (const auto plots = root["plots"]) {
     if (!plots.IsSequence()) reader.fail(plots, "plots must be a list of problem names");
     for (const auto& node : plots) {
-      const auto problem = node.as<std::string>();
+      const auto problem = reader.yaml.text(node, "plots");
       if (problemNames.count(problem) == 0)
         reader.fail(node, "plots: no problem named '" + problem + "' in this suite");
       suite.plotProblems.push_back(problem);
@@ -268,12 +226,13 @@ Suite readSuite(const std::filesystem::path& file, const YAML::Node& root) {
 Suite loadSuite(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file))
     throw Error("suite file " + file.string() + " not found (or not a file)");
-  // Any yaml-cpp exception (a syntax error, or a conversion the reader did not anticipate, such as
-  // a map where a name is expected) becomes an arcplan::Error at its line.
+  const SuiteReader reader{YamlReader(file)};
+  // The reader checks every node's kind before it uses it; a yaml-cpp exception it did not anticipate
+  // still becomes an arcplan::Error at its line.
   try {
-    return readSuite(file, YAML::LoadFile(file.string()));
+    return readSuite(reader, reader.yaml.load("suite file"));
   } catch (const YAML::Exception& e) {
-    throw Error(file.string() + ":" + std::to_string(e.mark.line + 1) + ": not a valid suite: " + e.msg);
+    throw Error(reader.yaml.position(e.mark) + ": not a valid suite: " + e.msg);
   }
 }
 

@@ -1,8 +1,8 @@
 #include "arcplan/collision/allowed_collisions.h"
 
 #include "arcplan/common/error.h"
+#include "arcplan/common/yaml_reading.h"
 #include "arcplan/common/resources.h"
-#include "yaml_reader.h"
 
 namespace arcplan::collision {
 namespace {
@@ -47,7 +47,7 @@ AllowedCollisionMatrix adjacentLinkPairs(const robot::RobotModel& model) {
 }
 
 AllowedCollisionMatrix loadAllowedCollisions(const std::filesystem::path& file) {
-  const detail::YamlReader yaml(file);
+  const YamlReader yaml(file);
   const YAML::Node root = yaml.load("allowed-collisions file");
   if (!root.IsMap()) yaml.fail(root, "allowed-collisions file", "expected a mapping with key allowed_collisions");
   yaml.checkKeys(root, "allowed-collisions file", {"robot", "generator", "allowed_collisions"});

@@ -6,10 +6,10 @@
 #include <set>
 
 #include "arcplan/common/error.h"
+#include "arcplan/common/yaml_reading.h"
 #include "arcplan/robot/package_path.h"
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/robot_model.h"
-#include "yaml_reader.h"
 
 namespace arcplan::collision {
 namespace {
@@ -69,6 +69,11 @@ public:
   }
 
 private:
+  Eigen::Vector3d positiveVector(const YAML::Node& node, const std::string& field) const {
+    const auto values = yaml_.positives(node, field, 3);
+    return {values[0], values[1], values[2]};
+  }
+
   robot::Vector6 vector6(const YAML::Node& node, const std::string& field) const {
     const auto values = yaml_.numbers(node, field, 6);
     return Eigen::Map<const robot::Vector6>(values.data());
@@ -129,7 +134,7 @@ private:
       yaml_.expectMap(box, named + ".box");
       yaml_.checkKeys(box, named + ".box", {"size"});
       obstacle.shape = Obstacle::Shape::Box;
-      obstacle.size = yaml_.positiveVector(yaml_.required(box, "size", named + ".box"), named + ".box.size");
+      obstacle.size = positiveVector(yaml_.required(box, "size", named + ".box"), named + ".box.size");
     } else if (const auto cylinder = node["cylinder"]) {
       yaml_.expectMap(cylinder, named + ".cylinder");
       yaml_.checkKeys(cylinder, named + ".cylinder", {"radius", "length"});
@@ -146,7 +151,7 @@ private:
       const auto fileNode = yaml_.required(mesh, "file", named + ".mesh");
       if (const auto scale = mesh["scale"]) {
         obstacle.meshScale = scale.IsSequence()
-                                 ? yaml_.positiveVector(scale, named + ".mesh.scale")
+                                 ? positiveVector(scale, named + ".mesh.scale")
                                  : Eigen::Vector3d::Constant(yaml_.positive(scale, named + ".mesh.scale"));
       }
       try {
@@ -228,7 +233,7 @@ private:
     return query;
   }
 
-  detail::YamlReader yaml_;
+  YamlReader yaml_;
   std::set<std::string> linkNames_;
 };
 

@@ -35,7 +35,7 @@ GeneratorSettings smallSettings(std::uint64_t seed) {
 
 std::vector<std::string> asYaml(const std::vector<Problem>& problems) {
   std::vector<std::string> documents;
-  for (const auto& problem : problems) documents.push_back(sceneToYaml(problem.scene));
+  for (const auto& problem : problems) documents.push_back(collision::sceneToYaml(problem.scene));
   return documents;
 }
 
@@ -67,8 +67,8 @@ TEST(GeneratedProblems, FamiliesAreIndependentStreams) {
   const auto more = generateProblems(settings);
   ASSERT_EQ(more.size(), problemsOfSeed7().size() + 1);
   for (std::size_t i = 0; i < 4; ++i) {
-    EXPECT_EQ(sceneToYaml(more[more.size() - 1 - i].scene),
-              sceneToYaml(problemsOfSeed7()[problemsOfSeed7().size() - 1 - i].scene));
+    EXPECT_EQ(collision::sceneToYaml(more[more.size() - 1 - i].scene),
+              collision::sceneToYaml(problemsOfSeed7()[problemsOfSeed7().size() - 1 - i].scene));
   }
 }
 
@@ -224,7 +224,7 @@ TEST(GeneratedProblems, SceneYamlReadsBackAsTheSameScene) {
   for (const auto& problem : problemsOfSeed7()) {
     SCOPED_TRACE(problem.name);
     const auto file = dir / (problem.name + ".yaml");
-    writeFileAtomically(file, sceneToYaml(problem.scene));
+    writeFileAtomically(file, collision::sceneToYaml(problem.scene));
     const auto loaded = collision::loadScene(file);
     ASSERT_EQ(loaded.obstacles.size(), problem.scene.obstacles.size());
     for (std::size_t i = 0; i < loaded.obstacles.size(); ++i) {

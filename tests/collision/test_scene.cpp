@@ -76,10 +76,10 @@ TEST(Scene, ThesisFreeSceneIsTheObstacleSceneWithoutTheParticle) {
   EXPECT_EQ(*free.query("A_to_B").goal.pose, *obstacle.query("A_to_B").goal.pose);
 }
 
-TEST(Scene, ReadsEveryShapeRpyExpressionsAndJointQueries) {
-  const auto dir = arcplan::testing::freshTempDirectory("scene_shapes");
+// A scene with every shape (the mesh a tiny ASCII STL so it needs no binary fixture), an rpy
+// expression, an allowed pair and a joint query.
+std::filesystem::path everyShapeScene(const std::filesystem::path& dir) {
   arcplan::robot::TriangleMesh mesh = arcplan::robot::cylinderMesh({0, 0, -1}, {0, 0, 1}, 0.5, 8);
-  // A tiny ASCII STL so the mesh obstacle needs no binary fixture.
   std::ofstream stl(dir / "post.stl");
   stl << "solid post\n";
   for (const auto& t : mesh.triangles) {
@@ -100,8 +100,15 @@ queries:
   - name: joints
     start: {joints: [0, -pi/2, 0, -pi/2, 0, 0]}
     goal: {joints: [0.1, -1, 1, -1, 1, 0.5]}
+  - name: pose
+    start: {pose: [0.4, -0.4, 0.25, 0, -pi, pi/2], seed: [0, -1.5, 1.5, -1.5, -1.5, 0]}
+    goal: {pose: [0.5, 0.4, 0.46, 0, -pi, pi/2]}
 )");
-  const Scene scene = loadScene(file);
+  return file;
+}
+
+TEST(Scene, ReadsEveryShapeRpyExpressionsAndJointQueries) {
+  const Scene scene = loadScene(everyShapeScene(arcplan::testing::freshTempDirectory("scene_shapes")));
   ASSERT_EQ(scene.obstacles.size(), 4u);
   EXPECT_EQ(scene.obstacles[1].shape, Obstacle::Shape::Box);
   // rpy yaw pi/2 turns x into y.
@@ -118,6 +125,56 @@ queries:
   ASSERT_TRUE(query.start.joints.has_value());
   EXPECT_NEAR((*query.start.joints)[1], -M_PI / 2, 1e-15);
   EXPECT_FALSE(query.start.pose.has_value());
+}
+
+void expectSameEndpoint(const arcplan::collision::QueryEndpoint& read, const arcplan::collision::QueryEndpoint& given) {
+  ASSERT_EQ(read.pose.has_value(), given.pose.has_value());
+  ASSERT_EQ(read.seed.has_value(), given.seed.has_value());
+  ASSERT_EQ(read.joints.has_value(), given.joints.has_value());
+  for (int i = 0; i < 6; ++i) {
+    if (given.pose) EXPECT_NEAR((*read.pose)[i], (*given.pose)[i], 1e-14);
+    if (given.seed) EXPECT_NEAR((*read.seed)[i], (*given.seed)[i], 1e-14);
+    if (given.joints) EXPECT_NEAR((*read.joints)[i], (*given.joints)[i], 1e-14);
+  }
+}
+
+// Field by field; numbers to the 15 significant digits the writer keeps.
+void expectSameScene(const Scene& read, const Scene& given) {
+  EXPECT_EQ(read.name, given.name);
+  EXPECT_EQ(read.robotUrdf, given.robotUrdf);
+  ASSERT_EQ(read.obstacles.size(), given.obstacles.size());
+  for (std::size_t i = 0; i < given.obstacles.size(); ++i) {
+    SCOPED_TRACE(given.obstacles[i].name);
+    const Obstacle& a = read.obstacles[i];
+    const Obstacle& b = given.obstacles[i];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.shape, b.shape);
+    EXPECT_NEAR(a.radius, b.radius, 1e-15);
+    EXPECT_NEAR(a.length, b.length, 1e-15);
+    EXPECT_TRUE(a.size.isApprox(b.size, 1e-14));
+    EXPECT_EQ(a.meshFile, b.meshFile);
+    EXPECT_TRUE(a.meshScale.isApprox(b.meshScale, 1e-14));
+    EXPECT_TRUE(a.pose.isApprox(b.pose, 1e-14));
+  }
+  EXPECT_EQ(read.allowedCollisions, given.allowedCollisions);
+  ASSERT_EQ(read.queries.size(), given.queries.size());
+  for (std::size_t i = 0; i < given.queries.size(); ++i) {
+    SCOPED_TRACE(given.queries[i].name);
+    EXPECT_EQ(read.queries[i].name, given.queries[i].name);
+    expectSameEndpoint(read.queries[i].start, given.queries[i].start);
+    expectSameEndpoint(read.queries[i].goal, given.queries[i].goal);
+  }
+}
+
+TEST(SceneWriter, WrittenScenesReadBackAsTheSameScene) {
+  const auto dir = arcplan::testing::freshTempDirectory("scene_round_trip");
+  for (const auto& source : {everyShapeScene(dir), arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"}) {
+    SCOPED_TRACE(source.string());
+    const Scene scene = loadScene(source);
+    const auto written = dir / ("written_" + source.filename().string());
+    arcplan::collision::writeScene(scene, written);
+    expectSameScene(loadScene(written), scene);
+  }
 }
 
 TEST(SceneErrors, UnknownFile) {

@@ -18,7 +18,4 @@ namespace arcplan::benchmarks {
 // Throws arcplan::Error if the generator cannot place a requested problem (never for sane settings).
 std::vector<Problem> generateProblems(const GeneratorSettings& settings);
 
-// The scene as a scene YAML document (docs/formats.md) that collision::loadScene reads back.
-std::string sceneToYaml(const collision::Scene& scene);
-
 }  // namespace arcplan::benchmarks

@@ -64,4 +64,10 @@ struct Scene {
 // unknown keys or shapes, missing fields, wrong vector lengths, non-positive sizes, missing mesh file.
 Scene loadScene(const std::filesystem::path& file);
 
+// The scene as a scene YAML document that loadScene reads back to the same obstacles, allowed pairs
+// and queries (numbers with 15 significant digits; mesh files and URDFs as resolved paths).
+std::string sceneToYaml(const Scene& scene);
+// sceneToYaml into `file`, atomically (a failure leaves no half-written file).
+void writeScene(const Scene& scene, const std::filesystem::path& file);
+
 }  // namespace arcplan::collision

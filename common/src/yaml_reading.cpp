@@ -1,4 +1,4 @@
-#include "yaml_reader.h"
+#include "arcplan/common/yaml_reading.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_parsing.h"
 
-namespace arcplan::collision::detail {
+namespace arcplan {
 
 YAML::Node YamlReader::load(const std::string& whatFile) const {
   if (!std::filesystem::exists(file_)) throw Error(whatFile + " " + file_.string() + " does not exist");
@@ -23,6 +23,8 @@ YAML::Node YamlReader::load(const std::string& whatFile) const {
   }
 }
 
+std::string YamlReader::position(const YAML::Node& node) const { return position(node.Mark()); }
+
 std::string YamlReader::position(const YAML::Mark& mark) const {
   if (mark.is_null()) return file_.string();
   return file_.string() + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
@@ -33,12 +35,13 @@ void YamlReader::fail(const YAML::Node& node, const std::string& field, const st
 }
 
 void YamlReader::checkKeys(const YAML::Node& map, const std::string& field,
-                           std::initializer_list<const char*> allowed) const {
+                           const std::vector<std::string>& allowed) const {
+  expectMap(map, field);
   for (const auto& entry : map) {
     const std::string key = entry.first.Scalar();
-    if (std::none_of(allowed.begin(), allowed.end(), [&key](const char* name) { return key == name; })) {
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
       std::string list;
-      for (const char* name : allowed) list += (list.empty() ? "" : ", ") + std::string(name);
+      for (const auto& name : allowed) list += (list.empty() ? "" : ", ") + name;
       fail(entry.first, field, "unknown key '" + key + "'; expected one of " + list);
     }
   }
@@ -98,14 +101,26 @@ double YamlReader::positive(const YAML::Node& node, const std::string& field) co
   return value;
 }
 
-Eigen::Vector3d YamlReader::positiveVector(const YAML::Node& node, const std::string& field) const {
-  const auto values = numbers(node, field, 3);
-  for (std::size_t i = 0; i < 3; ++i) {
+std::vector<double> YamlReader::positives(const YAML::Node& node, const std::string& field, std::size_t count) const {
+  const auto values = numbers(node, field, count);
+  for (std::size_t i = 0; i < count; ++i) {
     if (!(values[i] > 0.0)) {
       fail(node[i], field + "[" + std::to_string(i) + "]", "expected a positive number, got " + node[i].Scalar());
     }
   }
-  return {values[0], values[1], values[2]};
+  return values;
 }
 
-}  // namespace arcplan::collision::detail
+long long YamlReader::wholeNumber(const YAML::Node& node, const std::string& field, long long minimum,
+                                  long long maximum) const {
+  long long value = 0;
+  if (!node.IsScalar() || !YAML::convert<long long>::decode(node, value)) {
+    fail(node, field, "expected a whole number");
+  }
+  if (value < minimum || value > maximum) {
+    fail(node, field, "must be between " + std::to_string(minimum) + " and " + std::to_string(maximum));
+  }
+  return value;
+}
+
+}  // namespace arcplan
