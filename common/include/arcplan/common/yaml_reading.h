@@ -40,7 +40,6 @@ public:
   long long wholeNumber(const YAML::Node& node, const std::string& field, long long minimum, long long maximum) const;
 
 private:
-  std::string position(const YAML::Mark& mark) const;
   std::filesystem::path file_;
 };
 
