@@ -91,46 +91,56 @@ Eigen::Vector3d avoidanceDirection(const Eigen::Vector3d& lineDirection, double 
   return Eigen::AngleAxisd(planeAngle, lineDirection) * away;
 }
 
+std::string detoursProblem(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal,
+                           const std::vector<Detour>& detours) {
+  const double straightLength = (goal.translation() - start.translation()).norm();
+  if (!detours.empty() && straightLength <= kLengthTolerance) {
+    return "an arc detour needs distinct start and goal TCP positions (|AB| = 0)";
+  }
+  double lineStart = 0.0;  // arc length on the straight line where the current straight piece begins
+  for (std::size_t i = 0; i < detours.size(); ++i) {
+    const Detour& detour = detours[i];
+    const std::string shapeProblem = arcParametersProblem(detour.shape);
+    if (!shapeProblem.empty()) return shapeProblem;
+    const ArcDetourProfile profile = makeArcDetourProfile(detour.shape);
+    std::ostringstream message;
+    message << "detour " << i + 1 << " (O at " << detour.position << " m from A along A->B, |AB| = " << straightLength
+            << " m)";
+    if (!std::isfinite(detour.position) || !std::isfinite(detour.planeAngle)) {
+      return message.str() + ": position and plane_angle must be finite numbers";
+    }
+    if (detour.position - profile.entryOffset < lineStart - kLengthTolerance) {
+      message << ": the entry arc leaves the line bx2 = " << profile.entryOffset << " m before O, but only "
+              << detour.position - lineStart << " m are free before O"
+              << (i == 0 ? " (|AO|)" : " (after the previous detour)")
+              << "; reduce half_chord, sagitta or entry_radius";
+      return message.str();
+    }
+    if (detour.position + profile.exitOffset > straightLength + kLengthTolerance) {
+      message << ": the exit arc rejoins the line bx3 = " << profile.exitOffset
+              << " m after O, but |OB| = " << straightLength - detour.position
+              << " m; reduce half_chord, sagitta or exit_radius";
+      return message.str();
+    }
+    lineStart = detour.position + profile.exitOffset;
+  }
+  return {};
+}
+
 ArcPath::ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, std::vector<Detour> detours)
     : TcpPath(start, goal), start_(start), goal_(goal), detours_(std::move(detours)) {
+  const std::string problem = detoursProblem(start, goal, detours_);
+  if (!problem.empty()) throw Error(problem);
   const Eigen::Vector3d a = start.translation(), b = goal.translation();
   straightLength_ = (b - a).norm();
   if (straightLength_ > kLengthTolerance) lineDirection_ = (b - a) / straightLength_;
-
-  if (!detours_.empty() && straightLength_ <= kLengthTolerance) {
-    throw Error("an arc detour needs distinct start and goal TCP positions (|AB| = 0)");
-  }
   double lineStart = 0.0;  // arc length on the straight line where the current straight piece begins
   const auto addLine = [&](double from, double to) {
     if (to - from > kLengthTolerance) appendLine(a + from * lineDirection_, a + to * lineDirection_);
   };
-  for (std::size_t i = 0; i < detours_.size(); ++i) {
-    const Detour& detour = detours_[i];
+  for (const Detour& detour : detours_) {
     const ArcDetourProfile profile = makeArcDetourProfile(detour.shape);
-    std::ostringstream where;
-    where << "detour " << i + 1 << " (O at " << detour.position << " m from A along A->B, |AB| = " << straightLength_
-          << " m)";
-    if (!std::isfinite(detour.position) || !std::isfinite(detour.planeAngle)) {
-      throw Error(where.str() + ": position and plane_angle must be finite numbers");
-    }
-    const double entry = detour.position - profile.entryOffset;
-    const double exit = detour.position + profile.exitOffset;
-    if (entry < lineStart - kLengthTolerance) {
-      std::ostringstream message;
-      message << where.str() << ": the entry arc leaves the line bx2 = " << profile.entryOffset
-              << " m before O, but only " << detour.position - lineStart << " m are free before O"
-              << (i == 0 ? " (|AO|)" : " (after the previous detour)")
-              << "; reduce half_chord, sagitta or entry_radius";
-      throw Error(message.str());
-    }
-    if (exit > straightLength_ + kLengthTolerance) {
-      std::ostringstream message;
-      message << where.str() << ": the exit arc rejoins the line bx3 = " << profile.exitOffset
-              << " m after O, but |OB| = " << straightLength_ - detour.position
-              << " m; reduce half_chord, sagitta or exit_radius";
-      throw Error(message.str());
-    }
-    addLine(lineStart, entry);
+    addLine(lineStart, detour.position - profile.entryOffset);
     const Eigen::Vector3d obstaclePoint = a + detour.position * lineDirection_;
     const Eigen::Vector3d away = avoidanceDirection(lineDirection_, detour.planeAngle);
     const double spanStart = length();
@@ -142,7 +152,7 @@ ArcPath::ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, 
                 std::abs(arc.sweep));
     }
     detourSpans_.emplace_back(spanStart, length());
-    lineStart = exit;
+    lineStart = detour.position + profile.exitOffset;
   }
   addLine(lineStart, straightLength_);
 }

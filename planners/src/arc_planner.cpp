@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <sstream>
 
 #include "arc_planning.h"
@@ -24,21 +23,25 @@ namespace og = ompl::geometric;
 namespace arcplan::planners {
 namespace {
 
-// Declared ranges (OMPL's "low:step:high"); the setters enforce the same bounds.
-struct Range {
+// The real-valued parameters: declared ranges (OMPL's "low:step:high"), which the setters enforce.
+struct RealParameter {
+  const char* name;
   double low, high;
   const char* suggestion;
+  void (ArcPlanner::*set)(double);
+  double (ArcPlanner::*get)() const;
 };
-const std::map<std::string, Range>& ranges() {
-  static const std::map<std::string, Range> table = {
-      {"sagitta", {0.001, 1.0, "0.001:0.01:1."}},
-      {"half_chord", {0.001, 1.0, "0.001:0.01:1."}},
-      {"entry_radius", {0.001, 1.0, "0.001:0.005:1."}},
-      {"exit_radius", {0.001, 1.0, "0.001:0.005:1."}},
-      {"plane_angle", {-M_PI, M_PI, "-3.14159:0.1:3.14159"}},
-      {"resolution", {0.001, 0.1, "0.001:0.001:0.1"}},
-      {"max_joint_step", {0.001, 0.5, "0.001:0.001:0.5"}},
-      {"clearance", {0.0, 0.2, "0.:0.005:0.2"}},
+const std::vector<RealParameter>& realParameters() {
+  using P = ArcPlanner;
+  static const std::vector<RealParameter> table = {
+      {"sagitta", 0.001, 1.0, "0.001:0.01:1.", &P::setSagitta, &P::getSagitta},
+      {"half_chord", 0.001, 1.0, "0.001:0.01:1.", &P::setHalfChord, &P::getHalfChord},
+      {"entry_radius", 0.001, 1.0, "0.001:0.005:1.", &P::setEntryRadius, &P::getEntryRadius},
+      {"exit_radius", 0.001, 1.0, "0.001:0.005:1.", &P::setExitRadius, &P::getExitRadius},
+      {"plane_angle", -M_PI, M_PI, "-3.14159:0.1:3.14159", &P::setPlaneAngle, &P::getPlaneAngle},
+      {"resolution", 0.001, 0.1, "0.001:0.001:0.1", &P::setResolution, &P::getResolution},
+      {"max_joint_step", 0.001, 0.5, "0.001:0.001:0.5", &P::setMaxJointStep, &P::getMaxJointStep},
+      {"clearance", 0.0, 0.2, "0.:0.005:0.2", &P::setClearance, &P::getClearance},
   };
   return table;
 }
@@ -68,24 +71,9 @@ ArcPlanner::ArcPlanner(const ob::SpaceInformationPtr& si,
   specs_.optimizingPaths = false;
   specs_.multithreaded = false;
   specs_.directed = true;
-  const auto& range = ranges();
-  declareParam<double>("sagitta", this, &ArcPlanner::setSagitta, &ArcPlanner::getSagitta,
-                       range.at("sagitta").suggestion);
-  declareParam<double>("half_chord", this, &ArcPlanner::setHalfChord, &ArcPlanner::getHalfChord,
-                       range.at("half_chord").suggestion);
-  declareParam<double>("entry_radius", this, &ArcPlanner::setEntryRadius, &ArcPlanner::getEntryRadius,
-                       range.at("entry_radius").suggestion);
-  declareParam<double>("exit_radius", this, &ArcPlanner::setExitRadius, &ArcPlanner::getExitRadius,
-                       range.at("exit_radius").suggestion);
-  declareParam<double>("plane_angle", this, &ArcPlanner::setPlaneAngle, &ArcPlanner::getPlaneAngle,
-                       range.at("plane_angle").suggestion);
-  declareParam<double>("resolution", this, &ArcPlanner::setResolution, &ArcPlanner::getResolution,
-                       range.at("resolution").suggestion);
-  declareParam<double>("max_joint_step", this, &ArcPlanner::setMaxJointStep, &ArcPlanner::getMaxJointStep,
-                       range.at("max_joint_step").suggestion);
+  for (const RealParameter& parameter : realParameters())
+    declareParam<double>(parameter.name, this, parameter.set, parameter.get, parameter.suggestion);
   declareParam<bool>("check_motions", this, &ArcPlanner::setCheckMotions, &ArcPlanner::getCheckMotions, "0,1");
-  declareParam<double>("clearance", this, &ArcPlanner::setClearance, &ArcPlanner::getClearance,
-                       range.at("clearance").suggestion);
   declareParam<bool>("auto", this, &ArcPlanner::setAuto, &ArcPlanner::getAuto, "0,1");
   declareParam<bool>("fallback", this, &ArcPlanner::setFallback, &ArcPlanner::getFallback, "0,1");
   declareParam<unsigned int>("seed", this, &ArcPlanner::setSeed, &ArcPlanner::getSeed, "0:1:4294967295");
@@ -94,7 +82,8 @@ ArcPlanner::ArcPlanner(const ob::SpaceInformationPtr& si,
 ArcPlanner::~ArcPlanner() = default;
 
 double ArcPlanner::checkedParameter(const std::string& name, double value) const {
-  const Range& range = ranges().at(name);
+  const RealParameter& range = *std::find_if(realParameters().begin(), realParameters().end(),
+                                             [&](const RealParameter& parameter) { return parameter.name == name; });
   if (!std::isfinite(value) || value < range.low || value > range.high) {
     std::ostringstream message;
     message << "arc planner parameter " << name << " must be a number in [" << range.low << ", " << range.high
@@ -134,48 +123,37 @@ void ArcPlanner::setup() {
   }
 }
 
-ob::PlannerStatus ArcPlanner::fail(ob::PlannerStatus status, const std::string& reason) {
-  result_.kind = ArcPlannerResult::Kind::Failed;
-  result_.reason = reason;
-  OMPL_INFORM("%s: no path: %s", getName().c_str(), reason.c_str());
-  return status;
-}
-
 ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) {
   const auto clockStart = std::chrono::steady_clock::now();
   checkValidity();
   result_ = ArcPlannerResult{};
   solution_.reset();
   solutionJoints_.clear();
-  struct Timer {
-    ArcPlannerResult& result;
-    std::chrono::steady_clock::time_point start;
-    ~Timer() { result.solveTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
-  } timer{result_, clockStart};
-
   const ob::State* startState = pis_.nextStart();
   if (startState == nullptr) {
-    return fail(ob::PlannerStatus::INVALID_START,
-                "no valid start state (it is missing, outside the joint limits or in collision)");
+    return finish(detail::failure("no valid start state (it is missing, outside the joint limits or in collision)"),
+                  ob::PlannerStatus::INVALID_START, clockStart);
   }
   if (dynamic_cast<const ob::GoalSampleableRegion*>(pdef_->getGoal().get()) == nullptr) {
-    return fail(ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE,
-                "the goal must be a goal state (or a sampleable goal region)");
+    return finish(detail::failure("the goal must be a goal state (or a sampleable goal region)"),
+                  ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE, clockStart);
   }
   const ob::State* goalState = pis_.nextGoal(ptc);
   if (goalState == nullptr) {
-    return fail(ob::PlannerStatus::INVALID_GOAL,
-                "no valid goal state (it is outside the joint limits or in collision)");
+    return finish(detail::failure("no valid goal state (it is outside the joint limits or in collision)"),
+                  ob::PlannerStatus::INVALID_GOAL, clockStart);
   }
-  const robot::Vector6 start(collision::jointsOf(startState, 6)), goal(collision::jointsOf(goalState, 6));
-  // The margin: the planner's clearance or the motion validator's, the larger; lowered to what a start
-  // or goal closer to an obstacle has itself (else nothing could leave it).
-  const auto* motionValidator = dynamic_cast<const collision::JointMotionValidator*>(si_->getMotionValidator().get());
-  double margin = std::max(clearance_, motionValidator != nullptr ? motionValidator->options().minimumClearance
-                                                                  : collision::MotionCheckOptions{}.minimumClearance);
-  collision::CollisionData data(*collisionModel_);
-  for (const robot::Vector6& end : {start, goal})
-    margin = std::min(margin, collision::distance(*collisionModel_, data, end).minimum());
+  detail::ArcOutcome outcome = answer(ptc, collision::jointsOf(startState, 6), collision::jointsOf(goalState, 6));
+  const ob::PlannerStatus status = outcome.solved() ? ob::PlannerStatus::EXACT_SOLUTION
+                                   : ptc()          ? ob::PlannerStatus::TIMEOUT
+                                                    : ob::PlannerStatus::ABORT;
+  return finish(std::move(outcome), status, clockStart);
+}
+
+detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc, const robot::Vector6& start,
+                                      const robot::Vector6& goal) {
+  const collision::MotionCheckOptions motionCheck = motionCheckOptions();
+  const double margin = planningMargin(motionCheck, start, goal);
   const bool autoMode = getAuto();
   ob::ScopedState<> scratch(si_);
   const auto waypointValid = [&](const robot::Vector6& q) {
@@ -196,34 +174,64 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
                                goal,
                                robot::tipPose(robot, start),
                                robot::tipPose(robot, goal)};
-  JointWaypoints path;
+  detail::ArcOutcome outcome;
   if (ik_.branchOf(start) != ik_.branchOf(goal)) {
     // No TCP path joins two IK branches without passing a singularity: only the fallback can help.
-    std::ostringstream message;
-    message << "branch change: start and goal are on different IK branches: "
-            << describeBranchChange(ik_.branchOf(start), ik_.branchOf(goal))
-            << "; a TCP path keeps its branch (choose a goal seed on the start's branch)";
-    result_.reason = message.str();
+    outcome = detail::failure("branch change: start and goal are on different IK branches: " +
+                              describeBranchChange(ik_.branchOf(start), ik_.branchOf(goal)) +
+                              "; a TCP path keeps its branch (choose a goal seed on the start's branch)");
   } else {
-    path = autoMode ? detail::planViaPoints(query, result_)
-                    : detail::planThesisDetours(query, shape_, planeAngle_, result_);
+    outcome = autoMode ? detail::planViaPoints(query) : detail::planThesisDetours(query, shape_, planeAngle_);
   }
-  if (path.joints.empty() && autoMode && fallback_ && !ptc()) {
-    // Its own SpaceInformation, whose states and motions keep this planner's margin (the problem's
-    // may be smaller).
-    const auto fallbackSpace = collision::makeSpaceInformation(
-        collisionModel_, motionValidator != nullptr ? motionValidator->options() : collision::MotionCheckOptions{},
-        margin);
-    path = detail::planInJointSpace(query, fallbackSpace, seed_, result_);
-  }
-  if (path.joints.empty()) return fail(ptc() ? ob::PlannerStatus::TIMEOUT : ob::PlannerStatus::ABORT, result_.reason);
-  if (result_.kind != ArcPlannerResult::Kind::Fallback) result_.cartesianFraction = 1.0;
-  result_.reason.clear();
-  setSolution(path);
-  return ob::PlannerStatus::EXACT_SOLUTION;
+  if (outcome.solved() || !autoMode || !fallback_ || ptc()) return outcome;
+  // Its own SpaceInformation, whose states and motions keep this planner's margin (the problem's may
+  // be smaller).
+  detail::ArcOutcome fallback =
+      detail::planInJointSpace(query, collision::makeSpaceInformation(collisionModel_, motionCheck, margin), seed_);
+  // What the search met stays part of the answer; its reason leads a failure's.
+  fallback.obstacles = std::move(outcome.obstacles);
+  fallback.routesTried = outcome.routesTried;
+  if (!fallback.solved()) fallback.reason = outcome.reason + "; " + fallback.reason;
+  return fallback;
 }
 
-void ArcPlanner::setSolution(const JointWaypoints& waypoints) {
+collision::MotionCheckOptions ArcPlanner::motionCheckOptions() const {
+  const auto* validator = dynamic_cast<const collision::JointMotionValidator*>(si_->getMotionValidator().get());
+  return validator != nullptr ? validator->options() : collision::MotionCheckOptions{};
+}
+
+double ArcPlanner::planningMargin(const collision::MotionCheckOptions& motionCheck, const robot::Vector6& start,
+                                  const robot::Vector6& goal) const {
+  // The planner's clearance or the motion validator's, the larger; lowered to what a start or goal
+  // closer to an obstacle has itself (else nothing could leave it).
+  double margin = std::max(clearance_, motionCheck.minimumClearance);
+  collision::CollisionData data(*collisionModel_);
+  for (const robot::Vector6& end : {start, goal})
+    margin = std::min(margin, collision::distance(*collisionModel_, data, end).minimum());
+  return margin;
+}
+
+ob::PlannerStatus ArcPlanner::finish(detail::ArcOutcome outcome, ob::PlannerStatus status,
+                                     std::chrono::steady_clock::time_point clockStart) {
+  result_.kind = outcome.kind;
+  result_.reason = std::move(outcome.reason);
+  result_.detours = std::move(outcome.detours);
+  result_.obstacles = std::move(outcome.obstacles);
+  result_.viaPoints = std::move(outcome.viaPoints);
+  result_.blends = std::move(outcome.blends);
+  result_.tcpPathLength = outcome.tcpPathLength;
+  result_.cartesianFraction = outcome.cartesianFraction;
+  result_.routesTried = outcome.routesTried;
+  if (outcome.solved()) {
+    setSolution(outcome.path);
+  } else {
+    OMPL_INFORM("%s: no path: %s", getName().c_str(), result_.reason.c_str());
+  }
+  result_.solveTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - clockStart).count();
+  return status;
+}
+
+void ArcPlanner::setSolution(const JointConversionResult& waypoints) {
   result_.waypointArcLengths = waypoints.arcLengths;
   solutionJoints_ = waypoints.joints;
   // The problem definition gets its own path: simplifying it must not change what this planner

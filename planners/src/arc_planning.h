@@ -1,17 +1,18 @@
 #pragma once
 // Internal to the arc planner: one solve()'s query and the three ways of answering it, each in its
-// own file (thesis_detours.cpp, via_point_planning.cpp, joint_space_fallback.cpp). Each fills the
-// ArcPlannerResult it is given and returns the joint waypoints of its path (empty on failure, with
-// result.reason saying why).
+// own file (thesis_detours.cpp, via_point_planning.cpp, joint_space_fallback.cpp). Each returns an
+// ArcOutcome — a path and how it was made, or why there is none — which ArcPlanner::solve turns into
+// the planner's result once.
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/SpaceInformation.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/planners/arc_planner.h"
-#include "arcplan/planners/path_validation.h"
+#include "path_validation.h"
 
 namespace arcplan::planners::detail {
 
@@ -25,19 +26,36 @@ struct ArcQuery {
   robot::Vector6 start, goal;
   Eigen::Isometry3d a, b;  // TCP poses of start and goal
 
-  JointWaypoints startOnly() const;  // a walk's prefix: the start configuration at arc length 0
+  JointConversionResult startOnly() const;  // a walk's prefix: the start configuration at arc length 0
 };
 
+// What one way of answering found. The fields mean what ArcPlannerResult's of the same name mean.
+struct ArcOutcome {
+  ArcPlannerResult::Kind kind = ArcPlannerResult::Kind::Failed;
+  std::string reason;           // why there is no path; empty with one
+  JointConversionResult path;   // the waypoints, when kind is not Failed
+  std::vector<Detour> detours;  // thesis mode
+  std::vector<std::string> obstacles;
+  std::vector<Eigen::Vector3d> viaPoints;
+  std::vector<double> blends;
+  double tcpPathLength = 0.0;
+  double cartesianFraction = 0.0;
+  int routesTried = 0;
+
+  bool solved() const { return kind != ArcPlannerResult::Kind::Failed; }
+};
+
+// A failure that says why.
+ArcOutcome failure(std::string reason);
+
 // Thesis mode: the line A→B with a detour of exactly `shape` around each obstacle that blocks it.
-JointWaypoints planThesisDetours(const ArcQuery& query, const ArcParameters& shape, double planeAngle,
-                                 ArcPlannerResult& result);
+ArcOutcome planThesisDetours(const ArcQuery& query, const ArcParameters& shape, double planeAngle);
 
 // Auto mode: the shortest valid route through via points, corners blended.
-JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result);
+ArcOutcome planViaPoints(const ArcQuery& query);
 
 // RRTConnect on `si` (whose validity keeps the margin), simplified, its segments turned into TCP lines where they
-// validate; every random draw from generators seeded with `seed`.
-JointWaypoints planInJointSpace(const ArcQuery& query, const ompl::base::SpaceInformationPtr& si,
-                                std::uint_fast32_t seed, ArcPlannerResult& result);
+// validate; every random draw from generators seeded with `seed`. Its reason on failure says only that it failed.
+ArcOutcome planInJointSpace(const ArcQuery& query, const ompl::base::SpaceInformationPtr& si, std::uint_fast32_t seed);
 
 }  // namespace arcplan::planners::detail

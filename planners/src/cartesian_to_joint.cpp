@@ -14,7 +14,7 @@ constexpr double kGoalTolerance = 1e-6;  // rad per joint
 class Converter {
 public:
   Converter(const robot::UrInverseKinematics& ik, const TcpPath& path, const JointConversionOptions& options,
-            const std::optional<robot::Vector6>& goal, const WaypointCheck& check, JointWaypoints& result)
+            const std::optional<robot::Vector6>& goal, const WaypointCheck& check, JointConversionResult& result)
       : ik_(ik),
         path_(path),
         options_(options),
@@ -58,6 +58,7 @@ public:
     if (arrival && !meetsGoal(*q, arcLength)) return false;
     const robot::Vector6 accepted = arrival && goal_ ? *goal_ : *q;
     if (check_ && !check_(previous, accepted, arcLength)) {
+      result_.refused = accepted;
       return fail(ConversionStatus::Rejected, arcLength, "the waypoint check rejected the waypoint");
     }
     result_.joints.push_back(accepted);
@@ -107,7 +108,7 @@ private:
   const JointConversionOptions& options_;
   const std::optional<robot::Vector6>& goal_;
   const WaypointCheck& check_;
-  JointWaypoints& result_;
+  JointConversionResult& result_;
   int branch_;
 };
 
@@ -141,33 +142,21 @@ std::string describeBranchChange(int from, int to) {
 }
 
 const char* toString(ConversionStatus status) {
-  switch (status) {
-    case ConversionStatus::Success:
-      return "success";
-    case ConversionStatus::Unreachable:
-      return "unreachable";
-    case ConversionStatus::JointLimits:
-      return "joint limits";
-    case ConversionStatus::JointJump:
-      return "joint jump";
-    case ConversionStatus::BranchChange:
-      return "branch change";
-    case ConversionStatus::GoalMismatch:
-      return "goal mismatch";
-    case ConversionStatus::Rejected:
-      return "rejected";
-  }
-  return "unknown";
+  // In the order of the enumerators.
+  static const char* const names[] = {"success",       "unreachable",   "joint limits", "joint jump",
+                                      "branch change", "goal mismatch", "rejected"};
+  return names[static_cast<int>(status)];
 }
 
-JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const TcpPath& path, const robot::Vector6& seed,
-                               const std::optional<robot::Vector6>& goal, const JointConversionOptions& options,
-                               double fromArcLength, double toArcLength, const WaypointCheck& check) {
+JointConversionResult convertToJoints(const robot::UrInverseKinematics& ik, const TcpPath& path,
+                                      const robot::Vector6& seed, const std::optional<robot::Vector6>& goal,
+                                      const JointConversionOptions& options, double fromArcLength, double toArcLength,
+                                      const WaypointCheck& check) {
   if (!(options.maxJointStep > 0.0) || !std::isfinite(options.maxJointStep)) {
     throw Error("joint conversion: max joint step must be a finite number > 0 rad");
   }
   if (options.maxBisections < 0) throw Error("joint conversion: max bisections must be >= 0");
-  JointWaypoints result;
+  JointConversionResult result;
   result.joints.push_back(seed);
   result.arcLengths.push_back(std::max(fromArcLength, 0.0));
   constexpr double kEpsilon = 1e-12;

@@ -69,42 +69,25 @@ public:
   }
 };
 
-}  // namespace
-
-JointWaypoints planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, std::uint_fast32_t seed,
-                                ArcPlannerResult& result) {
-  auto problem = std::make_shared<ob::ProblemDefinition>(si);
-  ob::ScopedState<> start(si), goal(si);
-  collision::setJoints(start.get(), query.start);
-  collision::setJoints(goal.get(), query.goal);
-  problem->setStartAndGoalStates(start, goal);
-  SeededRRTConnect sampler(si, seed);
-  sampler.setProblemDefinition(problem);
-  sampler.setup();
-  if (sampler.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) {
-    result.reason += "; the joint-space fallback found no path either";
-    return {};
-  }
-  og::PathGeometric path(*problem->getSolutionPath()->as<og::PathGeometric>());
-  SeededSimplifier(si, seed).simplify(path, query.ptc);
-
-  JointWaypoints waypoints = query.startOnly();
+// The simplified joint path with each segment replaced by a straight TCP line where that line validates.
+ArcOutcome linesWhereTheyValidate(const ArcQuery& query, const std::vector<robot::Vector6>& simplified) {
+  ArcOutcome outcome;
+  outcome.kind = ArcPlannerResult::Kind::Fallback;
+  JointConversionResult& waypoints = outcome.path;
+  waypoints = query.startOnly();
   double cartesian = 0.0, total = 0.0;
-  const std::vector<robot::Vector6> simplified = collision::waypointsOf(path);
   for (std::size_t i = 1; i < simplified.size(); ++i) {
     const robot::Vector6 from = waypoints.joints.back(), to = simplified[i];
-    const Eigen::Isometry3d fromPose = robot::tipPose(query.model.robot(), from);
-    const Eigen::Isometry3d toPose = robot::tipPose(query.model.robot(), to);
-    const ArcPath line(fromPose, toPose);
-    JointWaypoints here;
+    const ArcPath line(robot::tipPose(query.model.robot(), from), robot::tipPose(query.model.robot(), to));
+    JointConversionResult here;
     here.joints.push_back(from);
     here.arcLengths.push_back(0.0);
-    const JointWaypoints walked = query.validator.walk(line, here, to);
+    const Walk walked = query.validator.walk(line, here, to);
     const double offset = waypoints.arcLengths.back();
     if (walked.ok()) {  // the segment as a TCP line
-      for (std::size_t k = 1; k < walked.joints.size(); ++k) {
-        waypoints.joints.push_back(walked.joints[k]);
-        waypoints.arcLengths.push_back(offset + walked.arcLengths[k]);
+      for (std::size_t k = 1; k < walked.waypoints.joints.size(); ++k) {
+        waypoints.joints.push_back(walked.waypoints.joints[k]);
+        waypoints.arcLengths.push_back(offset + walked.waypoints.arcLengths[k]);
       }
       cartesian += line.length();
       total += line.length();
@@ -115,10 +98,28 @@ JointWaypoints planInJointSpace(const ArcQuery& query, const ob::SpaceInformatio
       total += length;
     }
   }
-  result.kind = ArcPlannerResult::Kind::Fallback;
-  result.cartesianFraction = total > 0.0 ? cartesian / total : 0.0;
-  result.tcpPathLength = cartesian;
-  return waypoints;
+  outcome.cartesianFraction = total > 0.0 ? cartesian / total : 0.0;
+  outcome.tcpPathLength = cartesian;
+  return outcome;
+}
+
+}  // namespace
+
+ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, std::uint_fast32_t seed) {
+  auto problem = std::make_shared<ob::ProblemDefinition>(si);
+  ob::ScopedState<> start(si), goal(si);
+  collision::setJoints(start.get(), query.start);
+  collision::setJoints(goal.get(), query.goal);
+  problem->setStartAndGoalStates(start, goal);
+  SeededRRTConnect sampler(si, seed);
+  sampler.setProblemDefinition(problem);
+  sampler.setup();
+  if (sampler.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) {
+    return failure("the joint-space fallback found no path either");
+  }
+  og::PathGeometric path(*problem->getSolutionPath()->as<og::PathGeometric>());
+  SeededSimplifier(si, seed).simplify(path, query.ptc);
+  return linesWhereTheyValidate(query, collision::waypointsOf(path));
 }
 
 }  // namespace arcplan::planners::detail

@@ -1,4 +1,4 @@
-#include "arcplan/planners/path_validation.h"
+#include "path_validation.h"
 
 #include <algorithm>
 #include <limits>
@@ -43,52 +43,43 @@ PathValidator::PathValidator(const collision::CollisionModel& model, const robot
       stop_(std::move(stop)),
       data_(model) {}
 
-bool PathValidator::validMotion(const robot::Vector6& previous, const robot::Vector6& q) {
-  if (!certify_) return waypointValid_(q);
+Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefix,
+                         const std::optional<robot::Vector6>& goal) {
   // One certifier per walk, started at the walk's first configuration: it reuses a waypoint's
   // measured clearance for the following motions, so it must never carry over from another path.
-  if (!certifier_) {
-    certifier_.emplace(model_, data_, margin_);
-    if (!certifier_->start(previous)) return false;
-  }
-  return certifier_->extend(q);
-}
-
-JointWaypoints PathValidator::walk(const TcpPath& path, const JointWaypoints& prefix,
-                                   const std::optional<robot::Vector6>& goal) {
-  certifier_.reset();
-  const WaypointCheck check = [this](const robot::Vector6& previous, const robot::Vector6& q, double) {
+  std::optional<collision::PathCertifier> certifier;
+  if (certify_) certifier.emplace(model_, data_, margin_);
+  const bool started = certifier && certifier->start(prefix.joints.back());
+  const WaypointCheck check = [&](const robot::Vector6&, const robot::Vector6& q, double) {
     if (stop_ && stop_()) return false;
-    if (validMotion(previous, q)) return true;
-    rejectedPrevious_ = previous;
-    rejectedJoints_ = q;
-    return false;
+    return certifier ? started && certifier->extend(q) : waypointValid_(q);
   };
-  JointWaypoints continuation =
+  const JointConversionResult continuation =
       convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_, prefix.arcLengths.back(),
                       std::numeric_limits<double>::infinity(), check);
-  JointWaypoints combined = prefix;
+  Walk result;
+  result.waypoints = prefix;
+  JointConversionResult& combined = result.waypoints;
   combined.joints.insert(combined.joints.end(), continuation.joints.begin() + 1, continuation.joints.end());
   combined.arcLengths.insert(combined.arcLengths.end(), continuation.arcLengths.begin() + 1,
                              continuation.arcLengths.end());
   combined.status = continuation.status;
   combined.reason = continuation.reason;
   combined.failedAtArcLength = continuation.failedAtArcLength;
-  return combined;
+  combined.refused = continuation.refused;
+  if (continuation.refused) result.rejected = RejectedMotion{combined.joints.back(), *continuation.refused};
+  return result;
 }
 
 bool PathValidator::keepsMargin(const robot::Vector6& q) {
   // A certifier's start: the same test as a walk's first waypoint, with pairs far apart settled by
   // their bounding capsules (cheaper than measuring the smallest distance).
-  if (collision::PathCertifier(model_, data_, margin_).start(q)) return true;
-  rejectedPrevious_ = q;
-  rejectedJoints_ = q;
-  return false;
+  return collision::PathCertifier(model_, data_, margin_).start(q);
 }
 
-Rejection PathValidator::rejection() {
+Rejection PathValidator::explain(const RejectedMotion& motion) {
   Rejection result;
-  result.pairs = collision::collide(model_, data_, rejectedJoints_);
+  result.pairs = collision::collide(model_, data_, motion.to);
   if (!result.pairs.valid) return result;  // contact at the rejected waypoint (the usual case)
   result.collides = false;
   const auto closestPair = [](const collision::DistanceReport& d) {
@@ -96,14 +87,14 @@ Rejection PathValidator::rejection() {
   };
   // Closer than the margin at the rejected waypoint: that pair is the reason, one query suffices
   // (the route search asks this for every rejected route).
-  const collision::DistanceReport atWaypoint = collision::distance(model_, data_, rejectedJoints_);
+  const collision::DistanceReport atWaypoint = collision::distance(model_, data_, motion.to);
   result.closest = atWaypoint.minimum();
   result.pairs.collisions = {closestPair(atWaypoint)};
   if (result.closest < margin_) return result;
   // The waypoint keeps the margin but the motion to it could not be certified: 16 states along it.
   constexpr int kSteps = 16;
   const auto along = [&](int k) -> robot::Vector6 {
-    return rejectedPrevious_ + (rejectedJoints_ - rejectedPrevious_) * (static_cast<double>(k) / kSteps);
+    return motion.from + (motion.to - motion.from) * (static_cast<double>(k) / kSteps);
   };
   for (int k = 0; k < kSteps; ++k) {
     const collision::CollisionReport contact = collision::collide(model_, data_, along(k));

@@ -1,4 +1,4 @@
-#include "arcplan/planners/route_search.h"
+#include "route_search.h"
 
 #include <algorithm>
 
@@ -76,43 +76,59 @@ Eigen::Vector3d towardChord(const Eigen::Vector3d& prev, const Eigen::Vector3d& 
   return via + (gap <= distance ? 1.0 : distance / gap) * toChord;
 }
 
-BlendedPath shortenRoute(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, const BlendedPath& validated,
-                         const std::vector<double>& margins, int maxTrials,
-                         const std::function<bool(const BlendedPath&)>& validates) {
+RouteShortening::RouteShortening(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, BlendedPath validated,
+                                 std::vector<double> margins, int maxTrials)
+    : start_(start),
+      goal_(goal),
+      validated_(validated),
+      best_(std::move(validated)),
+      margins_(std::move(margins)),
+      trialsLeft_(maxTrials),
+      done_(validated_.points().size() == 2) {}
+
+std::optional<BlendedPath> RouteShortening::candidateAt(double fraction) const {
   // Below this a leg leaves no room for a blend (m). A trial must gain at least kLeastGain (m): a
   // walk costs about as much as the whole search on a simple query, and a smaller fraction of the
   // margin gains less, so the bisection stops paying walks there.
   constexpr double kShortestLeg = 0.008, kLeastGain = 0.002;
-  const std::vector<Eigen::Vector3d>& original = validated.points();
+  const std::vector<Eigen::Vector3d>& original = validated_.points();
   const std::size_t viaCount = original.size() - 2;
-  BlendedPath best = validated;
-  if (viaCount == 0) return best;
+  std::vector<Eigen::Vector3d> points = original;
+  for (std::size_t i = 1; i <= viaCount; ++i) {
+    points[i] = towardChord(points[i - 1], original[i], original[i + 1], fraction * margins_.at(i - 1));
+    if ((points[i] - points[i - 1]).norm() < kShortestLeg) return std::nullopt;
+  }
+  if ((points[viaCount + 1] - points[viaCount]).norm() < kShortestLeg) return std::nullopt;
+  std::vector<double> blends = validated_.blends();
+  for (std::size_t j = 0; j < viaCount; ++j) blends[j] = std::min(blends[j], BlendedPath::maxBlend(points, j));
+  BlendedPath candidate(start_, goal_, std::vector<Eigen::Vector3d>(points.begin() + 1, points.end() - 1), blends);
+  if (candidate.length() > best_.length() - kLeastGain) return std::nullopt;
+  return candidate;
+}
+
+std::optional<BlendedPath> RouteShortening::next() {
   // Every via point moves the same fraction of its margin: the whole margin first (each via point as
   // close as the clearance alone would put it), then bisected between what was kept and what was not.
-  double kept = 0.0, refused = 2.0;
-  for (int trial = 0; trial < maxTrials; ++trial) {
-    const double fraction = std::min(1.0, 0.5 * (kept + refused));
-    std::vector<Eigen::Vector3d> points = original;
-    bool legsFit = true;
-    for (std::size_t i = 1; i <= viaCount; ++i) {
-      points[i] = towardChord(points[i - 1], original[i], original[i + 1], fraction * margins.at(i - 1));
-      legsFit = legsFit && (points[i] - points[i - 1]).norm() >= kShortestLeg;
-    }
-    legsFit = legsFit && (points[viaCount + 1] - points[viaCount]).norm() >= kShortestLeg;
-    std::vector<double> blends = validated.blends();
-    for (std::size_t j = 0; legsFit && j < viaCount; ++j)
-      blends[j] = std::min(blends[j], BlendedPath::maxBlend(points, j));
-    const bool accepted = legsFit && [&] {
-      const BlendedPath candidate(start, goal, std::vector<Eigen::Vector3d>(points.begin() + 1, points.end() - 1),
-                                  blends);
-      if (candidate.length() > best.length() - kLeastGain || !validates(candidate)) return false;
-      best = candidate;
-      return true;
-    }();
-    if (accepted && fraction >= 1.0) break;
-    (accepted ? kept : refused) = fraction;
+  while (!done_ && trialsLeft_ > 0) {
+    --trialsLeft_;
+    pending_ = std::min(1.0, 0.5 * (kept_ + refused_));
+    candidate_ = candidateAt(pending_);
+    if (candidate_) return candidate_;
+    refused_ = pending_;
   }
-  return best;
+  return std::nullopt;
+}
+
+void RouteShortening::accept(bool valid) {
+  if (!candidate_) return;
+  if (valid) {
+    best_ = *candidate_;
+    done_ = pending_ >= 1.0;
+    kept_ = pending_;
+  } else {
+    refused_ = pending_;
+  }
+  candidate_.reset();
 }
 
 }  // namespace arcplan::planners

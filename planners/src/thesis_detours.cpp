@@ -4,7 +4,6 @@
 #include <sstream>
 
 #include "arc_planning.h"
-#include "arcplan/common/error.h"
 
 namespace arcplan::planners::detail {
 namespace {
@@ -31,123 +30,157 @@ bool blocksTheLineAtO(const ArcQuery& query, const ArcPath& line, const collisio
                      [&](const collision::NamePair& pair) { return pair.second == obstacle.name; });
 }
 
+// The search of one thesis-mode query: the line's detours in order along it, the obstacle each goes
+// around, and the waypoints validated so far that the next path shares.
+class ThesisDetours {
+public:
+  ThesisDetours(const ArcQuery& query, const ArcParameters& shape, double planeAngle)
+      : query_(query), shape_(shape), planeAngle_(planeAngle), line_(query.a, query.b), prefix_(query.startOnly()) {}
+
+  ArcOutcome solve() {
+    addBlockingObstacles();
+    for (;;) {  // walk the path; whatever else blocks it on the line gets a detour too
+      const std::string problem = detoursProblem(query_.a, query_.b, detours_);
+      if (!problem.empty()) return failed("arc path around " + obstacleList() + ": " + problem);
+      const ArcPath path(query_.a, query_.b, detours_);
+      const Walk walked = query_.validator.walk(path, prefix_, query_.goal);
+      if (walked.ok()) return solved(path, walked.waypoints);
+      if (query_.ptc()) return failed("time limit reached before a valid path was found");
+      const std::string where = detours_.empty() ? "straight line" : "arc path";
+      if (!walked.rejected) {
+        return failed(std::string(toString(walked.waypoints.status)) + " on the " + where + ": " +
+                      walked.waypoints.reason);
+      }
+      const std::string why = detourAfterRejection(path, walked, where);
+      if (!why.empty()) return failed(why);
+    }
+  }
+
+private:
+  // One IK and one collision check per obstacle at its O: the obstacles known to block the line
+  // before any walk.
+  void addBlockingObstacles() {
+    collision::CollisionData data(query_.model);
+    struct Blocking {
+      double position;
+      const collision::Obstacle* obstacle;
+    };
+    std::vector<Blocking> blocking;
+    for (const collision::Obstacle& obstacle : query_.obstacles) {
+      const double u = positionOnLine(line_, obstacle);
+      if (blocksTheLineAtO(query_, line_, obstacle, data, u)) blocking.push_back({u, &obstacle});
+    }
+    std::stable_sort(blocking.begin(), blocking.end(),
+                     [](const Blocking& x, const Blocking& y) { return x.position < y.position; });
+    for (const Blocking& blocked : blocking) {
+      detours_.push_back({blocked.position, shape_, planeAngle_});
+      obstacles_.push_back(blocked.obstacle->name);
+    }
+  }
+
+  // A detour around the obstacle behind the rejected walk, and the walk's waypoints up to where that
+  // detour leaves the line as the next prefix; or why no detour helps.
+  std::string detourAfterRejection(const ArcPath& path, const Walk& walked, const std::string& where) {
+    const double failedAt = walked.waypoints.failedAtArcLength;
+    const Rejection rejection = query_.validator.explain(*walked.rejected);
+    const std::string why = rejection.describe(query_.validator.margin());
+    std::ostringstream context;
+    context << why << " on the " << where << " at TCP arc length " << failedAt << " m";
+    for (std::size_t i = 0; i < detours_.size(); ++i) {
+      const auto [from, to] = path.detourSpan(i);
+      if (failedAt > from && failedAt <= to + 1e-12) {
+        std::ostringstream message;
+        message << why << " on arc detour " << i + 1 << " around '" << obstacles_[std::min(i, obstacles_.size() - 1)]
+                << "' at TCP arc length " << failedAt << " m";
+        return message.str();
+      }
+    }
+    const auto obstacle = std::find_if(query_.obstacles.begin(), query_.obstacles.end(),
+                                       [&](const collision::Obstacle& o) { return rejection.involves(o.name); });
+    if (obstacle == query_.obstacles.end()) return context.str() + ": no obstacle to go around (self-collision)";
+    if (std::find(obstacles_.begin(), obstacles_.end(), obstacle->name) != obstacles_.end() ||
+        detours_.size() >= kMaxDetours) {
+      return context.str() + ": '" + obstacle->name + "' still blocks the path after a detour around it";
+    }
+    const std::size_t index = insertDetour({positionOnLine(line_, *obstacle), shape_, planeAngle_}, obstacle->name);
+    const std::string problem = detoursProblem(query_.a, query_.b, detours_);
+    if (!problem.empty()) return context.str() + ": " + problem;
+    const double entry = ArcPath(query_.a, query_.b, detours_).detourSpan(index).first;
+    if (entry >= failedAt) {
+      std::ostringstream message;
+      message << context.str() << ": the detour around '" << obstacle->name << "' leaves the line at " << entry
+              << " m, after the collision; increase half_chord or the side radii";
+      return message.str();
+    }
+    prefix_ = walked.waypoints;  // up to the entry the new path is the walked one
+    while (prefix_.arcLengths.back() > entry) {
+      prefix_.arcLengths.pop_back();
+      prefix_.joints.pop_back();
+    }
+    return {};
+  }
+
+  // Inserts the detour in order along the line; returns its index.
+  std::size_t insertDetour(const Detour& detour, const std::string& obstacle) {
+    const auto place = std::upper_bound(detours_.begin(), detours_.end(), detour.position,
+                                        [](double position, const Detour& d) { return position < d.position; });
+    const auto index = place - detours_.begin();
+    detours_.insert(place, detour);
+    obstacles_.insert(obstacles_.begin() + index, obstacle);
+    return static_cast<std::size_t>(index);
+  }
+
+  std::string obstacleList() const {
+    std::string around;
+    for (const std::string& name : obstacles_) around += (around.empty() ? "'" : ", '") + name + "'";
+    return around;
+  }
+
+  ArcOutcome failed(std::string reason) const {
+    ArcOutcome outcome = failure(std::move(reason));
+    outcome.obstacles = obstacles_;
+    return outcome;
+  }
+
+  ArcOutcome solved(const ArcPath& path, JointConversionResult waypoints) const {
+    ArcOutcome outcome;
+    outcome.kind = detours_.empty() ? ArcPlannerResult::Kind::StraightLine : ArcPlannerResult::Kind::Detour;
+    outcome.path = std::move(waypoints);
+    outcome.detours = detours_;
+    outcome.obstacles = obstacles_;
+    outcome.tcpPathLength = path.length();
+    outcome.cartesianFraction = 1.0;
+    return outcome;
+  }
+
+  const ArcQuery& query_;
+  const ArcParameters shape_;
+  const double planeAngle_;
+  const ArcPath line_;
+  std::vector<Detour> detours_;  // ascending along the line
+  std::vector<std::string> obstacles_;
+  JointConversionResult prefix_;  // validated waypoints the next path shares
+};
+
 }  // namespace
 
-JointWaypoints ArcQuery::startOnly() const {
-  JointWaypoints prefix;
+JointConversionResult ArcQuery::startOnly() const {
+  JointConversionResult prefix;
   prefix.joints.push_back(start);
   prefix.arcLengths.push_back(0.0);
   return prefix;
 }
 
-JointWaypoints planThesisDetours(const ArcQuery& query, const ArcParameters& shape, double planeAngle,
-                                 ArcPlannerResult& result) {
-  const std::string shapeProblem = arcParametersProblem(shape);
-  if (!shapeProblem.empty()) {
-    result.reason = shapeProblem;
-    return {};
-  }
-  const ArcPath line(query.a, query.b);
-  collision::CollisionData data(query.model);
-  struct Blocking {
-    double position;
-    const collision::Obstacle* obstacle;
-  };
-  std::vector<Blocking> blocking;
-  for (const collision::Obstacle& obstacle : query.obstacles) {
-    const double u = positionOnLine(line, obstacle);
-    if (blocksTheLineAtO(query, line, obstacle, data, u)) blocking.push_back({u, &obstacle});
-  }
-  std::stable_sort(blocking.begin(), blocking.end(),
-                   [](const Blocking& x, const Blocking& y) { return x.position < y.position; });
-  std::vector<Detour> detours;  // ascending along the line
-  for (const Blocking& blocked : blocking) {
-    detours.push_back({blocked.position, shape, planeAngle});
-    result.obstacles.push_back(blocked.obstacle->name);
-  }
+ArcOutcome failure(std::string reason) {
+  ArcOutcome outcome;
+  outcome.reason = std::move(reason);
+  return outcome;
+}
 
-  // Walk the path; whatever else blocks it on the line gets a detour too.
-  JointWaypoints prefix = query.startOnly();  // validated waypoints the next path shares
-  for (;;) {
-    std::optional<ArcPath> path;
-    try {
-      path.emplace(query.a, query.b, detours);
-    } catch (const Error& error) {  // the given shape does not fit: a failure to report, not a search step
-      std::string around;
-      for (const std::string& name : result.obstacles) around += (around.empty() ? "'" : ", '") + name + "'";
-      result.reason = "arc path around " + around + ": " + error.what();
-      return {};
-    }
-    const JointWaypoints walked = query.validator.walk(*path, prefix, query.goal);
-    if (walked.ok()) {
-      result.kind = detours.empty() ? ArcPlannerResult::Kind::StraightLine : ArcPlannerResult::Kind::Detour;
-      result.detours = detours;
-      result.tcpPathLength = path->length();
-      return walked;
-    }
-    if (query.ptc()) {
-      result.reason = "time limit reached before a valid path was found";
-      return {};
-    }
-    const std::string where = detours.empty() ? "straight line" : "arc path";
-    if (walked.status != ConversionStatus::Rejected) {
-      result.reason = std::string(toString(walked.status)) + " on the " + where + ": " + walked.reason;
-      return {};
-    }
-    const double failedAt = walked.failedAtArcLength;
-    const Rejection rejection = query.validator.rejection();
-    const std::string why = rejection.describe(query.validator.margin());
-    std::ostringstream context;
-    context << why << " on the " << where << " at TCP arc length " << failedAt << " m";
-    for (std::size_t i = 0; i < detours.size(); ++i) {
-      const auto [from, to] = path->detourSpan(i);
-      if (failedAt > from && failedAt <= to + 1e-12) {
-        std::ostringstream message;
-        message << why << " on arc detour " << i + 1 << " around '"
-                << result.obstacles[std::min(i, result.obstacles.size() - 1)] << "' at TCP arc length " << failedAt
-                << " m";
-        result.reason = message.str();
-        return {};
-      }
-    }
-    const auto obstacle = std::find_if(query.obstacles.begin(), query.obstacles.end(),
-                                       [&](const collision::Obstacle& o) { return rejection.involves(o.name); });
-    if (obstacle == query.obstacles.end()) {
-      result.reason = context.str() + ": no obstacle to go around (self-collision)";
-      return {};
-    }
-    if (std::find(result.obstacles.begin(), result.obstacles.end(), obstacle->name) != result.obstacles.end() ||
-        detours.size() >= kMaxDetours) {
-      result.reason = context.str() + ": '" + obstacle->name + "' still blocks the path after a detour around it";
-      return {};
-    }
-    const Detour detour{positionOnLine(line, *obstacle), shape, planeAngle};
-    const auto place = std::upper_bound(detours.begin(), detours.end(), detour.position,
-                                        [](double position, const Detour& d) { return position < d.position; });
-    const auto index = place - detours.begin();
-    detours.insert(place, detour);
-    result.obstacles.insert(result.obstacles.begin() + index, obstacle->name);
-    double entry = 0.0;
-    try {
-      entry = ArcPath(query.a, query.b, detours).detourSpan(static_cast<std::size_t>(index)).first;
-    } catch (const Error& error) {
-      result.reason = context.str() + ": " + error.what();
-      return {};
-    }
-    if (entry >= failedAt) {
-      std::ostringstream message;
-      message << ": the detour around '" << obstacle->name << "' leaves the line at " << entry
-              << " m, after the collision; increase half_chord or the side radii";
-      result.reason = context.str() + message.str();
-      return {};
-    }
-    // Up to the entry the new path is the walked one.
-    prefix = walked;
-    while (prefix.arcLengths.back() > entry) {
-      prefix.arcLengths.pop_back();
-      prefix.joints.pop_back();
-    }
-  }
+ArcOutcome planThesisDetours(const ArcQuery& query, const ArcParameters& shape, double planeAngle) {
+  const std::string shapeProblem = arcParametersProblem(shape);
+  if (!shapeProblem.empty()) return failure(shapeProblem);
+  return ThesisDetours(query, shape, planeAngle).solve();
 }
 
 }  // namespace arcplan::planners::detail

@@ -9,8 +9,8 @@
 
 #include "arc_planning.h"
 #include "arcplan/planners/blended_path.h"
-#include "arcplan/planners/route_search.h"
-#include "arcplan/planners/via_points.h"
+#include "route_search.h"
+#include "via_points.h"
 
 namespace arcplan::planners::detail {
 namespace {
@@ -57,9 +57,7 @@ bool viaPointClear(const ArcQuery& query, const Eigen::Vector3d& point) {
 // Where a route probably fails, tested before it is walked: one IK solution and one distance query
 // each instead of a certified walk up to there. The suspects are the clusters' centres (the route's
 // nearest point; the arm above the tool passes them there too) and the TCP positions where earlier
-// walks were rejected (the arm takes nearly the same posture within kSuspectReach of one). Returns
-// the arc length of the first probed configuration closer than the margin (the validator's
-// rejection() then names the pair).
+// walks were rejected (the arm takes nearly the same posture within kSuspectReach of one).
 constexpr double kProbeSpacing = 0.01;  // m between the route points considered
 constexpr double kSuspectReach = 0.03;  // m from an earlier rejection within which a route is probed
 
@@ -68,8 +66,8 @@ struct Suspect {
   double reach;  // probe the route's nearest point only if it is this close
 };
 
-std::optional<double> failingProbe(const ArcQuery& query, const BlendedPath& path,
-                                   const std::vector<Suspect>& suspects) {
+// The first probed configuration closer than the margin, as a walk rejected there.
+std::optional<Walk> failingProbe(const ArcQuery& query, const BlendedPath& path, const std::vector<Suspect>& suspects) {
   const int count = static_cast<int>(std::ceil(path.length() / kProbeSpacing));
   std::vector<Eigen::Vector3d> points;
   for (int k = 0; k <= count; ++k) points.push_back(path.position(path.length() * k / count));
@@ -85,134 +83,203 @@ std::optional<double> failingProbe(const ArcQuery& query, const BlendedPath& pat
   for (const int k : probes) {  // in order along the route, as a walk would meet them
     const double arcLength = path.length() * k / count;
     const auto q = postureAt(query, path.pose(arcLength));
-    if (q && !query.validator.keepsMargin(*q)) return arcLength;
+    if (q && !query.validator.keepsMargin(*q)) {
+      Walk probed;
+      probed.waypoints.status = ConversionStatus::Rejected;
+      probed.waypoints.failedAtArcLength = arcLength;
+      probed.rejected = RejectedMotion{*q, *q};
+      return probed;
+    }
   }
   return std::nullopt;
 }
 
-}  // namespace
+// Where on a route a walk failed: the leg it belongs to (after a corner: the leg that follows), and
+// the corner when it was on that corner's blend.
+struct FailureSite {
+  std::size_t leg;
+  std::optional<std::size_t> blend;
+};
 
-JointWaypoints planViaPoints(const ArcQuery& query, ArcPlannerResult& result) {
-  const std::vector<ObstacleCluster> clusters = clusterObstacles(query.obstacles, kClusterGap);
-  RouteSearch search(query.a.translation(), query.b.translation(), kMaxViaPoints);
-  std::vector<Suspect> suspects;
-  for (const ObstacleCluster& cluster : clusters) {
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& p : cluster.hull) centre += p / static_cast<double>(cluster.hull.size());
-    suspects.push_back({centre, std::numeric_limits<double>::infinity()});
+FailureSite siteOf(const BlendedPath& path, std::size_t viaCount, double failedAt) {
+  for (std::size_t i = 0; i < viaCount; ++i) {
+    const auto [from, to] = path.blendSpan(i);
+    if (failedAt > to + 1e-12) continue;
+    if (failedAt >= from - 1e-12) return {i + 1, i};
+    return {i, std::nullopt};
   }
-  const bool orientationHeld =
-      Eigen::Quaterniond(query.a.linear()).angularDistance(Eigen::Quaterniond(query.b.linear())) < 1e-12;
-  std::set<std::array<double, 3>> blockedPoints;
-  std::string lastFailure = "no route";
-  while (const std::optional<Route> route = search.next()) {
-    if (query.ptc()) {
-      result.reason = "time limit reached before a valid route was found (" + lastFailure + ")";
-      return {};
+  return {viaCount, std::nullopt};
+}
+
+// The search of one auto-mode query: the route graph, what earlier walks taught about where routes
+// fail, and the bodies met.
+class ViaPointSearch {
+public:
+  explicit ViaPointSearch(const ArcQuery& query)
+      : query_(query),
+        clusters_(clusterObstacles(query.obstacles, kClusterGap)),
+        search_(query.a.translation(), query.b.translation(), kMaxViaPoints),
+        orientationHeld_(Eigen::Quaterniond(query.a.linear()).angularDistance(Eigen::Quaterniond(query.b.linear())) <
+                         1e-12) {
+    for (const ObstacleCluster& cluster : clusters_) {
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (const Eigen::Vector3d& p : cluster.hull) centre += p / static_cast<double>(cluster.hull.size());
+      suspects_.push_back({centre, std::numeric_limits<double>::infinity()});
     }
-    if (static_cast<int>(search.routesTried()) > kMaxRoutes) break;
-    if (!legsLongEnough(*route)) continue;
-    const std::vector<Eigen::Vector3d> vias(route->points.begin() + 1, route->points.end() - 1);
-    // With a held orientation a via point's posture is known before the walk: test it first.
-    bool viasClear = true;
+  }
+
+  ArcOutcome solve() {
+    while (const std::optional<Route> route = search_.next()) {
+      if (query_.ptc()) return failed("time limit reached before a valid route was found (" + lastFailure_ + ")");
+      if (static_cast<int>(search_.routesTried()) > kMaxRoutes) break;
+      if (!legsLongEnough(*route)) continue;
+      const std::vector<Eigen::Vector3d> vias(route->points.begin() + 1, route->points.end() - 1);
+      if (!viasClear(vias)) continue;
+      if (std::optional<ArcOutcome> found = walkRoute(*route, vias)) return std::move(*found);
+    }
+    routesWalked_ = static_cast<int>(search_.routesTried());
+    std::ostringstream message;
+    message << (query_.ptc() ? "time limit reached" : "no route through via points is valid") << " ("
+            << search_.routesTried() << " routes walked of " << search_.routesQueued() << "; last: " << lastFailure_
+            << ")";
+    return failed(message.str());
+  }
+
+private:
+  // With a held orientation a via point's posture is known before the walk: tested first, and
+  // remembered when it fails.
+  bool viasClear(const std::vector<Eigen::Vector3d>& vias) {
     for (const Eigen::Vector3d& v : vias) {
       const std::array<double, 3> key{v.x(), v.y(), v.z()};
-      if (blockedPoints.count(key) > 0) viasClear = false;
-      if (viasClear && orientationHeld && !viaPointClear(query, v)) {
-        blockedPoints.insert(key);
-        viasClear = false;
+      if (blockedPoints_.count(key) > 0) return false;
+      if (orientationHeld_ && !viaPointClear(query_, v)) {
+        blockedPoints_.insert(key);
+        return false;
       }
     }
-    if (!viasClear) continue;
+    return true;
+  }
+
+  // Walks the route, narrowing a blend where the walk fails on it: the answer when it validates;
+  // nothing when the time is up or the failed leg was dropped from the graph.
+  std::optional<ArcOutcome> walkRoute(const Route& route, const std::vector<Eigen::Vector3d>& vias) {
     std::vector<double> blends;
-    for (std::size_t i = 0; i < vias.size(); ++i) blends.push_back(initialBlend(route->points, i, route->margins[i]));
-    result.routesTried = static_cast<int>(search.routesTried());
+    for (std::size_t i = 0; i < vias.size(); ++i) blends.push_back(initialBlend(route.points, i, route.margins[i]));
+    routesWalked_ = static_cast<int>(search_.routesTried());
     for (;;) {
-      const BlendedPath path(query.a, query.b, vias, blends);
-      JointWaypoints walked;
-      if (const std::optional<double> probedFailure = failingProbe(query, path, suspects)) {
-        walked.status = ConversionStatus::Rejected;
-        walked.failedAtArcLength = *probedFailure;
-      } else {
-        walked = query.validator.walk(path, query.startOnly(), query.goal);
-        const Eigen::Vector3d rejectedAt = path.position(walked.failedAtArcLength);
-        const bool known = std::any_of(suspects.begin(), suspects.end(), [&](const Suspect& suspect) {
-          return (suspect.position - rejectedAt).norm() < kProbeSpacing;
-        });
-        if (walked.status == ConversionStatus::Rejected && !known) suspects.push_back({rejectedAt, kSuspectReach});
-      }
-      if (walked.ok()) {
-        // The margins come in steps: where a via point can come closer, the path gets shorter. Each
-        // trial is checked like a route (via points, probes, then the certified walk).
-        const BlendedPath shortest = shortenRoute(
-            query.a, query.b, path, route->margins, kMaxShorteningTrials, [&](const BlendedPath& candidate) {
-              if (query.ptc()) return false;  // out of time: the route that validated is the answer
-              for (std::size_t i = 0; i + 2 < candidate.points().size(); ++i) {
-                if (orientationHeld && !viaPointClear(query, candidate.points()[i + 1])) return false;
-              }
-              if (failingProbe(query, candidate, suspects)) return false;
-              JointWaypoints candidateWalk = query.validator.walk(candidate, query.startOnly(), query.goal);
-              if (!candidateWalk.ok()) return false;
-              walked = std::move(candidateWalk);
-              return true;
-            });
-        result.kind = vias.empty() ? ArcPlannerResult::Kind::StraightLine : ArcPlannerResult::Kind::ViaPoints;
-        result.viaPoints.assign(shortest.points().begin() + 1, shortest.points().end() - 1);
-        result.blends = shortest.blends();
-        result.tcpPathLength = shortest.length();
-        return walked;
-      }
-      if (query.ptc()) break;
-      const double failedAt = walked.failedAtArcLength;
+      const BlendedPath path(query_.a, query_.b, vias, blends);
+      const Walk walked = probeThenWalk(path);
+      if (walked.ok()) return shortest(route, path, walked.waypoints);
+      if (query_.ptc()) return std::nullopt;
       // A failure on a blend first narrows that blend; on a line (or a blend at its smallest) the
       // leg is dropped from the graph.
-      std::size_t leg = vias.size();
-      bool narrowed = false;
-      for (std::size_t i = 0; i < vias.size(); ++i) {
-        const auto [from, to] = path.blendSpan(i);
-        if (failedAt > to + 1e-12) continue;
-        if (failedAt >= from - 1e-12 && blends[i] > 2.0 * kSmallestBlend) {
-          blends[i] *= 0.5;
-          narrowed = true;
-        }
-        leg = failedAt >= from - 1e-12 ? i + 1 : i;
-        break;
+      const FailureSite site = siteOf(path, vias.size(), walked.waypoints.failedAtArcLength);
+      if (site.blend && blends[*site.blend] > 2.0 * kSmallestBlend) {
+        blends[*site.blend] *= 0.5;
+        continue;
       }
-      if (narrowed) continue;
-      std::ostringstream failure;
-      failure << toString(walked.status) << " on leg " << leg + 1 << " of a route with " << vias.size()
-              << " via points";
-      if (walked.status != ConversionStatus::Rejected) {
-        lastFailure = failure.str() + ": " + walked.reason;
-        search.removeLeg(*route, leg);
-        break;
-      }
-      const Rejection rejection = query.validator.rejection();
-      lastFailure = failure.str() + ": " + rejection.describe(query.validator.margin());
-      const auto cluster = std::find_if(clusters.begin(), clusters.end(), [&](const ObstacleCluster& c) {
-        return std::any_of(c.names.begin(), c.names.end(), [&](const std::string& n) { return rejection.involves(n); });
-      });
-      if (cluster == clusters.end()) {
-        search.removeLeg(*route, leg);
-        break;
-      }
-      for (const std::string& name : cluster->names) {
-        if (rejection.involves(name) &&
-            std::find(result.obstacles.begin(), result.obstacles.end(), name) == result.obstacles.end()) {
-          result.obstacles.push_back(name);
-        }
-      }
-      search.legFailed(*route, leg,
-                       viaCandidates(*cluster, route->points[leg], route->points[leg + 1], query.validator.margin()));
-      break;
+      dropLeg(route, site.leg, walked);
+      return std::nullopt;
     }
   }
-  result.routesTried = static_cast<int>(search.routesTried());
-  std::ostringstream message;
-  message << (query.ptc() ? "time limit reached" : "no route through via points is valid") << " ("
-          << search.routesTried() << " routes walked of " << search.routesQueued() << "; last: " << lastFailure << ")";
-  result.reason = message.str();
-  return {};
-}
+
+  // The probes first, then the certified walk; a walk rejected away from every suspect adds one.
+  Walk probeThenWalk(const BlendedPath& path) {
+    if (std::optional<Walk> probed = failingProbe(query_, path, suspects_)) return std::move(*probed);
+    Walk walked = query_.validator.walk(path, query_.startOnly(), query_.goal);
+    if (!walked.rejected) return walked;
+    const Eigen::Vector3d rejectedAt = path.position(walked.waypoints.failedAtArcLength);
+    const bool known = std::any_of(suspects_.begin(), suspects_.end(), [&](const Suspect& suspect) {
+      return (suspect.position - rejectedAt).norm() < kProbeSpacing;
+    });
+    if (!known) suspects_.push_back({rejectedAt, kSuspectReach});
+    return walked;
+  }
+
+  // The leg leaves the graph; when a cluster's body stopped the walk, that cluster's candidates
+  // replace it.
+  void dropLeg(const Route& route, std::size_t leg, const Walk& walked) {
+    std::ostringstream failure;
+    failure << toString(walked.waypoints.status) << " on leg " << leg + 1 << " of a route with "
+            << route.points.size() - 2 << " via points";
+    if (!walked.rejected) {
+      lastFailure_ = failure.str() + ": " + walked.waypoints.reason;
+      search_.removeLeg(route, leg);
+      return;
+    }
+    const Rejection rejection = query_.validator.explain(*walked.rejected);
+    lastFailure_ = failure.str() + ": " + rejection.describe(query_.validator.margin());
+    const auto cluster = std::find_if(clusters_.begin(), clusters_.end(), [&](const ObstacleCluster& c) {
+      return std::any_of(c.names.begin(), c.names.end(), [&](const std::string& n) { return rejection.involves(n); });
+    });
+    if (cluster == clusters_.end()) {
+      search_.removeLeg(route, leg);
+      return;
+    }
+    for (const std::string& name : cluster->names) {
+      if (rejection.involves(name) && std::find(obstacles_.begin(), obstacles_.end(), name) == obstacles_.end()) {
+        obstacles_.push_back(name);
+      }
+    }
+    search_.legFailed(route, leg,
+                      viaCandidates(*cluster, route.points[leg], route.points[leg + 1], query_.validator.margin()));
+  }
+
+  // The margins come in steps: where a via point can come closer, the path gets shorter. Each trial
+  // is checked like a route (via points, probes, then the certified walk); out of time, the route
+  // that validated is the answer.
+  ArcOutcome shortest(const Route& route, const BlendedPath& validated, JointConversionResult waypoints) {
+    RouteShortening shortening(query_.a, query_.b, validated, route.margins, kMaxShorteningTrials);
+    while (const std::optional<BlendedPath> candidate = shortening.next()) {
+      if (query_.ptc()) break;
+      const std::optional<Walk> walked = validatedWalk(*candidate);
+      if (walked) waypoints = walked->waypoints;
+      shortening.accept(walked.has_value());
+    }
+    const BlendedPath& best = shortening.best();
+    ArcOutcome outcome;
+    outcome.kind = best.points().size() == 2 ? ArcPlannerResult::Kind::StraightLine : ArcPlannerResult::Kind::ViaPoints;
+    outcome.path = std::move(waypoints);
+    outcome.obstacles = obstacles_;
+    outcome.viaPoints.assign(best.points().begin() + 1, best.points().end() - 1);
+    outcome.blends = best.blends();
+    outcome.tcpPathLength = best.length();
+    outcome.cartesianFraction = 1.0;
+    outcome.routesTried = routesWalked_;
+    return outcome;
+  }
+
+  // The walk of a shortening candidate when it validates.
+  std::optional<Walk> validatedWalk(const BlendedPath& candidate) {
+    for (std::size_t i = 0; i + 2 < candidate.points().size(); ++i) {
+      if (orientationHeld_ && !viaPointClear(query_, candidate.points()[i + 1])) return std::nullopt;
+    }
+    if (failingProbe(query_, candidate, suspects_)) return std::nullopt;
+    Walk walked = query_.validator.walk(candidate, query_.startOnly(), query_.goal);
+    if (!walked.ok()) return std::nullopt;
+    return walked;
+  }
+
+  ArcOutcome failed(std::string reason) const {
+    ArcOutcome outcome = failure(std::move(reason));
+    outcome.obstacles = obstacles_;
+    outcome.routesTried = routesWalked_;
+    return outcome;
+  }
+
+  const ArcQuery& query_;
+  const std::vector<ObstacleCluster> clusters_;
+  RouteSearch search_;
+  const bool orientationHeld_;
+  std::vector<Suspect> suspects_;
+  std::set<std::array<double, 3>> blockedPoints_;  // via points whose posture failed the margin
+  std::string lastFailure_ = "no route";
+  std::vector<std::string> obstacles_;  // bodies that blocked a leg, in the order met
+  int routesWalked_ = 0;                // routes tried when the last one was walked
+};
+
+}  // namespace
+
+ArcOutcome planViaPoints(const ArcQuery& query) { return ViaPointSearch(query).solve(); }
 
 }  // namespace arcplan::planners::detail

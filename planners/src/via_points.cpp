@@ -1,4 +1,4 @@
-#include "arcplan/planners/via_points.h"
+#include "via_points.h"
 
 #include <algorithm>
 #include <cmath>

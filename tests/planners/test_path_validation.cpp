@@ -6,7 +6,7 @@
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/planners/arc_path.h"
-#include "arcplan/planners/path_validation.h"
+#include "path_validation.h"
 #include "planners/planner_test_support.h"
 
 namespace {
@@ -25,8 +25,8 @@ PathValidator certifyingValidator(const arcplan::planners::PlanningProblem& prob
       [] { return false; });
 }
 
-arcplan::planners::JointWaypoints startOnly(const arcplan::robot::Vector6& start) {
-  arcplan::planners::JointWaypoints prefix;
+arcplan::planners::JointConversionResult startOnly(const arcplan::robot::Vector6& start) {
+  arcplan::planners::JointConversionResult prefix;
   prefix.joints.push_back(start);
   prefix.arcLengths.push_back(0.0);
   return prefix;
@@ -43,14 +43,15 @@ TEST(PathValidation, AFailedWalkDoesNotAffectTheNextOne) {
   const ArcPath line(a, b);
 
   PathValidator fresh = certifyingValidator(problem, ik);
-  const auto alone = fresh.walk(detour, startOnly(problem.start), problem.goal);
+  const auto alone = fresh.walk(detour, startOnly(problem.start), problem.goal).waypoints;
   ASSERT_TRUE(alone.ok()) << alone.reason;
 
   PathValidator reused = certifyingValidator(problem, ik);
   const auto failed = reused.walk(line, startOnly(problem.start), problem.goal);
-  ASSERT_EQ(failed.status, ConversionStatus::Rejected);
-  EXPECT_TRUE(reused.rejection().involves("particle"));
-  const auto after = reused.walk(detour, startOnly(problem.start), problem.goal);
+  ASSERT_EQ(failed.waypoints.status, ConversionStatus::Rejected);
+  ASSERT_TRUE(failed.rejected);
+  EXPECT_TRUE(reused.explain(*failed.rejected).involves("particle"));
+  const auto after = reused.walk(detour, startOnly(problem.start), problem.goal).waypoints;
   ASSERT_TRUE(after.ok()) << after.reason;
   // The same waypoints as a validator that never saw the failure, and the margin really kept.
   ASSERT_EQ(after.joints.size(), alone.joints.size());
@@ -72,7 +73,7 @@ TEST(PathValidation, KeepsMarginTestsOneConfigurationAndExplainsARejection) {
   ASSERT_TRUE(q);
   ASSERT_LT(arcplan::collision::distance(*problem.collisionModel, data, *q).minimum(), kMargin);
   EXPECT_FALSE(validator.keepsMargin(*q));
-  const auto rejection = validator.rejection();
+  const auto rejection = validator.explain({*q, *q});
   EXPECT_TRUE(rejection.involves("particle"));
   // 3 cm above the start: farther than the margin from everything (checked independently).
   Eigen::Isometry3d lifted = a;

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "arcplan/planners/route_search.h"
+#include "route_search.h"
 
 namespace {
 
@@ -100,10 +100,12 @@ TEST(RouteSearch, ShorteningNeverLengthensAndKeepsTheClearance) {
     const BlendedPath validated(start, goal, vias, blends);
     ASSERT_TRUE(keepsClearance(validated));
     int calls = 0;
-    const BlendedPath shortened = shortenRoute(start, goal, validated, margins, 8, [&](const BlendedPath& path) {
+    RouteShortening shortening(start, goal, validated, margins, 8);
+    while (const auto candidate = shortening.next()) {
       ++calls;
-      return keepsClearance(path);
-    });
+      shortening.accept(keepsClearance(*candidate));
+    }
+    const BlendedPath& shortened = shortening.best();
     EXPECT_LE(calls, 8);
     EXPECT_LT(shortened.length(), validated.length() - 0.01) << vias.size() << " via points";
     EXPECT_GE(shortened.length(), shortestWayRound());
@@ -112,8 +114,9 @@ TEST(RouteSearch, ShorteningNeverLengthensAndKeepsTheClearance) {
   }
   // Nothing validates: the route is returned as it was.
   const BlendedPath validated(start, goal, {Vector3d(0.5, 0, 0.3328)}, {0.05});
-  const BlendedPath unchanged =
-      shortenRoute(start, goal, validated, {0.22}, 8, [](const BlendedPath&) { return false; });
+  RouteShortening refusing(start, goal, validated, {0.22}, 8);
+  while (refusing.next()) refusing.accept(false);
+  const BlendedPath& unchanged = refusing.best();
   EXPECT_EQ(unchanged.points(), validated.points());
   EXPECT_EQ(unchanged.length(), validated.length());
 }

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "arcplan/planners/via_points.h"
+#include "via_points.h"
 
 namespace {
 

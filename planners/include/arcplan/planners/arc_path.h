@@ -76,11 +76,16 @@ struct Detour {
 // Unit "away" direction of the avoidance plane, orthogonal to the unit line direction.
 Eigen::Vector3d avoidanceDirection(const Eigen::Vector3d& lineDirection, double planeAngle);
 
+// What is wrong with placing `detours` on the line start→goal, naming the detour and what to change:
+// an invalid shape, detours out of order or overlapping, not fitting between A and B (bx2 <= |AO|,
+// bx3 <= |OB|), or detours on a zero-length line; empty when ArcPath accepts them.
+std::string detoursProblem(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal,
+                           const std::vector<Detour>& detours);
+
 // The TCP path from start to goal: the straight line with the given detours (none: a LIN move).
 class ArcPath : public TcpPath {
 public:
-  // Throws arcplan::Error for invalid shapes, detours out of order, overlapping, or not fitting
-  // between A and B (bx2 <= |AO|, bx3 <= |OB|), and detours on a zero-length line. Its length() is
+  // Throws arcplan::Error with detoursProblem's text for detours it does not accept. Its length() is
   // |AB| + the extra length of every detour.
   ArcPath(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, std::vector<Detour> detours = {});
 

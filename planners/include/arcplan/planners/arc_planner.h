@@ -22,16 +22,21 @@
 #include <ompl/base/Planner.h>
 #include <ompl/geometric/PathGeometric.h>
 
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/motion_check.h"
 #include "arcplan/planners/arc_path.h"
 #include "arcplan/planners/cartesian_to_joint.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 
 namespace arcplan::planners {
+namespace detail {
+struct ArcOutcome;  // what one strategy found (planners/src/arc_planning.h)
+}
 
 // Outcome of the last solve(), for users and for the command line.
 struct ArcPlannerResult {
@@ -107,8 +112,16 @@ public:
   unsigned int getSeed() const { return seed_; }
 
 private:
-  ompl::base::PlannerStatus fail(ompl::base::PlannerStatus status, const std::string& reason);
-  void setSolution(const JointWaypoints& waypoints);
+  // One query answered by the mode's strategy and, in auto mode, the fallback after it.
+  detail::ArcOutcome answer(const ompl::base::PlannerTerminationCondition& ptc, const robot::Vector6& start,
+                            const robot::Vector6& goal);
+  collision::MotionCheckOptions motionCheckOptions() const;
+  double planningMargin(const collision::MotionCheckOptions& motionCheck, const robot::Vector6& start,
+                        const robot::Vector6& goal) const;
+  // The outcome becomes lastResult() (and the solution path when there is one).
+  ompl::base::PlannerStatus finish(detail::ArcOutcome outcome, ompl::base::PlannerStatus status,
+                                   std::chrono::steady_clock::time_point clockStart);
+  void setSolution(const JointConversionResult& waypoints);
   double checkedParameter(const std::string& name, double value) const;
 
   std::shared_ptr<const collision::CollisionModel> collisionModel_;

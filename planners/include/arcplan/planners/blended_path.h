@@ -30,8 +30,6 @@ public:
   const std::vector<double>& blends() const { return blends_; }
   // Arc lengths where the blend of corner i begins and ends (equal for a straight-on corner).
   std::pair<double, double> blendSpan(std::size_t i) const { return blendSpans_.at(i); }
-  // Arc length where leg k (points[k] -> points[k+1]) begins: 0, or where the previous corner's blend ends.
-  double legStart(std::size_t k) const { return k == 0 ? 0.0 : blendSpans_.at(k - 1).second; }
 
 private:
   std::vector<Eigen::Vector3d> points_;

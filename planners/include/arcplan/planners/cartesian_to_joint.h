@@ -32,12 +32,15 @@ enum class ConversionStatus {
 };
 const char* toString(ConversionStatus status);
 
-struct JointWaypoints {
+// What a conversion produced: the waypoints up to where it stopped, and why it stopped there.
+struct JointConversionResult {
   ConversionStatus status = ConversionStatus::Success;
   std::string reason;  // for users, empty on success
   double failedAtArcLength = std::numeric_limits<double>::quiet_NaN();
   std::vector<robot::Vector6> joints;
   std::vector<double> arcLengths;  // TCP arc length of each waypoint along the path
+  // Status Rejected: the waypoint the check refused (the motion to it starts at joints.back()).
+  std::optional<robot::Vector6> refused;
 
   bool ok() const { return status == ConversionStatus::Success; }
 };
@@ -56,9 +59,10 @@ using WaypointCheck =
 // fromArcLength and becomes the first waypoint unchanged. When `goal` is given the last waypoint must
 // be the goal within 1e-6 rad per joint and is then replaced by it exactly (before `check` sees it).
 // Throws arcplan::Error for invalid options.
-JointWaypoints convertToJoints(const robot::UrInverseKinematics& ik, const TcpPath& path, const robot::Vector6& seed,
-                               const std::optional<robot::Vector6>& goal, const JointConversionOptions& options,
-                               double fromArcLength = 0.0, double toArcLength = std::numeric_limits<double>::infinity(),
-                               const WaypointCheck& check = {});
+JointConversionResult convertToJoints(const robot::UrInverseKinematics& ik, const TcpPath& path,
+                                      const robot::Vector6& seed, const std::optional<robot::Vector6>& goal,
+                                      const JointConversionOptions& options, double fromArcLength = 0.0,
+                                      double toArcLength = std::numeric_limits<double>::infinity(),
+                                      const WaypointCheck& check = {});
 
 }  // namespace arcplan::planners

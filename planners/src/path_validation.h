@@ -3,8 +3,10 @@
 // certified, every motion between consecutive waypoints proven to keep `margin` from obstacles and
 // between links (collision::PathCertifier, the check of the SpaceInformation's motion validator), or
 // only the waypoints themselves (a caller's state check, as MoveIt's Cartesian paths do). A walk
-// stops at the first waypoint that fails and says which bodies were behind it.
+// stops at the first waypoint that fails and returns the motion it refused; explain() names the
+// bodies behind it. Internal to the arc planner.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,9 +16,24 @@
 
 namespace arcplan::planners {
 
-// Why a walk stopped at a waypoint: the pairs in contact at the rejected waypoint, else its closest
-// pair when that is closer than the margin; only when the waypoint itself keeps the margin, the
-// pairs in contact along the motion to it, else the closest pair along that motion.
+// The motion a walk stopped at: from its last accepted waypoint to the one refused (both the same
+// configuration when one was tested on its own, as keepsMargin does).
+struct RejectedMotion {
+  robot::Vector6 from = robot::Vector6::Zero();
+  robot::Vector6 to = robot::Vector6::Zero();
+};
+
+// What a walk validated, and where it stopped when it did not reach the end.
+struct Walk {
+  JointConversionResult waypoints;         // the prefix, continued up to where the walk stopped
+  std::optional<RejectedMotion> rejected;  // status Rejected: the motion refused (also when the stop request ended it)
+
+  bool ok() const { return waypoints.ok(); }
+};
+
+// Why a motion was rejected: the pairs in contact at its end, else its closest pair when that is
+// closer than the margin; only when the end itself keeps the margin, the pairs in contact along the
+// motion, else the closest pair along it.
 struct Rejection {
   collision::CollisionReport pairs;
   bool collides = true;
@@ -38,20 +55,18 @@ public:
 
   // Continues the validated `prefix` (at least the start configuration) along `path` to its end,
   // where `goal` (if given) must be met; stops at the first waypoint that fails. Returns prefix +
-  // continuation, with the status and reason of the conversion.
-  JointWaypoints walk(const TcpPath& path, const JointWaypoints& prefix, const std::optional<robot::Vector6>& goal);
+  // continuation, with the status and reason of the conversion and the motion it refused.
+  Walk walk(const TcpPath& path, const JointConversionResult& prefix, const std::optional<robot::Vector6>& goal);
   // One configuration tested on its own, without a walk up to it: false when it is closer than the
-  // margin to an obstacle or between links, and rejection() then explains it. A cheap test of where
-  // a path is likely to fail before the walk; a configuration that passes proves nothing about the
-  // motions around it.
+  // margin to an obstacle or between links (explain({q, q}) says why). A cheap test of where a path
+  // is likely to fail before the walk; a configuration that passes proves nothing about the motions
+  // around it.
   bool keepsMargin(const robot::Vector6& q);
-  // The rejection behind the last walk's failure (status Rejected) or the last failed keepsMargin.
-  Rejection rejection();
+  // The bodies behind a refused motion (collision and distance queries: asked only when needed).
+  Rejection explain(const RejectedMotion& motion);
   double margin() const { return margin_; }
 
 private:
-  bool validMotion(const robot::Vector6& previous, const robot::Vector6& q);
-
   const collision::CollisionModel& model_;
   const robot::UrInverseKinematics& ik_;
   JointConversionOptions conversion_;
@@ -60,8 +75,6 @@ private:
   StateCheck waypointValid_;
   StopRequest stop_;
   collision::CollisionData data_;
-  std::optional<collision::PathCertifier> certifier_;  // of the current walk
-  robot::Vector6 rejectedPrevious_ = robot::Vector6::Zero(), rejectedJoints_ = robot::Vector6::Zero();
 };
 
 }  // namespace arcplan::planners

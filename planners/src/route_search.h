@@ -1,5 +1,6 @@
 #pragma once
 // The lazy search of the via-point graph: routes start -> via points -> goal, shortest first.
+// Internal to the arc planner (via_point_planning.cpp).
 //
 // The graph's vertices are the start, the goal and the via-point candidates of the obstacle
 // clusters found so far (via_points.h); its edges are straight legs. Edges are evaluated lazily, as
@@ -10,7 +11,6 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
-#include <functional>
 #include <optional>
 #include <queue>
 #include <set>
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "arcplan/planners/blended_path.h"
-#include "arcplan/planners/via_points.h"
+#include "via_points.h"
 
 namespace arcplan::planners {
 
@@ -67,11 +67,32 @@ Eigen::Vector3d towardChord(const Eigen::Vector3d& prev, const Eigen::Vector3d& 
 // A route that validated, made shorter where it still validates: the search's margins come in steps,
 // so every via point is moved toward the chord of its neighbours by the same fraction of its margin —
 // the whole margin first (the clearance-only position), then bisected — blends kept where they still
-// fit. A change is kept only if the blended path gets shorter and `validates` accepts it; at most
-// `maxTrials` trials. Returns the shortest path accepted (the given one if none).
-// `validated` runs from `start` to `goal` (the poses it was built with).
-BlendedPath shortenRoute(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, const BlendedPath& validated,
-                         const std::vector<double>& margins, int maxTrials,
-                         const std::function<bool(const BlendedPath&)>& validates);
+// fit. A candidate is offered only if it is shorter than the best so far; the caller validates it
+// and gives the verdict, at most `maxTrials` trials. best() is the shortest path accepted (the
+// validated one if none). `validated` runs from `start` to `goal` (the poses it was built with).
+class RouteShortening {
+public:
+  RouteShortening(const Eigen::Isometry3d& start, const Eigen::Isometry3d& goal, BlendedPath validated,
+                  std::vector<double> margins, int maxTrials);
+
+  // The next candidate to validate; nothing once the trials are spent or the whole margin was kept.
+  // Each candidate needs its verdict (accept) before the next call.
+  std::optional<BlendedPath> next();
+  // The verdict on the candidate next() returned last.
+  void accept(bool valid);
+  const BlendedPath& best() const { return best_; }
+
+private:
+  std::optional<BlendedPath> candidateAt(double fraction) const;
+
+  Eigen::Isometry3d start_, goal_;
+  BlendedPath validated_, best_;
+  std::vector<double> margins_;
+  int trialsLeft_;
+  double kept_ = 0.0, refused_ = 2.0;  // fractions of the margins kept and refused so far
+  double pending_ = 0.0;               // the fraction of the candidate awaiting its verdict
+  std::optional<BlendedPath> candidate_;
+  bool done_ = false;
+};
 
 }  // namespace arcplan::planners
