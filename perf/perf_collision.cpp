@@ -2,7 +2,10 @@
 // isCollisionFree, collide and distance, for every FCL bounding-volume type, with and without the
 // capsule broad phase. Each iteration checks the next of 1000 random collision-free states.
 // "naive" sends every non-allowed part pair to FCL (no capsule broad phase). CollisionMotion*
-// checks straight joint-space motions, discrete (0.01 rad) vs certified (motion_check.h).
+// checks straight joint-space motions, discrete (0.01 rad) vs certified (motion_check.h). "Prefilter"
+// variants put the SIMD sphere prefilter in front of FCL (CollisionModelOptions::spherePrefilter);
+// the others are FCL only. CollisionPrefilterAgreement counts states whose answer differs between the
+// two on 10^5 random states per scene (thesis and generated suites): it must report 0 disagreements.
 // Run: build/perf/arcplan_perf --benchmark_filter=Collision --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (the medians are the numbers in docs/collision.md)
 #include <algorithm>
@@ -11,6 +14,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "arcplan/benchmarks/suite.h"
+#include "arcplan/collision/batch_check.h"
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/common/resources.h"
@@ -57,6 +62,7 @@ struct Variant {
   BoundingVolume boundingVolume;
   bool convex;
   bool broadPhase;
+  bool prefilter = false;
 };
 
 std::shared_ptr<const CollisionModel> collisionModelFor(const Variant& variant) {
@@ -64,6 +70,7 @@ std::shared_ptr<const CollisionModel> collisionModelFor(const Variant& variant) 
   options.collisionBoundingVolume = variant.boundingVolume;
   options.convexCollision = variant.convex;
   options.broadPhase = variant.broadPhase;
+  options.spherePrefilter = variant.prefilter;
   return makeCollisionModel(thesisScene(), options);
 }
 
@@ -72,6 +79,7 @@ std::shared_ptr<const CollisionModel> distanceModelFor(const Variant& variant) {
   options.distanceBoundingVolume = variant.boundingVolume;
   options.convexDistance = variant.convex;
   options.broadPhase = variant.broadPhase;
+  options.spherePrefilter = variant.prefilter;
   return makeCollisionModel(thesisScene(), options);
 }
 
@@ -101,8 +109,10 @@ void CollisionDistance(benchmark::State& state, Variant variant) {
 
 // The per-state median the target refers to: each of the 1000 valid states is timed on its
 // own (20 repetitions), and the median over states is reported as the counter median_us.
-void CollisionIsCollisionFreePerStateMedian(benchmark::State& state) {
-  const auto model = makeCollisionModel(thesisScene());
+void CollisionIsCollisionFreePerStateMedian(benchmark::State& state, bool prefilter) {
+  CollisionModelOptions options;
+  options.spherePrefilter = prefilter;
+  const auto model = makeCollisionModel(thesisScene(), options);
   CollisionData data(*model);
   const auto& qs = states(StateSet::Valid);
   std::vector<double> perState;
@@ -119,7 +129,81 @@ void CollisionIsCollisionFreePerStateMedian(benchmark::State& state) {
   std::nth_element(perState.begin(), perState.begin() + perState.size() / 2, perState.end());
   state.counters["median_us"] = perState[perState.size() / 2];
 }
-BENCHMARK(CollisionIsCollisionFreePerStateMedian)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(CollisionIsCollisionFreePerStateMedian, exact, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(CollisionIsCollisionFreePerStateMedian, prefilter, true)->Unit(benchmark::kMillisecond);
+
+// States checked 8 at a time (areCollisionFree); items_per_second counts states.
+void CollisionStateBatch(benchmark::State& state, bool prefilter, StateSet set) {
+  CollisionModelOptions options;
+  options.spherePrefilter = prefilter;
+  const auto model = makeCollisionModel(thesisScene(), options);
+  CollisionData data(*model);
+  const auto& qs = states(set);
+  Eigen::MatrixXd all(6, static_cast<Eigen::Index>(qs.size()));
+  for (std::size_t k = 0; k < qs.size(); ++k) all.col(static_cast<Eigen::Index>(k)) = qs[k];
+  std::vector<bool> free;
+  std::size_t k = 0, checked = 0;
+  for (auto _ : state) {
+    areCollisionFree(*model, data, all.middleCols(static_cast<Eigen::Index>(k), 8), free);
+    k = (k + 8) % (qs.size() - 8);
+    checked += 8;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(checked));
+}
+BENCHMARK_CAPTURE(CollisionStateBatch, exact_valid, false, StateSet::Valid);
+BENCHMARK_CAPTURE(CollisionStateBatch, prefilter_valid, true, StateSet::Valid);
+BENCHMARK_CAPTURE(CollisionStateBatch, prefilter_any, true, StateSet::Any);
+BENCHMARK_CAPTURE(CollisionStateBatch, prefilter_near, true, StateSet::NearContact);
+
+// The full-count check of "answers identical to FCL": 10^5 seeded random states per scene, the
+// prefiltered model's batch answers against FCL-only isCollisionFree. Counters: disagreements (must
+// be 0), scenes, states, and the share of collision-free states.
+std::vector<Scene> agreementScenes(const std::string& suite) {
+  if (suite == "thesis") return {thesisScene(), loadScene(arcplan::dataDirectory() / "scenes" / "thesis_free.yaml")};
+  std::vector<Scene> scenes;
+  for (const auto& problem : arcplan::benchmarks::loadSuite(arcplan::benchmarks::findSuite(suite)).problems)
+    scenes.push_back(problem.scene);
+  return scenes;
+}
+
+void CollisionPrefilterAgreement(benchmark::State& state, const std::string& suite) {
+  const auto scenes = agreementScenes(suite);
+  std::int64_t disagreements = 0, checked = 0, valid = 0;
+  for (auto _ : state) {
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+      CollisionModelOptions exactOnly;
+      exactOnly.spherePrefilter = false;
+      const auto fast = makeCollisionModel(scenes[s]), exact = makeCollisionModel(scenes[s], exactOnly);
+      CollisionData fastData(*fast), exactData(*exact);
+      std::mt19937_64 random(1000 + s);
+      Eigen::MatrixXd batch(6, 1000);
+      std::vector<bool> free;
+      for (int round = 0; round < 100; ++round) {
+        for (Eigen::Index k = 0; k < batch.cols(); ++k) {
+          for (int j = 0; j < 6; ++j) {
+            const auto& limits = fast->robot().joints()[j].limits;
+            batch(j, k) = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
+          }
+        }
+        areCollisionFree(*fast, fastData, batch, free);
+        for (Eigen::Index k = 0; k < batch.cols(); ++k) {
+          const bool expected = isCollisionFree(*exact, exactData, batch.col(k));
+          disagreements += free[k] != expected;
+          valid += expected;
+        }
+        checked += batch.cols();
+      }
+    }
+  }
+  state.counters["disagreements"] = static_cast<double>(disagreements);
+  state.counters["scenes"] = static_cast<double>(scenes.size());
+  state.counters["states"] = static_cast<double>(checked);
+  state.counters["valid_fraction"] = static_cast<double>(valid) / static_cast<double>(checked);
+}
+BENCHMARK_CAPTURE(CollisionPrefilterAgreement, thesis, std::string("thesis"))->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(CollisionPrefilterAgreement, generated, std::string("generated"))
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
 
 enum class MotionSet { Long, LongFree, Short };
 
@@ -164,8 +248,10 @@ const std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>& motions(MotionSe
 }
 
 // Motion checks per second (items_per_second) and the fraction of motions found free.
-void CollisionMotion(benchmark::State& state, MotionCheck method, MotionSet set) {
-  const auto model = makeCollisionModel(thesisScene());
+void CollisionMotion(benchmark::State& state, MotionCheck method, MotionSet set, bool prefilter = false) {
+  CollisionModelOptions modelOptions;
+  modelOptions.spherePrefilter = prefilter;
+  const auto model = makeCollisionModel(thesisScene(), modelOptions);
   CollisionData data(*model);
   MotionCheckOptions options;
   options.method = method;
@@ -184,10 +270,16 @@ BENCHMARK_CAPTURE(CollisionMotion, Discrete_long_free, MotionCheck::Discrete, Mo
 BENCHMARK_CAPTURE(CollisionMotion, Certified_long_free, MotionCheck::Certified, MotionSet::LongFree);
 BENCHMARK_CAPTURE(CollisionMotion, Discrete_short, MotionCheck::Discrete, MotionSet::Short);
 BENCHMARK_CAPTURE(CollisionMotion, Certified_short, MotionCheck::Certified, MotionSet::Short);
+BENCHMARK_CAPTURE(CollisionMotion, Certified_long_prefilter, MotionCheck::Certified, MotionSet::Long, true);
+BENCHMARK_CAPTURE(CollisionMotion, Certified_long_free_prefilter, MotionCheck::Certified, MotionSet::LongFree, true);
+BENCHMARK_CAPTURE(CollisionMotion, Certified_short_prefilter, MotionCheck::Certified, MotionSet::Short, true);
 
 using BV = BoundingVolume;
 // The default model: ConvexGJK boolean queries and distances with the capsule broad phase.
 BENCHMARK_CAPTURE(CollisionIsCollisionFree, ConvexGJK_broad_valid, Variant{BV::OBB, true, true}, StateSet::Valid);
+BENCHMARK_CAPTURE(CollisionIsCollisionFree, Prefilter_valid, Variant{BV::OBB, true, true, true}, StateSet::Valid);
+BENCHMARK_CAPTURE(CollisionIsCollisionFree, Prefilter_any, Variant{BV::OBB, true, true, true}, StateSet::Any);
+BENCHMARK_CAPTURE(CollisionIsCollisionFree, Prefilter_near, Variant{BV::OBB, true, true, true}, StateSet::NearContact);
 BENCHMARK_CAPTURE(CollisionIsCollisionFree, ConvexGJK_broad_any, Variant{BV::OBB, true, true}, StateSet::Any);
 BENCHMARK_CAPTURE(CollisionIsCollisionFree, OBB_broad_valid, Variant{BV::OBB, false, true}, StateSet::Valid);
 BENCHMARK_CAPTURE(CollisionIsCollisionFree, AABB_broad_valid, Variant{BV::AABB, false, true}, StateSet::Valid);

@@ -16,7 +16,7 @@ namespace arcplan::collision::detail::prefilter {
 namespace {
 
 // pi/2 split into three floats (Cody-Waite): the high part has 8 significant bits and the
-// multiples used below are -2..2, so k * part is exact and x - k * pi/2 loses nothing to rounding.
+// multiples used below are -4..4, so k * high is exact and x - k * pi/2 loses next to nothing.
 constexpr double kHalfPi = 1.57079632679489661923;
 constexpr float kHalfPiHigh = 1.5703125f;
 constexpr float kHalfPiMiddle = static_cast<float>(kHalfPi - 1.5703125);
@@ -30,7 +30,7 @@ struct Pose {
   V t[3];
 };
 
-// sin and cos of x for |x| <= pi + 1e-6: reduced to r in [-pi/4, pi/4] (x = r + k pi/2), Taylor
+// sin and cos of x for |x| <= 2 pi + 1e-6: reduced to r in [-pi/4, pi/4] (x = r + k pi/2), Taylor
 // polynomials to degree 9 (sin) and 8 (cos) whose truncation errors there are below 2e-9 and 3e-8;
 // with rounding the results stay within 5e-7 of the true values (measured by the tests, 2e-6 assumed
 // by the margin).
@@ -76,8 +76,12 @@ void forwardKinematics(const Tables& tables, const float* q, Pose<V>* poses) {
     const Pose<V>& parent = poses[row.parent];
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
-        pose.r[3 * i + j] =
-            (parent.r[3 * i] * local[j] + parent.r[3 * i + 1] * local[3 + j]) + parent.r[3 * i + 2] * local[6 + j];
+        // Terms of structurally zero entries (row.zero: all three coefficients 0) are left out.
+        V sum = broadcast<V>(0.0f);
+        for (int k = 0; k < 3; ++k) {
+          if (!((row.zero >> (3 * k + j)) & 1u)) sum = sum + parent.r[3 * i + k] * local[3 * k + j];
+        }
+        pose.r[3 * i + j] = sum;
       }
       pose.t[i] = ((parent.r[3 * i] * broadcast<V>(row.t[0]) + parent.r[3 * i + 1] * broadcast<V>(row.t[1])) +
                    parent.r[3 * i + 2] * broadcast<V>(row.t[2])) +
@@ -92,14 +96,6 @@ void place(const Pose<V>& pose, float x, float y, float z, V* out) {
     out[i] = ((pose.r[3 * i] * broadcast<V>(x) + pose.r[3 * i + 1] * broadcast<V>(y)) +
               pose.r[3 * i + 2] * broadcast<V>(z)) +
              pose.t[i];
-  }
-}
-
-template <class V>
-void placeFine(const Tables& tables, const BodyRow& body, const Pose<V>* poses, V (*out)[3]) {
-  for (int f = 0; f < body.fineCount; ++f) {
-    const int k = body.fineBegin + f;
-    place(poses[body.link], tables.fineX[k], tables.fineY[k], tables.fineZ[k], out[f]);
   }
 }
 
@@ -124,62 +120,118 @@ V obstacleDistance(const ObstacleRow& o, const V* p) {
   return squareRoot(radial * radial + axial * axial);
 }
 
+// Whether the ball (centre p, radius + margin = reach) is clear of the obstacle's volume, compared
+// squared where no square root is needed (the same decision in every lane type).
+template <class V>
+typename V::Mask obstacleClear(const ObstacleRow& o, const V* p, float reach) {
+  V l[3];
+  for (int i = 0; i < 3; ++i) {
+    l[i] = ((broadcast<V>(o.rotation[3 * i]) * p[0] + broadcast<V>(o.rotation[3 * i + 1]) * p[1]) +
+            broadcast<V>(o.rotation[3 * i + 2]) * p[2]) +
+           broadcast<V>(o.translation[i]);
+  }
+  const V zero = broadcast<V>(0.0f);
+  if (o.kind == 0) {
+    const float total = o.size[0] + reach;
+    return greater((l[0] * l[0] + l[1] * l[1]) + l[2] * l[2], broadcast<V>(total * total));
+  }
+  V d[3];
+  if (o.kind == 1) {
+    for (int i = 0; i < 3; ++i) d[i] = maximum(absolute(l[i]) - broadcast<V>(o.size[i]), zero);
+  } else {
+    d[0] = maximum(squareRoot(l[0] * l[0] + l[1] * l[1]) - broadcast<V>(o.size[0]), zero);
+    d[1] = maximum(absolute(l[2]) - broadcast<V>(o.size[1]), zero);
+    d[2] = zero;
+  }
+  return greater((d[0] * d[0] + d[1] * d[1]) + d[2] * d[2], broadcast<V>(reach * reach));
+}
+
+template <class V>
+V squaredCentreDistance(const V* a, const V* b) {
+  const V dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return (dx * dx + dy * dy) + dz * dz;
+}
+
 template <class V>
 V centreDistance(const V* a, const V* b) {
   const V dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
   return squareRoot((dx * dx + dy * dy) + dz * dz);
 }
 
-// A lane is decided by its own numbers only: clear by its coarse sphere, or by every fine sphere.
-// Which lanes reach the fine spheres depends on the batch, but not a lane's decision, so one state
-// gets the same answer alone or in any batch.
+// The world centres of the spheres, computed once per kernel call and body when first needed.
+template <class V>
+struct Placement {
+  // A constructor, so that `fine` is not zero-filled on every call (36 KB for AVX2).
+  Placement(const Tables& t, const Pose<V>* p) : tables(t), poses(p) {}
+  const Tables& tables;
+  const Pose<V>* poses;
+  V fine[kMaxFineSpheres][3];
+  std::uint64_t placed = 0;  // bit b: body b's fine spheres are in `fine`
+
+  const V (*fineOf(const BodyRow& body, int b))[3] {
+    if (!((placed >> b) & 1u)) {
+      for (int f = 0; f < body.fineCount; ++f) {
+        const int k = body.fineBegin + f;
+        place(poses[body.link], tables.fineX[k], tables.fineY[k], tables.fineZ[k], fine[k]);
+      }
+      placed |= std::uint64_t{1} << b;
+    }
+    return fine + body.fineBegin;
+  }
+};
+
+// A lane is decided by its own numbers only: a pair is clear by the coarse spheres, or else each
+// fine sphere of the first body is clear of the second's coarse sphere (self pairs) or of all its
+// fine spheres. Which lanes reach the finer tests depends on the batch, but not a lane's decision, so
+// one state gets the same answer alone or in any batch.
 template <class V>
 std::uint32_t freeLanes(const Tables& tables, const float* q) {
   using Mask = typename V::Mask;
   Pose<V> poses[kMaxLinks];
   forwardKinematics(tables, q, poses);
-  const V margin = broadcast<V>(tables.margin);
-  Mask unsure = ~allLanes<V>();
-  V fineA[kMaxFinePerBody][3], fineB[kMaxFinePerBody][3];
+  Placement<V> placement(tables, poses);
+  V coarse[kMaxBodies][3];
   for (int b = 0; b < tables.bodyCount; ++b) {
     const BodyRow& body = tables.bodies[b];
-    V centre[3];
-    place(poses[body.link], body.coarse[0], body.coarse[1], body.coarse[2], centre);
-    const V coarseRadius = broadcast<V>(body.coarse[3]);
-    bool placed = false;
+    place(poses[body.link], body.coarse[0], body.coarse[1], body.coarse[2], coarse[b]);
+  }
+  Mask unsure = ~allLanes<V>();
+  for (int b = 0; b < tables.bodyCount; ++b) {
+    const BodyRow& body = tables.bodies[b];
     for (int k = 0; k < body.obstacleCount; ++k) {
       const ObstacleRow& o = tables.obstacles[tables.obstacleIndex[body.obstacleBegin + k]];
-      const Mask coarseClear = greater(obstacleDistance(o, centre) - coarseRadius, margin);
+      const Mask coarseClear = obstacleClear(o, coarse[b], body.coarse[3] + tables.margin);
       if (allOf(coarseClear | unsure)) continue;
-      if (!placed) placeFine(tables, body, poses, fineA);
-      placed = true;
+      const V(*fine)[3] = placement.fineOf(body, b);
       Mask fineClear = allLanes<V>();
-      for (int f = 0; f < body.fineCount && !allOf(unsure | coarseClear | ~fineClear); ++f) {
-        const V gap = obstacleDistance(o, fineA[f]) - broadcast<V>(tables.fineR[body.fineBegin + f]);
-        fineClear = fineClear & greater(gap, margin);
+      for (int f = 0; f < body.fineCount; ++f) {  // no early exit: a mispredicted branch costs more
+        fineClear = fineClear & obstacleClear(o, fine[f], tables.fineR[body.fineBegin + f] + tables.margin);
       }
       unsure = unsure | ~(coarseClear | fineClear);
       if (allOf(unsure)) return 0;
     }
   }
   for (int p = 0; p < tables.selfPairCount; ++p) {
-    const BodyRow& a = tables.bodies[tables.selfPairs[2 * p]];
-    const BodyRow& b = tables.bodies[tables.selfPairs[2 * p + 1]];
-    V centreA[3], centreB[3];
-    place(poses[a.link], a.coarse[0], a.coarse[1], a.coarse[2], centreA);
-    place(poses[b.link], b.coarse[0], b.coarse[1], b.coarse[2], centreB);
-    const V coarseGap = centreDistance(centreA, centreB) - broadcast<V>(a.coarse[3] + b.coarse[3]);
-    const Mask coarseClear = greater(coarseGap, margin);
+    const int ia = tables.selfPairs[2 * p], ib = tables.selfPairs[2 * p + 1];
+    const BodyRow &a = tables.bodies[ia], &b = tables.bodies[ib];
+    const float coarseReach = (a.coarse[3] + b.coarse[3]) + tables.margin;
+    const Mask coarseClear =
+        greater(squaredCentreDistance(coarse[ia], coarse[ib]), broadcast<V>(coarseReach * coarseReach));
     if (allOf(coarseClear | unsure)) continue;
-    placeFine(tables, a, poses, fineA);
-    placeFine(tables, b, poses, fineB);
+    const V(*fineA)[3] = placement.fineOf(a, ia);
     Mask fineClear = allLanes<V>();
-    for (int i = 0; i < a.fineCount && !allOf(unsure | coarseClear | ~fineClear); ++i) {
+    for (int i = 0; i < a.fineCount; ++i) {
       const float radiusA = tables.fineR[a.fineBegin + i];
+      const float reachB = (radiusA + b.coarse[3]) + tables.margin;
+      const Mask clearOfB = greater(squaredCentreDistance(fineA[i], coarse[ib]), broadcast<V>(reachB * reachB));
+      if (allOf(clearOfB | unsure | coarseClear)) continue;
+      const V(*fineB)[3] = placement.fineOf(b, ib);
+      Mask sphereClear = allLanes<V>();
       for (int j = 0; j < b.fineCount; ++j) {
-        const V gap = centreDistance(fineA[i], fineB[j]) - broadcast<V>(radiusA + tables.fineR[b.fineBegin + j]);
-        fineClear = fineClear & greater(gap, margin);
+        const float reach = (radiusA + tables.fineR[b.fineBegin + j]) + tables.margin;
+        sphereClear = sphereClear & greater(squaredCentreDistance(fineA[i], fineB[j]), broadcast<V>(reach * reach));
       }
+      fineClear = fineClear & (clearOfB | sphereClear);
     }
     unsure = unsure | ~(coarseClear | fineClear);
     if (allOf(unsure)) return 0;
@@ -191,50 +243,48 @@ template <class V>
 void gaps(const Tables& tables, const float* q, const float* enough, float* out) {
   Pose<V> poses[kMaxLinks];
   forwardKinematics(tables, q, poses);
+  Placement<V> placement(tables, poses);
   const V margin = broadcast<V>(tables.margin);
-  V fineA[kMaxFinePerBody][3], fineB[kMaxFinePerBody][3];
+  V coarse[kMaxBodies][3];
   for (int b = 0; b < tables.bodyCount; ++b) {
     const BodyRow& body = tables.bodies[b];
-    V centre[3];
-    place(poses[body.link], body.coarse[0], body.coarse[1], body.coarse[2], centre);
-    const V coarseRadius = broadcast<V>(body.coarse[3]);
+    place(poses[body.link], body.coarse[0], body.coarse[1], body.coarse[2], coarse[b]);
+  }
+  for (int b = 0; b < tables.bodyCount; ++b) {
+    const BodyRow& body = tables.bodies[b];
     V best = broadcast<V>(kFar);
-    bool placed = false;
     for (int k = 0; k < body.obstacleCount; ++k) {
       const ObstacleRow& o = tables.obstacles[tables.obstacleIndex[body.obstacleBegin + k]];
-      const V coarse = obstacleDistance(o, centre) - coarseRadius;
-      if (allOf(greaterEqual(coarse, broadcast<V>(enough[b])))) {
-        best = minimum(best, coarse);
+      const V coarseGap = obstacleDistance(o, coarse[b]) - broadcast<V>(body.coarse[3]);
+      if (allOf(greaterEqual(coarseGap, broadcast<V>(enough[b])))) {
+        best = minimum(best, coarseGap);
         continue;
       }
-      if (!placed) placeFine(tables, body, poses, fineA);
-      placed = true;
-      V fine = broadcast<V>(kFar);
+      const V(*fine)[3] = placement.fineOf(body, b);
+      V fineGap = broadcast<V>(kFar);
       for (int f = 0; f < body.fineCount; ++f)
-        fine = minimum(fine, obstacleDistance(o, fineA[f]) - broadcast<V>(tables.fineR[body.fineBegin + f]));
-      best = minimum(best, maximum(coarse, fine));
+        fineGap = minimum(fineGap, obstacleDistance(o, fine[f]) - broadcast<V>(tables.fineR[body.fineBegin + f]));
+      best = minimum(best, maximum(coarseGap, fineGap));
     }
     store(out + b * kLanes, best - margin);
   }
   for (int p = 0; p < tables.selfPairCount; ++p) {
-    const BodyRow& a = tables.bodies[tables.selfPairs[2 * p]];
-    const BodyRow& b = tables.bodies[tables.selfPairs[2 * p + 1]];
-    V centreA[3], centreB[3];
-    place(poses[a.link], a.coarse[0], a.coarse[1], a.coarse[2], centreA);
-    place(poses[b.link], b.coarse[0], b.coarse[1], b.coarse[2], centreB);
-    V best = centreDistance(centreA, centreB) - broadcast<V>(a.coarse[3] + b.coarse[3]);
+    const int ia = tables.selfPairs[2 * p], ib = tables.selfPairs[2 * p + 1];
+    const BodyRow &a = tables.bodies[ia], &b = tables.bodies[ib];
+    V best = centreDistance(coarse[ia], coarse[ib]) - broadcast<V>(a.coarse[3] + b.coarse[3]);
     const int pair = tables.bodyCount + p;
     if (!allOf(greaterEqual(best, broadcast<V>(enough[pair])))) {
-      placeFine(tables, a, poses, fineA);
-      placeFine(tables, b, poses, fineB);
-      V fine = broadcast<V>(kFar);
+      const V(*fineA)[3] = placement.fineOf(a, ia);
+      const V(*fineB)[3] = placement.fineOf(b, ib);
+      V fineGap = broadcast<V>(kFar);
       for (int i = 0; i < a.fineCount; ++i) {
         const float radiusA = tables.fineR[a.fineBegin + i];
-        for (int j = 0; j < b.fineCount; ++j)
-          fine =
-              minimum(fine, centreDistance(fineA[i], fineB[j]) - broadcast<V>(radiusA + tables.fineR[b.fineBegin + j]));
+        for (int j = 0; j < b.fineCount; ++j) {
+          fineGap = minimum(fineGap,
+                            centreDistance(fineA[i], fineB[j]) - broadcast<V>(radiusA + tables.fineR[b.fineBegin + j]));
+        }
       }
-      best = maximum(best, fine);
+      best = maximum(best, fineGap);
     }
     store(out + pair * kLanes, best - margin);
   }

@@ -7,9 +7,12 @@
 // s). The spheres give g (their gaps, less the float margin) for 8 states per kernel call. An interval
 // between two samples is covered for a pair when r_i + r_j >= s_j − s_i; the motion is free when every
 // interval is covered for every pair. Uncovered intervals get new samples inside them, 8 per batch
-// spread over them, until all are covered, a state's spheres come too close (FCL then checks that
-// state: a collision rejects the motion) or kMaxSamples are spent.
+// spread over them, until all are covered or kMaxSamples are spent. A state whose spheres come too
+// close is checked by FCL: a collision rejects the motion; a free one means the spheres cannot
+// certify it, and the rest of the motion is then only searched for a collision (evenly spaced states,
+// coarse first, a few FCL checks at most) before the exact check decides.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "model_implementation.h"
@@ -25,6 +28,10 @@ using prefilter::kLanes;
 constexpr double kSlack = 1e-5;
 // Samples before the exact check takes over (a motion grazing an obstacle would need many).
 constexpr int kMaxSamples = 256;
+// Searching a motion the spheres cannot certify: states at most this far apart (largest joint
+// change, rad), and at most this many FCL checks of states the spheres do not clear.
+constexpr double kSearchStep = 0.02;
+constexpr int kMaxExactChecks = 4;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct Rake {
@@ -36,8 +43,11 @@ struct Rake {
   const robot::JointRef& qb;
   double minimumClearance;
   int pairs;
+  bool blocked = false;  // a free state too close for the spheres: they cannot certify the motion
+  int exactChecks = 0;
 
-  // Evaluates work.pending (sample indices, spacing h to their neighbours); Unknown while all is well.
+  // Evaluates work.pending (sample indices, spacing h to their neighbours): Collides if FCL finds a
+  // state in collision, else Free (meaning: go on).
   SphereMotion evaluate(double h) {
     for (std::size_t first = 0; first < work.pending.size(); first += kLanes) {
       const int lanes = static_cast<int>(std::min<std::size_t>(kLanes, work.pending.size() - first));
@@ -49,17 +59,28 @@ struct Rake {
       for (int p = 0; p < pairs; ++p)
         work.enough[p] = static_cast<float>(minimumClearance + kSlack + work.rates[p] * h + prefilter.margin());
       prefilter.gaps(work);
+      // Of the states the spheres do not clear, the closest (the likeliest collision) goes to FCL.
+      int closest = -1;
+      double closestGap = kInfinity;
       for (int lane = 0; lane < lanes; ++lane) {
         const int sample = work.pending[first + lane];
-        bool clear = true;
+        double smallest = kInfinity;
         for (int p = 0; p < pairs; ++p) {
           const double room = static_cast<double>(work.gaps[p * kLanes + lane]) - minimumClearance - kSlack;
-          clear = clear && room > 0.0;
+          smallest = std::min(smallest, room);
           work.reach[sample * pairs + p] = work.rates[p] > 0.0 ? room / work.rates[p] : kInfinity;
         }
-        if (clear) continue;
-        data.motionJoints = qa + work.samples[sample] * (qb - qa);
-        return exactlyCollisionFree(model, data, data.motionJoints) ? SphereMotion::Unknown : SphereMotion::Collides;
+        if (smallest > 0.0) continue;
+        blocked = true;
+        if (smallest < closestGap) {
+          closestGap = smallest;
+          closest = sample;
+        }
+      }
+      if (closest >= 0 && exactChecks < kMaxExactChecks) {
+        ++exactChecks;
+        data.motionJoints = qa + work.samples[closest] * (qb - qa);
+        if (!exactlyCollisionFree(model, data, data.motionJoints)) return SphereMotion::Collides;
       }
     }
     return SphereMotion::Free;
@@ -71,6 +92,16 @@ struct Rake {
       if (work.reach[i * pairs + p] + work.reach[j * pairs + p] < length) return false;
     }
     return true;
+  }
+
+  // Looks for a collision only: evenly spaced states (kSearchStep), coarsest stride first.
+  SphereMotion search() {
+    const int count = std::min(kMaxSamples, static_cast<int>(std::ceil((qb - qa).cwiseAbs().maxCoeff() / kSearchStep)));
+    work.pending.clear();
+    for (int stride = kMaxSamples; stride >= 1; stride /= 2) {  // each k once: its lowest set bit is `stride`
+      for (int k = stride; k < count; k += 2 * stride) addSample(static_cast<double>(k) / count);
+    }
+    return evaluate(1.0 / count) == SphereMotion::Collides ? SphereMotion::Collides : SphereMotion::Unknown;
   }
 
   int addSample(double s) {
@@ -104,8 +135,8 @@ SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const ro
   for (int k = 0; k + 1 < kLanes; ++k) work.intervals.emplace_back(k, k + 1);
   double h = 1.0 / (kLanes - 1);
   while (true) {
-    const SphereMotion outcome = rake.evaluate(h);
-    if (outcome != SphereMotion::Free) return outcome;
+    if (rake.evaluate(h) == SphereMotion::Collides) return SphereMotion::Collides;
+    if (rake.blocked) return rake.search();
     work.pending.clear();
     work.next.clear();
     for (const auto& interval : work.intervals)

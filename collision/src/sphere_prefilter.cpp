@@ -1,7 +1,18 @@
 #include "sphere_prefilter.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+
+namespace arcplan::collision {
+namespace {
+std::atomic<bool> prefilterDefault{true};
+}  // namespace
+
+void setSpherePrefilterDefault(bool enabled) { prefilterDefault = enabled; }
+bool spherePrefilterDefault() { return prefilterDefault; }
+
+}  // namespace arcplan::collision
 
 namespace arcplan::collision::detail {
 namespace {
@@ -10,7 +21,7 @@ using prefilter::kLanes;
 
 // The float rounding margin. With u = 2^-24 (float unit roundoff), per link row of the chain (sphere_kernel.h):
 //   - sin and cos are within 5e-7 of the truth (tests), the angle's rounding to float adds at most
-//     pi·u = 2e-7; kTrigError = 2e-6 is taken for both together;
+//     2 pi·u = 4e-7; kTrigError = 2e-6 is taken for both together;
 //   - the local rotation c0 + cos·c1 + sin·c2 (c0, c1, c2 from an orthonormal origin rotation, so
 //     each of norm <= 1) is off by at most 2·kTrigError + 12u in each entry, the product with the
 //     parent's rotation adds 9u per entry; summed over the 9 entries (a bound of the spectral norm)
@@ -94,6 +105,10 @@ prefilter::LinkRow linkRow(const robot::Link& link, int parentRow) {
     rowMajor(origin, row.c0);
   }
   for (int i = 0; i < 3; ++i) row.t[i] = static_cast<float>(link.originInParent.translation()[i]);
+  row.zero = 0;
+  for (int i = 0; i < 9; ++i) {
+    if (row.c0[i] == 0.0f && row.c1[i] == 0.0f && row.c2[i] == 0.0f) row.zero |= 1u << i;
+  }
   return row;
 }
 
@@ -146,7 +161,6 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
       fineR_.push_back(roundedUp(s.radius));
     }
     usable_ = usable_ || !body.fine.empty();
-    if (bodyRow.fineCount > prefilter::kMaxFinePerBody) usable_ = false;
     bodies_.push_back(bodyRow);
   }
   // Obstacles: the bounding volume of every part, and per body the parts of its non-allowed obstacles.
@@ -168,7 +182,11 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
     bodies_[b].obstacleCount = static_cast<int>(obstacleIndex_.size()) - bodies_[b].obstacleBegin;
   }
   for (const auto& group : impl.selfGroups) selfPairs_.insert(selfPairs_.end(), {group.firstBody, group.secondBody});
-  if (links_.size() > static_cast<std::size_t>(prefilter::kMaxLinks)) usable_ = false;
+  if (links_.size() > static_cast<std::size_t>(prefilter::kMaxLinks) ||
+      bodies_.size() > static_cast<std::size_t>(prefilter::kMaxBodies) ||
+      fineX_.size() > static_cast<std::size_t>(prefilter::kMaxFineSpheres)) {
+    usable_ = false;
+  }
 
   centreErrorBound_ = centreError;
   const double rounding = 16.0 * kUnitRoundoff * (robotExtent + obstacleExtent) + 2.0 * kUnitRoundoff * radiusSum;
@@ -201,9 +219,10 @@ void SpherePrefilter::prepare(SphereWorkspace& workspace) const {
 
 void SpherePrefilter::loadLane(SphereWorkspace& workspace, int lane, const double* joints) const {
   for (int j = 0; j < tables_.dof; ++j) {
-    // The kernels' sine and cosine take |angle| <= pi: larger angles are reduced in double first.
+    // The kernels' sine and cosine take |angle| <= 2 pi (every UR joint range): larger angles are
+    // reduced in double first.
     double angle = joints[j];
-    if (!(std::abs(angle) <= M_PI)) angle = std::remainder(angle, 2.0 * M_PI);
+    if (!(std::abs(angle) <= 2.0 * M_PI)) angle -= 2.0 * M_PI * std::nearbyint(angle / (2.0 * M_PI));
     workspace.q[static_cast<std::size_t>(j * kLanes + lane)] = static_cast<float>(angle);
   }
 }

@@ -14,13 +14,15 @@ constexpr int kLanes = 8;
 // Fixed bounds that keep the kernels' scratch space on the stack; SpherePrefilter switches itself
 // off (every query goes to FCL) for a robot beyond them.
 constexpr int kMaxLinks = 32;
-constexpr int kMaxFinePerBody = 128;
+constexpr int kMaxBodies = 64;
+constexpr int kMaxFineSpheres = 384;
 
 // One link of the chain: rotation in the parent frame = c0 + cos q·c1 + sin q·c2 (row-major 3×3;
 // c1 = c2 = 0 for a fixed joint), translation t in the parent frame. Parents come first.
 struct LinkRow {
-  int parent;  // row index, -1 for the base
-  int joint;   // index into q, -1 for a fixed joint
+  int parent;          // row index, -1 for the base
+  int joint;           // index into q, -1 for a fixed joint
+  std::uint32_t zero;  // bit i: c0[i] = c1[i] = c2[i] = 0 (the kernels skip those terms)
   float c0[9], c1[9], c2[9];
   float t[3];
 };
@@ -57,7 +59,7 @@ struct Tables {
   float margin = 0.0f;             // clearance that covers every float rounding [m] (sphere_prefilter.cpp)
 };
 
-// q: dof × kLanes floats, joint-major (q[j * kLanes + lane]), each |q| <= pi + 1e-6.
+// q: dof × kLanes floats, joint-major (q[j * kLanes + lane]), each |q| <= 2 pi + 1e-6.
 // The lanes whose spheres are clear of every checked obstacle and every checked body pair by more
 // than the margin: bit k set = lane k is free (only lanes < `lanes` are reported).
 std::uint32_t freeLanesPortable(const Tables& tables, const float* q, int lanes);

@@ -113,8 +113,11 @@ TEST(SphereModel, ContainsRandomPointsOfEveryPartsHull) {
     }
   }
   EXPECT_GT(checked, 10000);
-  // Within the kernels' fixed limit per link.
-  for (std::size_t b = 0; b < spheres.size(); ++b) EXPECT_LE(spheres[b].fine.size(), 128u);
+  // Within the kernels' fixed limit.
+  std::size_t total = 0;
+  for (const auto& body : spheres) total += body.fine.size();
+  EXPECT_LE(total, static_cast<std::size_t>(detail::prefilter::kMaxFineSpheres));
+  EXPECT_TRUE(prefilterOf(*model).usable());
 }
 
 // Distance from a point to the thesis obstacles' volumes, in double, written here.

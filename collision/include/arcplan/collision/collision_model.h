@@ -36,6 +36,13 @@ const ModelImplementation& implementationOf(const CollisionModel& model);
 Workspace& workspaceOf(CollisionData& data);
 }  // namespace detail
 
+// The process-wide default of CollisionModelOptions::spherePrefilter (true unless set): `arcplan plan`
+// and `bench` set it from `--collision prefilter|exact-only` before any model exists, so that every
+// model of the command (also in forked benchmark workers) is built alike without passing it through
+// every layer, as OMPL's seed is set once per process.
+void setSpherePrefilterDefault(bool enabled);
+bool spherePrefilterDefault();
+
 // FCL 0.7 bounding-volume types for the BVH of mesh parts.
 enum class BoundingVolume { AABB, OBB, RSS, kIOS, OBBRSS };
 const char* toString(BoundingVolume boundingVolume);
@@ -59,8 +66,8 @@ struct CollisionModelOptions {
   bool broadPhase = true;
   // A SIMD sphere prefilter answers "free" for states (and certifies motions) whose conservative
   // spheres are clear of everything; all else goes to FCL, so answers are the same either way
-  // (docs/collision.md). false: FCL only (`--collision exact-only`).
-  bool spherePrefilter = true;
+  // (docs/collision.md). false: FCL only. Default: spherePrefilterDefault().
+  bool spherePrefilter = spherePrefilterDefault();
 };
 
 class CollisionModel {
