@@ -42,6 +42,7 @@ const std::vector<RealParameter>& realParameters() {
       {"resolution", 0.001, 0.1, "0.001:0.001:0.1", &P::setResolution, &P::getResolution},
       {"max_joint_step", 0.001, 0.5, "0.001:0.001:0.5", &P::setMaxJointStep, &P::getMaxJointStep},
       {"clearance", 0.0, 0.2, "0.:0.005:0.2", &P::setClearance, &P::getClearance},
+      {"deadline", 0.0, 60.0, "0.:0.01:60.", &P::setDeadline, &P::getDeadline},
   };
   return table;
 }
@@ -106,6 +107,7 @@ void ArcPlanner::setResolution(double resolution) {
 }
 void ArcPlanner::setMaxJointStep(double step) { conversion_.maxJointStep = checkedParameter("max_joint_step", step); }
 void ArcPlanner::setClearance(double clearance) { clearance_ = checkedParameter("clearance", clearance); }
+void ArcPlanner::setDeadline(double seconds) { deadline_ = checkedParameter("deadline", seconds); }
 
 void ArcPlanner::clear() {
   Planner::clear();
@@ -154,14 +156,49 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
                                       const robot::Vector6& goal) {
   const collision::MotionCheckOptions motionCheck = motionCheckOptions();
   const double margin = planningMargin(motionCheck, start, goal);
-  const bool autoMode = getAuto();
+  // The search's own deadline: past it the search gives up (a fence-like cell can keep it busy for
+  // seconds), leaving the rest of the caller's time to the fallback.
+  const ob::PlannerTerminationCondition searchEnds =
+      deadline_ > 0.0 ? ob::plannerOrTerminationCondition(ptc, ob::timedPlannerTerminationCondition(deadline_)) : ptc;
+  detail::ArcOutcome outcome = withQuery(searchEnds, margin, start, goal, [&](const detail::ArcQuery& query) {
+    if (ik_.branchOf(start) != ik_.branchOf(goal)) {
+      // No TCP path joins two IK branches without passing a singularity: only the fallback can help.
+      return detail::failure("branch change: start and goal are on different IK branches: " +
+                             describeBranchChange(ik_.branchOf(start), ik_.branchOf(goal)) +
+                             "; a TCP path keeps its branch (choose a goal seed on the start's branch)");
+    }
+    return getAuto() ? detail::planViaPoints(query) : detail::planThesisDetours(query, shape_, planeAngle_);
+  });
+  const std::string timeLimit = "time limit reached";
+  if (!outcome.solved() && outcome.reason.rfind(timeLimit, 0) == 0 && !ptc()) {
+    std::ostringstream deadline;
+    deadline << "deadline of " << deadline_ * 1000.0 << " ms reached";
+    outcome.reason.replace(0, timeLimit.size(), deadline.str());
+  }
+  if (outcome.solved() || !getAuto() || !fallback_ || ptc()) return outcome;
+  // Its own SpaceInformation, whose states and motions keep this planner's margin (the problem's may
+  // be smaller).
+  detail::ArcOutcome fallback = withQuery(ptc, margin, start, goal, [&](const detail::ArcQuery& query) {
+    return detail::planInJointSpace(query, collision::makeSpaceInformation(collisionModel_, motionCheck, margin),
+                                    seed_);
+  });
+  // What the search met stays part of the answer; its reason leads a failure's.
+  fallback.obstacles = std::move(outcome.obstacles);
+  fallback.routesTried = outcome.routesTried;
+  fallback.reason = outcome.reason + (fallback.solved() ? "" : "; " + fallback.reason);
+  return fallback;
+}
+
+detail::ArcOutcome ArcPlanner::withQuery(const ob::PlannerTerminationCondition& ptc, double margin,
+                                         const robot::Vector6& start, const robot::Vector6& goal,
+                                         const std::function<detail::ArcOutcome(const detail::ArcQuery&)>& strategy) {
   ob::ScopedState<> scratch(si_);
   const auto waypointValid = [&](const robot::Vector6& q) {
     collision::setJoints(scratch.get(), q);
     return si_->isValid(scratch.get());
   };
   // The auto mode's routes pass close to obstacles: their motions are always certified.
-  PathValidator validator(*collisionModel_, ik_, conversion_, margin, checkMotions_ || autoMode, waypointValid,
+  PathValidator validator(*collisionModel_, ik_, conversion_, margin, checkMotions_ || getAuto(), waypointValid,
                           [&ptc] { return ptc(); });
   const robot::RobotModel& robot = collisionModel_->robot();
   const detail::ArcQuery query{*collisionModel_,
@@ -174,25 +211,7 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
                                goal,
                                robot::tipPose(robot, start),
                                robot::tipPose(robot, goal)};
-  detail::ArcOutcome outcome;
-  if (ik_.branchOf(start) != ik_.branchOf(goal)) {
-    // No TCP path joins two IK branches without passing a singularity: only the fallback can help.
-    outcome = detail::failure("branch change: start and goal are on different IK branches: " +
-                              describeBranchChange(ik_.branchOf(start), ik_.branchOf(goal)) +
-                              "; a TCP path keeps its branch (choose a goal seed on the start's branch)");
-  } else {
-    outcome = autoMode ? detail::planViaPoints(query) : detail::planThesisDetours(query, shape_, planeAngle_);
-  }
-  if (outcome.solved() || !autoMode || !fallback_ || ptc()) return outcome;
-  // Its own SpaceInformation, whose states and motions keep this planner's margin (the problem's may
-  // be smaller).
-  detail::ArcOutcome fallback =
-      detail::planInJointSpace(query, collision::makeSpaceInformation(collisionModel_, motionCheck, margin), seed_);
-  // What the search met stays part of the answer; its reason leads a failure's.
-  fallback.obstacles = std::move(outcome.obstacles);
-  fallback.routesTried = outcome.routesTried;
-  if (!fallback.solved()) fallback.reason = outcome.reason + "; " + fallback.reason;
-  return fallback;
+  return strategy(query);
 }
 
 collision::MotionCheckOptions ArcPlanner::motionCheckOptions() const {

@@ -25,29 +25,9 @@ using arcplan::planners::ArcPlannerResult;
 using namespace arcplan::testing;
 namespace ob = ompl::base;
 
-const ArcPlanner& arcOf(const ob::PlannerPtr& planner) { return dynamic_cast<const ArcPlanner&>(*planner); }
-
 double distanceToLine(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d d = (b - a).normalized();
   return (p - a - (p - a).dot(d) * d).norm();
-}
-
-arcplan::collision::Obstacle sphere(const std::string& name, const Eigen::Vector3d& center, double radius) {
-  arcplan::collision::Obstacle obstacle;
-  obstacle.name = name;
-  obstacle.shape = arcplan::collision::Obstacle::Shape::Sphere;
-  obstacle.radius = radius;
-  obstacle.pose.translation() = center;
-  return obstacle;
-}
-
-arcplan::collision::Obstacle box(const std::string& name, const Eigen::Vector3d& center, const Eigen::Vector3d& size) {
-  arcplan::collision::Obstacle obstacle;
-  obstacle.name = name;
-  obstacle.shape = arcplan::collision::Obstacle::Shape::Box;
-  obstacle.size = size;
-  obstacle.pose.translation() = center;
-  return obstacle;
 }
 
 // thesis_free with extra obstacles.
@@ -460,38 +440,10 @@ TEST(ArcPlanner, FallbackGivesTheSamePathWhateverRanBefore) {
   EXPECT_NE(solutionJoints(problem), firstJoints);
 }
 
-// A shelf unit (back, two sides, bottom, middle and top panels, 2 cm thick, turned -59 degrees about z)
-// between start and goal, from the generated suite (shelf-003): the tool must go round its side,
-// and dozens of candidate routes fail at the same panel edge.
+// The shelf of planner_test_support.h: the tool must go round its side, and dozens of candidate
+// routes fail at the same panel edge.
 TEST(ArcPlanner, ShelfIsPassedWithTheClearanceOnASmoothPath) {
-  auto scene = std::make_shared<arcplan::collision::Scene>(*loadTestScene("thesis_free"));
-  const Eigen::Matrix3d yaw = Eigen::AngleAxisd(-1.03088228752451, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const double depth = 0.310129750493969, width = 0.409913369894675, height = 0.555941355155275;
-  const auto panel = [&](const std::string& name, const Eigen::Vector3d& centre, const Eigen::Vector3d& size) {
-    auto obstacle = box(name, centre, size);
-    obstacle.pose.linear() = yaw;
-    return obstacle;
-  };
-  scene->obstacles.push_back(
-      panel("shelf_back", {0.593562317513646, 0.204946690382173, 0.277970677577637}, {0.02, width, height}));
-  scene->obstacles.push_back(
-      panel("shelf_left", {0.686214596587107, 0.429596378159771, 0.277970677577637}, {depth, 0.02, height}));
-  scene->obstacles.push_back(
-      panel("shelf_right", {0.351765283065967, 0.22915662983659, 0.277970677577637}, {depth, 0.02, height}));
-  for (const auto& [name, z] : {std::pair<std::string, double>{"shelf_bottom", 0.01},
-                                {"shelf_middle", 0.277970677577637},
-                                {"shelf_top", 0.545941355155275}}) {
-    scene->obstacles.push_back(panel(name, {0.518989939826537, 0.329376503998181, z}, {depth, width, 0.02}));
-  }
-  arcplan::robot::Vector6 start, goal;
-  start << 1.07367532533337, -1.13982038660424, 1.82961550243109, -2.26059144262175, -1.57079632679489,
-      1.07367532533337;
-  goal << -0.391086349463711, -1.19936884167989, 1.8551187017125, -2.2265461868275, -1.5707963267949,
-      -0.391086349463711;
-  scene->queries[0].start = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, start};
-  scene->queries[0].goal = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, goal};
-  auto problem = arcplan::planners::makePlanningProblem(scene);
-
+  auto problem = shelfProblem();
   const auto [planner, status] = solve(problem, "arc");
   ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
   const ArcPlannerResult& result = arcOf(planner).lastResult();

@@ -17,12 +17,16 @@
 //     "fallback"), cartesianFraction how much of the TCP path is lines and arcs.
 // A path keeps `clearance` (or the motion validator's margin if larger) everywhere, except that a
 // start or goal closer than that to an obstacle lowers it to its own clearance.
+// The line-and-arc search has its own `deadline` (default 50 ms of wall-clock time): past it, it gives
+// up and the fallback gets the rest of the termination condition's time (without fallback the planner
+// fails at once, its reason naming the deadline).
 // Failures say why (lastResult().reason; also OMPL_INFORM); the status is then ABORT, TIMEOUT when
 // the termination condition stopped it.
 #include <ompl/base/Planner.h>
 #include <ompl/geometric/PathGeometric.h>
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,8 +39,10 @@
 
 namespace arcplan::planners {
 namespace detail {
-struct ArcOutcome;  // what one strategy found (planners/src/arc_planning.h)
-}
+// planners/src/arc_planning.h: one query, and what one way of answering it found.
+struct ArcQuery;
+struct ArcOutcome;
+}  // namespace detail
 
 // Outcome of the last solve(), for users and for the command line.
 struct ArcPlannerResult {
@@ -49,7 +55,7 @@ struct ArcPlannerResult {
     Failed,
   };
   Kind kind = Kind::None;
-  std::string reason;                      // why it failed; empty otherwise
+  std::string reason;                      // why it failed; for the fallback why the line search gave up; else empty
   std::vector<Detour> detours;             // thesis mode: of the returned path
   std::vector<std::string> obstacles;      // bodies that blocked a line or leg, in the order met
   std::vector<Eigen::Vector3d> viaPoints;  // auto: of the returned path
@@ -102,6 +108,11 @@ public:
   bool getCheckMotions() const { return checkMotions_; }
   void setClearance(double clearance);
   double getClearance() const { return clearance_; }
+  // Seconds the line-and-arc search may take (0: no deadline); past it the search gives up and the
+  // fallback (if enabled) gets the rest of the termination condition's time. Wall-clock time: a run
+  // that reaches it depends on the machine's speed, so runs that must repeat exactly set 0.
+  void setDeadline(double seconds);
+  double getDeadline() const { return deadline_; }
   // Giving a detour shape (sagitta) asks for the thesis mode unless auto is set explicitly.
   void setAuto(bool enabled) { autoMode_ = enabled; }
   bool getAuto() const { return autoMode_.value_or(!shapeGiven_); }
@@ -115,6 +126,10 @@ private:
   // One query answered by the mode's strategy and, in auto mode, the fallback after it.
   detail::ArcOutcome answer(const ompl::base::PlannerTerminationCondition& ptc, const robot::Vector6& start,
                             const robot::Vector6& goal);
+  // Runs `strategy` on the query of start and goal, its walks validated with `margin` and stopped by `ptc`.
+  detail::ArcOutcome withQuery(const ompl::base::PlannerTerminationCondition& ptc, double margin,
+                               const robot::Vector6& start, const robot::Vector6& goal,
+                               const std::function<detail::ArcOutcome(const detail::ArcQuery&)>& strategy);
   collision::MotionCheckOptions motionCheckOptions() const;
   double planningMargin(const collision::MotionCheckOptions& motionCheck, const robot::Vector6& start,
                         const robot::Vector6& goal) const;
@@ -139,6 +154,9 @@ private:
   bool checkMotions_ = true;
   // A path that grazes an obstacle is valid but useless next to people: 1 cm by default.
   double clearance_ = 0.01;
+  // 50 ms: the search answers most queries in about 1 ms; one that has not found a route by then
+  // rarely finds one later (issue 22: a fence kept it busy for 5 s).
+  double deadline_ = 0.05;
   ArcPlannerResult result_;
   std::vector<robot::Vector6> solutionJoints_;                        // the last solution's waypoints
   mutable std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
