@@ -54,8 +54,13 @@ std::filesystem::path resolveResourceUri(const std::string& uri, const std::file
     const auto rosRoots = searchRoots("ROS_PACKAGE_PATH");
     if (auto found = findInRoots(arcplanRoots, package, path)) return *found;
     if (auto found = findInRoots(rosRoots, package, path)) return *found;
+    // Descriptions shipped as one folder (MotionBenchMaker's, robowflex_resources) name a subfolder
+    // of their own folder as the package.
+    const std::filesystem::path beside = referencingFile.parent_path() / package / path;
+    if (!referencingFile.empty() && std::filesystem::exists(beside)) return beside;
     throw Error("mesh '" + uri + "' not found: package '" + package + "' searched in ARCPLAN_PACKAGE_PATH (" +
-                describe(arcplanRoots) + ") and ROS_PACKAGE_PATH (" + describe(rosRoots) + ")");
+                describe(arcplanRoots) + "), ROS_PACKAGE_PATH (" + describe(rosRoots) + ") and beside " +
+                (referencingFile.empty() ? std::string("the referencing file") : referencingFile.string()));
   }
   std::filesystem::path path =
       uri.rfind(filePrefix, 0) == 0 ? std::filesystem::path(uri.substr(filePrefix.size())) : std::filesystem::path(uri);

@@ -15,6 +15,7 @@
 #include "arcplan/common/text_formatting.h"
 #include "arcplan/robot/package_path.h"
 #include "arcplan/robot/pose.h"
+#include "xml_text.h"
 
 namespace arcplan::robot {
 namespace {
@@ -106,69 +107,6 @@ std::string knownLinks(const urdf::ModelInterface& urdf) {
   for (const auto& [name, link] : urdf.links_) names.push_back(name);
   std::sort(names.begin(), names.end());
   return joinText(names, ", ");
-}
-
-// Syntax first, with TinyXML (urdfdom's own XML parser), so that the message has a line and column.
-// Offset of the first byte that does not belong to a well-formed UTF-8 sequence (RFC 3629: no
-// overlong forms, no surrogates, nothing above U+10FFFF), or of a NUL byte; npos if there is none.
-// Written here because TinyXML 2.6 trusts a lead byte and skips the bytes it announces, so a
-// sequence cut short at the end of the text walks past the terminating NUL (a heap over-read found
-// by fuzzing); the check must run before any TinyXML call, and Debian 12 ships no maintained C++
-// UTF-8 validator among arcplan's dependencies (std::wstring_convert is deprecated).
-std::size_t firstInvalidUtf8Byte(const std::string& text) {
-  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
-  std::size_t i = 0;
-  while (i < text.size()) {
-    const unsigned char lead = byte(i);
-    if (lead == 0) return i;
-    if (lead < 0x80) {
-      ++i;
-      continue;
-    }
-    std::size_t continuationCount = 0;
-    unsigned char secondMin = 0x80, secondMax = 0xBF;
-    if (lead >= 0xC2 && lead <= 0xDF) {
-      continuationCount = 1;
-    } else if (lead >= 0xE0 && lead <= 0xEF) {
-      continuationCount = 2;
-      if (lead == 0xE0) secondMin = 0xA0;  // overlong
-      if (lead == 0xED) secondMax = 0x9F;  // surrogates
-    } else if (lead >= 0xF0 && lead <= 0xF4) {
-      continuationCount = 3;
-      if (lead == 0xF0) secondMin = 0x90;  // overlong
-      if (lead == 0xF4) secondMax = 0x8F;  // above U+10FFFF
-    } else {
-      return i;
-    }
-    for (std::size_t k = 1; k <= continuationCount; ++k) {
-      if (i + k >= text.size()) return i;
-      const unsigned char next = byte(i + k);
-      const unsigned char low = k == 1 ? secondMin : 0x80, high = k == 1 ? secondMax : 0xBF;
-      if (next < low || next > high) return i;
-    }
-    i += continuationCount + 1;
-  }
-  return std::string::npos;
-}
-
-void checkXmlSyntax(const std::string& urdfXml, const std::filesystem::path& sourceFile) {
-  const std::size_t invalid = firstInvalidUtf8Byte(urdfXml);
-  if (invalid != std::string::npos) {
-    const auto line = 1 + std::count(urdfXml.begin(), urdfXml.begin() + static_cast<std::ptrdiff_t>(invalid), '\n');
-    std::ostringstream message;
-    message << where(sourceFile) << ":" << line << ": expected UTF-8 text, found byte 0x" << std::hex
-            << static_cast<int>(static_cast<unsigned char>(urdfXml[invalid])) << std::dec << " at offset " << invalid
-            << (urdfXml[invalid] == '\0' ? " (a NUL byte)" : " (not a well-formed UTF-8 sequence)");
-    throw Error(message.str());
-  }
-  TiXmlDocument document;
-  document.Parse(urdfXml.c_str());
-  if (document.Error()) {
-    std::ostringstream message;
-    message << where(sourceFile) << ":" << document.ErrorRow() << ":" << document.ErrorCol()
-            << ": malformed XML: " << document.ErrorDesc();
-    throw Error(message.str());
-  }
 }
 
 // urdfdom reports why it rejects a description through console_bridge; those messages go into ours.
@@ -285,13 +223,13 @@ int RobotModel::linkIndex(const std::string& linkName) const {
   throw Error("unknown link '" + linkName + "' in robot '" + name_ + "' (links: " + joinText(names, ", ") + ")");
 }
 
-bool RobotModel::hasLink(const std::string& linkName) const {
-  return std::any_of(links_.begin(), links_.end(), [&](const Link& l) { return l.name == linkName; });
-}
-
 RobotModel parseRobotModel(const std::string& urdfXml, const std::filesystem::path& sourceFile,
                            const ChainSelection& chain) {
-  checkXmlSyntax(urdfXml, sourceFile);
+  {
+    // Syntax first, with TinyXML (urdfdom's own XML parser), so that the message has a line and column.
+    TiXmlDocument document;
+    detail::parseXml(urdfXml, where(sourceFile), document);
+  }
   const urdf::ModelInterfaceSharedPtr urdf = parseUrdf(urdfXml, sourceFile);
   const auto chainSources = chainLinks(*urdf, chain, sourceFile);
 
@@ -307,6 +245,17 @@ RobotModel parseRobotModel(const std::string& urdfXml, const std::filesystem::pa
   model.links_ = std::move(builder.links);
   model.joints_ = std::move(builder.joints);
   model.tipLink_ = builder.indexOf.at(chain.tipLink);
+  if (chain.tcpOffset) {
+    if (builder.indexOf.count("tcp") != 0) {
+      throw Error(where(sourceFile) + ": a TCP offset adds a frame named 'tcp', but the robot has a link 'tcp'");
+    }
+    Link tcp;
+    tcp.name = "tcp";
+    tcp.parent = model.tipLink_;
+    tcp.originInParent = *chain.tcpOffset;
+    model.tipLink_ = static_cast<int>(model.links_.size());
+    model.links_.push_back(std::move(tcp));
+  }
   return model;
 }
 

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <sstream>
 
 #include "arcplan/common/error.h"
+#include "ur_chain.h"
 
 namespace arcplan::robot {
 namespace {
@@ -29,10 +29,6 @@ Eigen::Isometry3d dhLink(double theta, double d, double a, double alpha) {
   return t;
 }
 
-Eigen::Vector3d perpendicularPart(const Eigen::Vector3d& v, const Eigen::Vector3d& unitAxis) {
-  return v - v.dot(unitAxis) * unitAxis;
-}
-
 }  // namespace
 
 Eigen::Isometry3d urDhForwardKinematics(const UrDhParameters& dh, const Vector6& q) {
@@ -41,70 +37,45 @@ Eigen::Isometry3d urDhForwardKinematics(const UrDhParameters& dh, const Vector6&
 }
 
 UrInverseKinematics::UrInverseKinematics(const RobotModel& model) {
-  if (model.dof() != 6) {
-    throw Error("UR inverse kinematics needs a 6-joint chain; '" + model.name() + "' has " +
-                std::to_string(model.dof()));
-  }
-  for (int j = 0; j < 6; ++j) {
+  for (int j = 0; j < model.dof() && j < 6; ++j) {
     lower_[j] = model.joints()[j].limits.lower;
     upper_[j] = model.joints()[j].limits.upper;
   }
-  // Joint axes as lines at q = 0: point P_j (on the axis) and direction Z_j.
-  KinematicsData data(model);
-  forwardKinematics(model, Vector6::Zero(), data);
-  Eigen::Vector3d point[6], axis[6];
-  for (int j = 0; j < 6; ++j) {
-    const int link = model.joints()[j].link;
-    point[j] = data.linkPoses[link].translation();
-    axis[j] = data.linkPoses[link].linear() * model.links()[link].axis;
+  auto chain = std::make_shared<const detail::JointChain>(detail::jointChainOf(model));
+  const detail::UrChainFit fit = detail::fitUrChain(*chain, model.name());
+  const double tolerance = model.calibrated() ? kCalibratedChainTolerance : kUrdfChainTolerance;
+  if (fit.translationDeviation > tolerance || fit.rotationDeviation > tolerance) {
+    std::ostringstream message;
+    message << "'" << model.name() << "' is not a UR-type arm: its chain differs from the UR chain fitted to it by "
+            << fit.translationDeviation << " m and " << fit.rotationDeviation
+            << " rad at a test configuration (tolerance " << tolerance << " m and rad"
+            << (model.calibrated() ? ", for a calibrated arm)"
+                                   : "; a calibrated UR arm loads with robot {ur_type, kinematics: FILE})");
+    throw Error(message.str());
   }
-  const Eigen::Vector3d z0 = axis[0];
-  const Eigen::Vector3d origin0 = z0 * z0.dot(data.linkPoses[0].translation());  // base origin on axis 0
-  // x0: the upper arm at q = 0 points along -x0 (the UR convention a2 < 0).
-  const Eigen::Vector3d upperArm = perpendicularPart(perpendicularPart(point[2] - point[1], axis[1]), z0);
-  if (upperArm.norm() < 1e-6)
-    throw Error("'" + model.name() + "' is not a UR-type arm: elbow axis on the shoulder axis");
-  const Eigen::Vector3d x0 = -upperArm.normalized();
-  const Eigen::Vector3d y0 = z0.cross(x0);
-
-  dh_.d1 = (point[1] - origin0).dot(z0);
-  dh_.a2 = (point[2] - point[1]).dot(x0);
-  dh_.a3 = (point[3] - point[2]).dot(x0);
-  dh_.d4 = -(point[4] - origin0).dot(y0);
-  dh_.d5 = dh_.d1 - (point[5] - origin0).dot(z0);
-  // Frame 6 sits where the tip projects onto the last axis, so a tool frame further out works too.
-  const Eigen::Vector3d tip = data.linkPoses[model.tipLink()].translation();
-  const Eigen::Vector3d flange = point[5] + axis[5] * axis[5].dot(tip - point[5]);
-  dh_.d6 = -(flange - origin0).dot(y0) - dh_.d4;
-  if (std::abs(dh_.d6) < 1e-6) {
-    throw Error("'" + model.name() +
-                "': the tip link lies on the wrist-2 axis (d6 = 0); choose tool0 or a tool frame as tip");
+  dh_ = fit.dh;
+  dh0ToBase_ = fit.baseToDh0.inverse();
+  tipToDh6_ = fit.dh6ToTip.inverse();
+  translationDeviation_ = fit.translationDeviation;
+  rotationDeviation_ = fit.rotationDeviation;
+  // Below this the ideal chain's solutions already reproduce poses to rounding noise.
+  constexpr double kExactChain = 1e-12;
+  if (fit.translationDeviation > kExactChain || fit.rotationDeviation > kExactChain) {
+    refinedChain_ = std::move(chain);
+    // The true arm may reach a little farther than the ideal one: cos q3 of the ideal chain may then
+    // exceed 1 by what that deviation changes the wrist distance, d(cos q3) = r dr / (a2 a3).
+    reachSlack_ += 2.0 * (std::abs(dh_.a2) + std::abs(dh_.a3)) * fit.translationDeviation / std::abs(dh_.a2 * dh_.a3);
   }
+}
 
-  baseToDh0_.linear().col(0) = x0;
-  baseToDh0_.linear().col(1) = y0;
-  baseToDh0_.linear().col(2) = z0;
-  baseToDh0_.translation() = origin0;
-  dh6ToTip_ = (baseToDh0_ * urDhForwardKinematics(dh_, Vector6::Zero())).inverse() * data.linkPoses[model.tipLink()];
-  dh0ToBase_ = baseToDh0_.inverse();
-  tipToDh6_ = dh6ToTip_.inverse();
+double UrInverseKinematics::awayFromMergedBranches(double angle, double inside) {
+  return inside > 0.0 ? std::clamp(angle, inside, M_PI - inside) : angle;
+}
 
-  // The chain must reproduce the DH model everywhere, not only at q = 0.
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
-  for (int trial = 0; trial < 32; ++trial) {
-    Vector6 q;
-    for (auto& v : q) v = angle(random);
-    forwardKinematics(model, q, data);
-    const Eigen::Isometry3d viaDh = baseToDh0_ * urDhForwardKinematics(dh_, q) * dh6ToTip_;
-    const double error = (viaDh.matrix() - data.linkPoses[model.tipLink()].matrix()).norm();
-    if (error > 1e-8) {
-      std::ostringstream message;
-      message << "'" << model.name() << "' is not a UR-type arm (the chain differs from its DH model by " << error
-              << " at a test configuration)";
-      throw Error(message.str());
-    }
-  }
+bool UrInverseKinematics::refine(const Eigen::Isometry3d& tipPose, Vector6& q) const {
+  if (!detail::refineOnChain(*refinedChain_, tipPose, q)) return false;
+  for (auto& v : q) v = wrapToPi(v);
+  return true;
 }
 
 // The closed form goes joint group by joint group: the shoulder choice fixes q1, the wrist choice q5
@@ -128,23 +99,24 @@ UrInverseKinematics::TargetFrame UrInverseKinematics::targetFrame(const Eigen::I
 }
 
 std::optional<UrInverseKinematics::ShoulderStep> UrInverseKinematics::shoulderStep(const TargetFrame& target,
-                                                                                   int shoulder) const {
+                                                                                   int shoulder, double inside) const {
   // The wrist-2 centre lies at distance d4 from the vertical arm plane.
   const Eigen::Vector3d p5 = target.p - dh_.d6 * target.a;
   const double rho = std::hypot(p5.x(), p5.y());
-  if (rho < std::abs(dh_.d4) * (1.0 - 1e-12)) return std::nullopt;
-  const double phi = std::acos(std::clamp(dh_.d4 / rho, -1.0, 1.0));
+  if (rho < std::abs(dh_.d4) * (1.0 - 1e-12) - 2.0 * translationDeviation_) return std::nullopt;
+  const double phi = awayFromMergedBranches(std::acos(std::clamp(dh_.d4 / rho, -1.0, 1.0)), inside);
   const double q1 = std::atan2(p5.y(), p5.x()) + M_PI_2 + (shoulder == 0 ? phi : -phi);
   return ShoulderStep{q1, std::sin(q1), std::cos(q1)};
 }
 
 UrInverseKinematics::WristStep UrInverseKinematics::wristStep(const TargetFrame& target, const ShoulderStep& shoulder,
-                                                              int wrist, double q6AtWristSingularity) const {
+                                                              int wrist, double q6AtWristSingularity,
+                                                              double inside) const {
   const auto& [n, o, a, p] = target;
   const double s1 = shoulder.s1, c1 = shoulder.c1;
   // q5 from the tool point's offset from the arm plane.
   const double c5 = std::clamp((p.x() * s1 - p.y() * c1 - dh_.d4) / dh_.d6, -1.0, 1.0);
-  const double q5 = (wrist == 0 ? 1.0 : -1.0) * std::acos(c5);
+  const double q5 = (wrist == 0 ? 1.0 : -1.0) * awayFromMergedBranches(std::acos(c5), inside);
   const double s5 = std::sin(q5);
   double q6 = q6AtWristSingularity;
   if (std::abs(s5) > kSingularityTolerance) {
@@ -154,7 +126,7 @@ UrInverseKinematics::WristStep UrInverseKinematics::wristStep(const TargetFrame&
 }
 
 std::optional<Vector6> UrInverseKinematics::elbowStep(const TargetFrame& target, const ShoulderStep& shoulder,
-                                                      const WristStep& wrist, int elbow) const {
+                                                      const WristStep& wrist, int elbow, double inside) const {
   const auto& [n, o, a, p] = target;
   const auto& [d1, a2, a3, d4, d5, d6] = dh_;
   const double s1 = shoulder.s1, c1 = shoulder.c1, s6 = wrist.s6, c6 = wrist.c6;
@@ -163,12 +135,12 @@ std::optional<Vector6> UrInverseKinematics::elbowStep(const TargetFrame& target,
   const double x = p4.x() * c1 + p4.y() * s1;
   const double y = p4.z() - d1;
   const double c3raw = (x * x + y * y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3);
-  if (std::abs(c3raw) > 1.0 + 1e-9) return std::nullopt;  // out of reach for this (q1, q5)
+  if (std::abs(c3raw) > 1.0 + reachSlack_) return std::nullopt;  // out of reach for this (q1, q5)
   const double c3 = std::clamp(c3raw, -1.0, 1.0);
   const Eigen::Vector3d x4 = wrist.c5 * (c6 * n - s6 * o) - wrist.s5 * a;
   const double q234 = std::atan2(x4.z(), x4.x() * c1 + x4.y() * s1);
-  const double q3 = (elbow == 0 ? 1.0 : -1.0) * std::acos(c3);
-  const double q2 = std::atan2(y, x) - std::atan2(a3 * std::sin(q3), a2 + a3 * c3);
+  const double q3 = (elbow == 0 ? 1.0 : -1.0) * awayFromMergedBranches(std::acos(c3), inside);
+  const double q2 = std::atan2(y, x) - std::atan2(a3 * std::sin(q3), a2 + a3 * std::cos(q3));
   Vector6 q;
   q << shoulder.q1, q2, q3, q234 - q2 - q3, wrist.q5, wrist.q6;
   for (auto& v : q) v = wrapToPi(v);
@@ -177,29 +149,48 @@ std::optional<Vector6> UrInverseKinematics::elbowStep(const TargetFrame& target,
 
 std::vector<Vector6> UrInverseKinematics::solveBranches(const Eigen::Isometry3d& tipPose,
                                                         double q6AtWristSingularity) const {
-  const TargetFrame target = targetFrame(tipPose);
   std::vector<Vector6> solutions;
   solutions.reserve(8);
+  if (refinedChain_) {
+    for (int branch = 0; branch < 8; ++branch) {
+      if (auto q = solveBranch(tipPose, branch, q6AtWristSingularity)) solutions.push_back(*q);
+    }
+    return solutions;
+  }
+  const TargetFrame target = targetFrame(tipPose);
   for (int shoulderBit = 0; shoulderBit < 2; ++shoulderBit) {
-    const auto shoulder = shoulderStep(target, shoulderBit);
+    const auto shoulder = shoulderStep(target, shoulderBit, 0.0);
     if (!shoulder) return solutions;
     for (int wristBit = 0; wristBit < 2; ++wristBit) {
-      const WristStep wrist = wristStep(target, *shoulder, wristBit, q6AtWristSingularity);
+      const WristStep wrist = wristStep(target, *shoulder, wristBit, q6AtWristSingularity, 0.0);
       for (int elbowBit = 0; elbowBit < 2; ++elbowBit) {
-        if (auto q = elbowStep(target, *shoulder, wrist, elbowBit)) solutions.push_back(*q);
+        if (auto q = elbowStep(target, *shoulder, wrist, elbowBit, 0.0)) solutions.push_back(*q);
       }
     }
   }
   return solutions;
 }
 
+std::optional<Vector6> UrInverseKinematics::analyticBranch(const TargetFrame& target, int branch,
+                                                           double q6AtWristSingularity, double inside) const {
+  const auto shoulder = shoulderStep(target, branch & 1, inside);
+  if (!shoulder) return std::nullopt;
+  return elbowStep(target, *shoulder, wristStep(target, *shoulder, (branch >> 1) & 1, q6AtWristSingularity, inside),
+                   (branch >> 2) & 1, inside);
+}
+
 std::optional<Vector6> UrInverseKinematics::solveBranch(const Eigen::Isometry3d& tipPose, int branch,
                                                         double q6AtWristSingularity) const {
   const TargetFrame target = targetFrame(tipPose);
-  const auto shoulder = shoulderStep(target, branch & 1);
-  if (!shoulder) return std::nullopt;
-  return elbowStep(target, *shoulder, wristStep(target, *shoulder, (branch >> 1) & 1, q6AtWristSingularity),
-                   (branch >> 2) & 1);
+  if (!refinedChain_) return analyticBranch(target, branch, q6AtWristSingularity, 0.0);
+  // Where two branches merge (elbow stretched, wrist or shoulder singular) the pose does not change
+  // with that angle to first order, so Newton steps cannot leave it, and near it a step may cross into
+  // the other branch: start just inside the branch, and farther inside if the first start crossed.
+  for (const double inside : {1e-3, 0.05}) {
+    auto q = analyticBranch(target, branch, q6AtWristSingularity, inside);
+    if (q && refine(tipPose, *q) && branchOf(*q) == branch) return q;
+  }
+  return std::nullopt;
 }
 
 std::optional<Vector6> UrInverseKinematics::nearestRepresentation(const Vector6& q, const Vector6& reference) const {

@@ -6,6 +6,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/robot/mesh.h"
 #include "arcplan/robot/robot_model.h"
+#include "arcplan/robot/srdf.h"
 #include "support/command.h"
 
 namespace {
@@ -284,6 +285,53 @@ TEST(RobotModel, TextThatIsNotUtf8IsRejectedWithItsLine) {
   } catch (const arcplan::Error& e) {
     EXPECT_EQ(std::string(e.what()).find("UTF-8"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Srdf, DisabledCollisionPairsWithTheirLines) {
+  const auto pairs = arcplan::robot::parseSrdfDisabledCollisions(R"(<?xml version="1.0"?>
+<robot name="r">
+  <group name="arm"><chain base_link="base_link" tip_link="tool0"/></group>
+  <disable_collisions link1="base_link" link2="shoulder_link" reason="Adjacent"/>
+  <disable_collisions link1="wrist_1_link" link2="wrist_3_link"/>
+</robot>)",
+                                                                 "r.srdf");
+  ASSERT_EQ(pairs.size(), 2u);
+  EXPECT_EQ(pairs[0].link1, "base_link");
+  EXPECT_EQ(pairs[0].link2, "shoulder_link");
+  EXPECT_EQ(pairs[0].reason, "Adjacent");
+  EXPECT_EQ(pairs[0].line, 4);
+  EXPECT_EQ(pairs[1].link2, "wrist_3_link");
+  EXPECT_EQ(pairs[1].reason, "");
+  EXPECT_EQ(pairs[1].line, 5);
+}
+
+TEST(Srdf, BadInputNamesFileAndLine) {
+  const auto message = [](const std::string& text) {
+    try {
+      arcplan::robot::parseSrdfDisabledCollisions(text, "r.srdf");
+    } catch (const arcplan::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("<robot>\n<disable_collisions link1=\"a\"/>\n</robot>"),
+            "r.srdf:2: <disable_collisions> needs link1 and link2");
+  EXPECT_EQ(message("<model/>"), "r.srdf:1: expected an SRDF with root element <robot>");
+  EXPECT_NE(message("<robot>\n<disable_collisions link1=\"a\" link2=\"b\">\n</robot>").find("r.srdf:"),
+            std::string::npos);
+  EXPECT_NE(message("<robot>\n<disable_collisions link1=\"a\" link2=\"b\">\n</robot>").find("malformed XML"),
+            std::string::npos);
+}
+
+TEST(RobotModel, TcpOffsetFrameMayNotShadowALink) {
+  const std::string urdf = R"(<robot name="r"><link name="base_link"/><link name="tcp"/>
+<joint name="j" type="fixed"><parent link="base_link"/><child link="tcp"/></joint></robot>)";
+  EXPECT_THROW(arcplan::robot::parseRobotModel(urdf, "r.urdf", {"base_link", "tcp", Eigen::Isometry3d::Identity()}),
+               Error);
 }
 
 }  // namespace

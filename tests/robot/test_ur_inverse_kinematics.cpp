@@ -16,6 +16,7 @@ namespace {
 
 using arcplan::robot::rotationDistance;
 using arcplan::robot::ur10e;
+using arcplan::robot::ur10eUrdfPath;
 using arcplan::robot::UrInverseKinematics;
 using arcplan::robot::Vector6;
 
@@ -226,6 +227,67 @@ TEST(UrInverseKinematics, RejectsAChainThatIsNotUrType) {
   urdf += "</robot>";
   const auto model = arcplan::robot::parseRobotModel(urdf, "planar.urdf");
   EXPECT_THROW(UrInverseKinematics{model}, arcplan::Error);
+}
+
+TEST(UrInverseKinematics, AMillimetreOffTheUrChainIsRefusedWithTheMismatchAndTolerance) {
+  // Wrist 2 one millimetre off its UR place: no URDF rounding explains that.
+  std::string text = ur10eUrdfText();
+  const std::string wrist2 = "<origin xyz=\"0 -0.11985 0\"";
+  ASSERT_NE(text.find(wrist2), std::string::npos);
+  text.replace(text.find(wrist2), wrist2.size(), "<origin xyz=\"0.001 -0.11985 0\"");
+  const auto model = arcplan::robot::loadRobotModel(writeVariant("millimetre_off", text));
+  try {
+    UrInverseKinematics{model};
+    FAIL() << "accepted";
+  } catch (const arcplan::Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("is not a UR-type arm"), std::string::npos) << message;
+    EXPECT_NE(message.find("tolerance 1e-06 m and rad"), std::string::npos) << message;
+    // The tip moves by the offset at every configuration: the mismatch is about a millimetre.
+    const std::size_t by = message.find("by ");
+    ASSERT_NE(by, std::string::npos) << message;
+    const double mismatch = std::stod(message.substr(by + 3));
+    EXPECT_GT(mismatch, 0.5e-3) << message;
+    EXPECT_LT(mismatch, 2.5e-3) << message;
+  }
+}
+
+TEST(UrInverseKinematics, ArmStandingAnywhereInTheBaseFrame) {
+  // The chain starts at a world frame; the arm stands at (1, 0.5, 0.2), turned by 0.7 rad and tilted.
+  std::string text = ur10eUrdfText();
+  text.replace(text.rfind("</robot>"), 8,
+               R"(<link name="world"/><joint name="mount" type="fixed"><parent link="world"/>
+<child link="base_link"/><origin xyz="1 0.5 0.2" rpy="0.1 0 0.7"/></joint></robot>)");
+  const auto model = arcplan::robot::loadRobotModel(writeVariant("mounted", text), {"world", "tool0"});
+  const UrInverseKinematics ik(model);
+  std::mt19937 random(8);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Vector6 q = randomInLimits(random, model);
+    const auto target = arcplan::robot::tipPose(model, q);
+    double closest = 1e9;
+    for (const auto& s : ik.solveBranches(target)) {
+      expectReproducesPose(model, s, target);
+      closest = std::min(closest, angularDistanceModuloTwoPi(s, q));
+    }
+    EXPECT_LT(closest, 1e-9);
+  }
+}
+
+TEST(UrInverseKinematics, TcpOffsetIsTheTipItSolvesFor) {
+  const Eigen::Isometry3d offset = arcplan::robot::poseFromXyzRpy({0.0, 0.02, 0.15, 0.0, 0.0, 0.4});
+  const auto model = arcplan::robot::loadRobotModel(ur10eUrdfPath(), {"base_link", "tool0", offset});
+  EXPECT_EQ(model.links()[model.tipLink()].name, "tcp");
+  const UrInverseKinematics ik(model);
+  std::mt19937 random(9);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Vector6 q = randomInLimits(random, model);
+    // The TCP is tool0 (of arcplan's UR10e) times the offset.
+    const auto target = arcplan::robot::tipPose(ur10e(), q) * offset;
+    EXPECT_LT((arcplan::robot::tipPose(model, q).matrix() - target.matrix()).norm(), 1e-12);
+    double closest = 1e9;
+    for (const auto& s : ik.solveBranches(target)) closest = std::min(closest, angularDistanceModuloTwoPi(s, q));
+    EXPECT_LT(closest, 1e-9);
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // limits, link inertials and collision geometry. A RobotModel never changes after loading;
 // algorithms that need scratch space take a separate workspace (see kinematics.h).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,10 +58,17 @@ struct Joint {
   JointLimits limits;
 };
 
+// Which part of a description is the robot: the chain from baseLink to tipLink. The tip is the TCP
+// (tool centre point): what inverse kinematics solves for and Cartesian planners move along lines.
+// With tcpOffset the model gets one more frame, a link named "tcp" fixed to tipLink at that offset,
+// and that frame is the tip.
 struct ChainSelection {
   std::string baseLink = "base_link";
   std::string tipLink = "tool0";
+  std::optional<Eigen::Isometry3d> tcpOffset;
 };
+
+struct UrDescriptionSelection;
 
 class RobotModel {
 public:
@@ -69,20 +77,25 @@ public:
   const std::vector<Joint>& joints() const { return joints_; }
   int dof() const { return static_cast<int>(joints_.size()); }
   int baseLink() const { return 0; }
+  // The TCP (see ChainSelection).
   int tipLink() const { return tipLink_; }
   // Index of a link by name; throws arcplan::Error listing the known links if absent.
   int linkIndex(const std::string& linkName) const;
-  bool hasLink(const std::string& linkName) const;
   const std::filesystem::path& sourceFile() const { return sourceFile_; }
+  // True when the joint frames come from a robot's own calibration (a kinematics file given for a
+  // UR type): they may then deviate from the nominal geometry by calibration offsets.
+  bool calibrated() const { return calibrated_; }
 
 private:
   friend RobotModel loadRobotModel(const std::filesystem::path&, const ChainSelection&);
   friend RobotModel parseRobotModel(const std::string&, const std::filesystem::path&, const ChainSelection&);
+  friend RobotModel loadUrDescription(const UrDescriptionSelection&, const ChainSelection&);
   std::string name_;
   std::vector<Link> links_;
   std::vector<Joint> joints_;
   int tipLink_ = -1;
   std::filesystem::path sourceFile_;
+  bool calibrated_ = false;
 };
 
 // Reads a URDF file. Mesh URIs are resolved through package_path.h. Throws arcplan::Error naming

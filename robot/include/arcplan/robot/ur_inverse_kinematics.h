@@ -2,9 +2,14 @@
 // Closed-form inverse kinematics of UR-type arms (three parallel middle axes, non-spherical wrist),
 // after Hawkins' analysis of the UR5/UR10: up to 8 branches per tip pose.
 //
-// The DH numbers are read off the model's geometry at q = 0 and verified against the chain's own
-// forward kinematics, so the same code serves arcplan's UR10e, the official UR description, or a
-// UR chain with a longer tool frame as tip.
+// The DH numbers are read off the model's geometry at q = 0 (any UR type, CB-series or e-series,
+// URDF frames of ROS 1 or ROS 2 style, the arm standing anywhere in the base frame, any tool frame
+// as tip) and the chain's own forward kinematics is compared with that ideal chain. A URDF's chain
+// may differ from it by the rounding of its numbers (kUrdfChainTolerance); a chain built from a
+// robot's calibration file (RobotModel::calibrated) by calibration offsets
+// (kCalibratedChainTolerance). Where the difference is not negligible, every analytic solution is
+// refined by Newton steps on the true chain, so solutions reproduce the pose to 1e-11.
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -25,15 +30,28 @@ struct UrDhParameters {
 // Pose of DH frame 6 in DH frame 0 for joint angles q.
 Eigen::Isometry3d urDhForwardKinematics(const UrDhParameters& dh, const Vector6& q);
 
+// Largest tip position (m) and rotation (rad) difference between a URDF's chain and the ideal UR
+// chain: official files write pi/2 as 1.570796327 or 1.570796325 and carry 1e-11 m offsets (1e-8
+// at the tip); a real deviation of another arm is millimetres.
+inline constexpr double kUrdfChainTolerance = 1e-6;
+// The same for a chain from a calibration file: factory calibrations move joint frames by
+// millimetres and milliradians.
+inline constexpr double kCalibratedChainTolerance = 0.02;
+
+namespace detail {
+struct JointChain;
+}
+
 class UrInverseKinematics {
 public:
-  // Throws arcplan::Error when the chain is not a 6-joint UR-type arm.
+  // Throws arcplan::Error when the chain is not a 6-joint UR-type arm, saying by how much it differs
+  // from the ideal UR chain and what the tolerance is.
   explicit UrInverseKinematics(const RobotModel& model);
 
   const UrDhParameters& dhParameters() const { return dh_; }
-  // DH frame 0 in the model's base frame, and the tip frame in DH frame 6.
-  const Eigen::Isometry3d& baseToDh0() const { return baseToDh0_; }
-  const Eigen::Isometry3d& dh6ToTip() const { return dh6ToTip_; }
+  // How far the model's chain is from the ideal UR chain of dhParameters (m, rad).
+  double translationDeviation() const { return translationDeviation_; }
+  double rotationDeviation() const { return rotationDeviation_; }
 
   // The analytic branches for a tip pose in the model's base frame, each angle in (-pi, pi],
   // ignoring joint limits. At the wrist singularity (q5 = 0 or pi) only q4 + q6 (or q4 - q6) is
@@ -67,17 +85,26 @@ private:
   struct ShoulderStep;
   struct WristStep;
   TargetFrame targetFrame(const Eigen::Isometry3d& tipPose) const;
-  std::optional<ShoulderStep> shoulderStep(const TargetFrame& target, int shoulder) const;
-  WristStep wristStep(const TargetFrame& target, const ShoulderStep& shoulder, int wrist,
-                      double q6AtWristSingularity) const;
+  // `inside` > 0 keeps the angles where two branches merge that far inside the branch (Newton seeds).
+  std::optional<ShoulderStep> shoulderStep(const TargetFrame& target, int shoulder, double inside) const;
+  WristStep wristStep(const TargetFrame& target, const ShoulderStep& shoulder, int wrist, double q6AtWristSingularity,
+                      double inside) const;
   std::optional<Vector6> elbowStep(const TargetFrame& target, const ShoulderStep& shoulder, const WristStep& wrist,
-                                   int elbow) const;
+                                   int elbow, double inside) const;
+  std::optional<Vector6> analyticBranch(const TargetFrame& target, int branch, double q6AtWristSingularity,
+                                        double inside) const;
+  // An angle in [0, pi] at which two branches merge, kept `inside` away from 0 and pi.
+  static double awayFromMergedBranches(double angle, double inside);
+  // The analytic solution q of the ideal chain made exact on the true chain; false if it cannot be.
+  bool refine(const Eigen::Isometry3d& tipPose, Vector6& q) const;
 
   UrDhParameters dh_;
-  Eigen::Isometry3d baseToDh0_ = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d dh6ToTip_ = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d dh0ToBase_ = Eigen::Isometry3d::Identity();  // inverses, kept for solveBranches
+  Eigen::Isometry3d dh0ToBase_ = Eigen::Isometry3d::Identity();  // base frame -> DH frame 0
   Eigen::Isometry3d tipToDh6_ = Eigen::Isometry3d::Identity();
+  double translationDeviation_ = 0.0, rotationDeviation_ = 0.0;
+  // The true chain, kept when the ideal one differs from it by more than rounding noise.
+  std::shared_ptr<const detail::JointChain> refinedChain_;
+  double reachSlack_ = 1e-9;  // how far beyond 1 |cos q3| may be and still count as reachable
   Vector6 lower_, upper_;
 };
 

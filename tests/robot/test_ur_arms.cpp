@@ -1,0 +1,269 @@
+// UR arms from other people's files (../shared/data): MotionBenchMaker's UR5 with its force sensor and
+// gripper, and every type of Universal Robots' own description. Expected numbers come from UR's
+// published DH tables and from the description's YAML composed here by hand, never from the code
+// under test.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "arcplan/common/error.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/pose.h"
+#include "arcplan/robot/robot_model.h"
+#include "arcplan/robot/ur_description.h"
+#include "arcplan/robot/ur_inverse_kinematics.h"
+#include "support/command.h"
+
+namespace {
+
+using arcplan::robot::RobotModel;
+using arcplan::robot::UrInverseKinematics;
+using arcplan::robot::Vector6;
+
+std::filesystem::path mbmUr5Urdf() { return arcplan::testing::sharedDataDirectory() / "mbm_ur5" / "ur5.urdf"; }
+
+Vector6 randomInLimits(std::mt19937& random, const RobotModel& model) {
+  Vector6 q;
+  for (int j = 0; j < 6; ++j) {
+    const auto& limits = model.joints()[j].limits;
+    q[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
+  }
+  return q;
+}
+
+double angularDistanceModuloTwoPi(const Vector6& a, const Vector6& b) {
+  double worst = 0.0;
+  for (int j = 0; j < 6; ++j) worst = std::max(worst, std::abs(std::remainder(a[j] - b[j], 2 * M_PI)));
+  return worst;
+}
+
+// Random configurations -> tip pose -> IK: every solution reproduces the pose to 1e-9; returns how
+// many of the configurations are among the solutions (to 1e-9).
+int roundTrips(const RobotModel& model, unsigned seed, int trials) {
+  const UrInverseKinematics ik(model);
+  std::mt19937 random(seed);
+  int found = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const Vector6 q = randomInLimits(random, model);
+    const auto target = arcplan::robot::tipPose(model, q);
+    const auto solutions = ik.solveBranches(target);
+    double closest = 1e9;
+    for (const auto& s : solutions) {
+      const auto pose = arcplan::robot::tipPose(model, s);
+      EXPECT_LE((pose.translation() - target.translation()).norm(), 1e-9) << model.name() << " " << s.transpose();
+      EXPECT_LE(arcplan::robot::rotationDistance(pose.linear(), target.linear()), 1e-9) << model.name();
+      closest = std::min(closest, angularDistanceModuloTwoPi(s, q));
+    }
+    if (closest < 1e-9) ++found;
+  }
+  return found;
+}
+
+void expectRoundTrips(const RobotModel& model, unsigned seed, int trials) {
+  EXPECT_EQ(roundTrips(model, seed, trials), trials) << model.name();
+}
+
+TEST(MotionBenchMakerUr5, LoadsWithItsSensorAndGripperAsCollisionBodies) {
+  const RobotModel model = arcplan::robot::loadRobotModel(mbmUr5Urdf());
+  EXPECT_EQ(model.name(), "ur5_robotiq85");
+  EXPECT_EQ(model.dof(), 6);
+  for (const char* name : {"fts_robotside", "robotiq_85_base_link", "robotiq_85_left_finger_tip_link",
+                           "robotiq_85_right_finger_tip_link", "robotiq_85_left_knuckle_link"}) {
+    const auto& link = model.links()[model.linkIndex(name)];
+    EXPECT_FALSE(link.collisions.empty()) << name;
+    EXPECT_EQ(link.joint, -1) << name;  // moves with the flange
+  }
+}
+
+TEST(MotionBenchMakerUr5, DhParametersAreTheUr5Ones) {
+  // UR's published DH table of the UR5 (CB-series): d1, a2, a3, d4, d5, d6.
+  const UrInverseKinematics ik(arcplan::robot::loadRobotModel(mbmUr5Urdf()));
+  const auto& dh = ik.dhParameters();
+  EXPECT_NEAR(dh.d1, 0.089159, 1e-6);
+  EXPECT_NEAR(dh.a2, -0.425, 1e-6);
+  EXPECT_NEAR(dh.a3, -0.39225, 1e-6);
+  EXPECT_NEAR(dh.d4, 0.10915, 1e-6);
+  EXPECT_NEAR(dh.d5, 0.09465, 1e-6);
+  EXPECT_NEAR(dh.d6, 0.0823, 1e-6);
+  // Its pi/2 is written 1.570796325: not an exact UR chain, within the URDF tolerance.
+  EXPECT_GT(ik.translationDeviation() + ik.rotationDeviation(), 1e-10);
+  EXPECT_LT(std::max(ik.translationDeviation(), ik.rotationDeviation()), arcplan::robot::kUrdfChainTolerance);
+}
+
+TEST(MotionBenchMakerUr5, InverseKinematicsRoundTripsToOneNanometre) {
+  expectRoundTrips(arcplan::robot::loadRobotModel(mbmUr5Urdf()), 11, 500);
+}
+
+TEST(MotionBenchMakerUr5, ToolFrameInTheGripperRoundTrips) {
+  // The TCP between the finger tips, a link beyond the flange that only fixed joints reach.
+  expectRoundTrips(arcplan::robot::loadRobotModel(mbmUr5Urdf(), {"base_link", "robotiq_85_left_finger_tip_link"}), 12,
+                   200);
+}
+
+}  // namespace
+
+namespace {
+
+using arcplan::robot::loadUrDescription;
+using arcplan::robot::UrDescriptionSelection;
+
+std::filesystem::path descriptionFolder() { return arcplan::testing::sharedDataDirectory() / "ur_description"; }
+
+// Every type the folder holds, listed here from the folder itself.
+std::vector<std::string> typesInFolder() {
+  std::vector<std::string> types;
+  for (const auto& entry : std::filesystem::directory_iterator(descriptionFolder() / "config")) {
+    if (entry.is_directory()) types.push_back(entry.path().filename().string());
+  }
+  std::sort(types.begin(), types.end());
+  return types;
+}
+
+Eigen::Isometry3d xyzRpy(const Eigen::Vector3d& xyz, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = xyz;
+  t.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return t;
+}
+
+// The joint frames of a default_kinematics.yaml composed by hand, as UR's xacro macro chains them:
+// base_link -> base_link_inertia (pi about z) -> each joint's x, y, z, roll, pitch, yaw, then the
+// joint turning about its z; the tool0 frame after the flange's two fixed turns.
+std::vector<Eigen::Isometry3d> framesFromYaml(const std::filesystem::path& kinematicsFile, const Vector6& q) {
+  const YAML::Node kinematics = YAML::LoadFile(kinematicsFile.string())["kinematics"];
+  std::vector<Eigen::Isometry3d> frames;
+  Eigen::Isometry3d pose = xyzRpy(Eigen::Vector3d::Zero(), 0, 0, M_PI);
+  int j = 0;
+  for (const char* name : {"shoulder", "upper_arm", "forearm", "wrist_1", "wrist_2", "wrist_3"}) {
+    const YAML::Node f = kinematics[name];
+    pose = pose *
+           xyzRpy({f["x"].as<double>(), f["y"].as<double>(), f["z"].as<double>()}, f["roll"].as<double>(),
+                  f["pitch"].as<double>(), f["yaw"].as<double>()) *
+           xyzRpy(Eigen::Vector3d::Zero(), 0, 0, q[j++]);
+    frames.push_back(pose);
+  }
+  frames.push_back(pose * xyzRpy(Eigen::Vector3d::Zero(), 0, -M_PI_2, -M_PI_2) *
+                   xyzRpy(Eigen::Vector3d::Zero(), M_PI_2, 0, M_PI_2));
+  return frames;
+}
+
+void expectFramesMatchYaml(const RobotModel& model, const std::filesystem::path& kinematicsFile, unsigned seed) {
+  const char* links[] = {"shoulder_link", "upper_arm_link", "forearm_link", "wrist_1_link",
+                         "wrist_2_link",  "wrist_3_link",   "tool0"};
+  arcplan::robot::KinematicsData data(model);
+  std::mt19937 random(seed);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vector6 q = randomInLimits(random, model);
+    arcplan::robot::forwardKinematics(model, q, data);
+    const auto expected = framesFromYaml(kinematicsFile, q);
+    for (int k = 0; k < 7; ++k) {
+      const auto& actual = data.linkPoses[model.linkIndex(links[k])];
+      EXPECT_LT((actual.matrix() - expected[k].matrix()).cwiseAbs().maxCoeff(), 1e-12)
+          << model.name() << " " << links[k];
+    }
+  }
+}
+
+TEST(UrDescription, EveryTypeMatchesItsDefaultKinematicsFrames) {
+  const auto types = typesInFolder();
+  ASSERT_GE(types.size(), 7u);
+  for (const auto& type : types) {
+    const RobotModel model = loadUrDescription({type, descriptionFolder(), {}});
+    EXPECT_EQ(model.name(), type);
+    EXPECT_FALSE(model.calibrated());
+    expectFramesMatchYaml(model, descriptionFolder() / "config" / type / "default_kinematics.yaml", 21);
+  }
+}
+
+TEST(UrDescription, EveryTypeRoundTripsToOneNanometre) {
+  for (const auto& type : typesInFolder())
+    expectRoundTrips(loadUrDescription({type, descriptionFolder(), {}}), 22, 300);
+}
+
+TEST(UrDescription, LinksCarryTheMassesAndCollisionMeshesOfTheirFiles) {
+  const RobotModel model = loadUrDescription({"ur16e", descriptionFolder(), {}});
+  const YAML::Node inertia =
+      YAML::LoadFile((descriptionFolder() / "config/ur16e/physical_parameters.yaml").string())["inertia_parameters"];
+  for (const char* name : {"shoulder", "upper_arm", "forearm", "wrist_1", "wrist_2", "wrist_3"}) {
+    const auto& link = model.links()[model.linkIndex(std::string(name) + "_link")];
+    EXPECT_DOUBLE_EQ(link.inertial.mass, inertia[std::string(name) + "_mass"].as<double>()) << name;
+    ASSERT_EQ(link.collisions.size(), 1u) << name;
+  }
+  // The UR16e reuses UR10e parts except the two arm tubes (its visual_parameters.yaml).
+  const auto meshOf = [&](const char* link) { return model.links()[model.linkIndex(link)].collisions[0].meshFile; };
+  EXPECT_EQ(meshOf("wrist_1_link"), descriptionFolder() / "meshes/ur10e/collision/wrist1.stl");
+  EXPECT_EQ(meshOf("upper_arm_link"), descriptionFolder() / "meshes/ur16e/collision/upperarm.stl");
+  EXPECT_EQ(meshOf("base_link_inertia"), descriptionFolder() / "meshes/ur10e/collision/base.stl");
+  // joint_limits.yaml gives the elbow +-180 degrees.
+  EXPECT_NEAR(model.joints()[2].limits.upper, M_PI, 1e-12);
+}
+
+// A factory calibration: every joint frame moved by up to 1 mm and 1 mrad from the nominal one.
+std::filesystem::path writeCalibration(const std::string& type, unsigned seed) {
+  YAML::Node root = YAML::LoadFile((descriptionFolder() / "config" / type / "default_kinematics.yaml").string());
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> offset(-0.001, 0.001);
+  for (auto entry : root["kinematics"]) {
+    if (!entry.second.IsMap()) continue;
+    for (const char* key : {"x", "y", "z", "roll", "pitch", "yaw"}) {
+      entry.second[key] = entry.second[key].as<double>() + offset(random);
+    }
+  }
+  const auto file = arcplan::testing::freshTempDirectory("calibration_" + type) / "my_calibration.yaml";
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << root;
+  std::ofstream(file) << out.c_str();
+  return file;
+}
+
+TEST(UrDescription, CalibratedArmPlansWithItsTrueGeometry) {
+  for (const std::string type : {"ur5e", "ur10"}) {
+    const auto calibration = writeCalibration(type, 5);
+    const RobotModel model = loadUrDescription({type, descriptionFolder(), calibration});
+    EXPECT_TRUE(model.calibrated());
+    expectFramesMatchYaml(model, calibration, 23);
+    const UrInverseKinematics ik(model);
+    // Millimetre offsets: far beyond what a URDF may carry, so the Newton refinement is what is tested.
+    EXPECT_GT(ik.translationDeviation(), 1e-4);
+    // Every solution is exact; a configuration within the calibration's deviation of a point where two
+    // branches merge (elbow stretched, wrist 2 at 0 or pi) may come back on the neighbouring branch.
+    EXPECT_GE(roundTrips(model, 24, 500), 490) << type;
+  }
+}
+
+TEST(UrDescription, UnknownTypeListsTheKnownOnes) {
+  try {
+    loadUrDescription({"ur7e", descriptionFolder(), {}});
+    FAIL() << "no error";
+  } catch (const arcplan::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown UR type 'ur7e'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ur10e, ur16e, ur3"), std::string::npos) << e.what();
+  }
+}
+
+TEST(UrDescription, MissingFieldInACalibrationNamesFileLineAndField) {
+  const auto dir = arcplan::testing::freshTempDirectory("calibration_missing");
+  std::string text = arcplan::testing::readFile(descriptionFolder() / "config/ur5e/default_kinematics.yaml");
+  // Drop the yaw of wrist_2 (the 5th "yaw:" line of the file).
+  std::size_t at = 0;
+  for (int k = 0; k < 5; ++k) at = text.find("yaw:", at + 1);
+  text.erase(at, text.find('\n', at) - at);
+  std::ofstream(dir / "k.yaml") << text;
+  try {
+    loadUrDescription({"ur5e", descriptionFolder(), dir / "k.yaml"});
+    FAIL() << "no error";
+  } catch (const arcplan::Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find((dir / "k.yaml").string() + ":"), std::string::npos) << message;
+    EXPECT_NE(message.find("kinematics.wrist_2: missing 'yaw'"), std::string::npos) << message;
+  }
+}
+
+}  // namespace
