@@ -304,6 +304,7 @@ const std::vector<CatalogueEntry>& catalogueTable() {
       {"direction_asymmetry", factory<DirectionAsymmetry>()},
       {"temperature_friction", factory<TemperatureFriction>()},
       {"dahl_friction", dahlFrictionFactory()},
+      {"maxwell_slip", maxwellSlipFrictionFactory()},
       {"position_ripple", positionRippleFactory()},
       {"payload", payloadFactory()},
       {"rotor_inertia", factory<RotorInertia>()},

@@ -62,13 +62,15 @@ std::string explainCandidate(const Effect& effect, const EffectCandidate& candid
   return text + quantitiesText(candidate.quantities) + ".";
 }
 
-std::string explainDiscovery(const EffectCandidate& candidate, const std::string& words, const Dataset& data) {
+std::string explainDiscovery(const EffectCandidate& candidate, const std::string& words, const std::string& picture,
+                             const Dataset& data) {
   std::string follows = words;
   // "its own speed" reads as "each joint's own speed" when the term applies to several joints.
   const auto own = follows.find("its own");
   if (own != std::string::npos && candidate.joints.size() > 1) follows.replace(own, 7, "each joint's own");
   return "The residual on " + describeChannels(data, candidate.joints) + " follows " + follows + " (" +
-         candidate.entry.expressions.front() + "), a term outside the catalogue. Adding it removes " +
+         candidate.entry.expressions.front() + "), a term outside the catalogue" +
+         (picture.empty() ? std::string() : "; it fits " + picture) + ". Adding it removes " +
          percentText(candidate.heldoutReduction) + " of the held-out residual (" + perChannel(candidate, data) +
          "). Model-file entry: " + candidate.modelEntry;
 }

@@ -85,9 +85,9 @@ std::vector<EffectCandidate> discoverTerms(const Dataset& data, const Dataset* v
     candidate.nonlinear.assign(static_cast<std::size_t>(channels), std::numeric_limits<double>::quiet_NaN());
     judgeCandidate(candidate, squares, ranks, false, baseline, options.minimumReduction);
     if (!candidate.suggested) continue;
-    candidate.entry.explanation = term.words;
+    candidate.entry.explanation = term.picture.empty() ? term.words : term.words + ": " + term.picture;
     candidate.modelEntry = entryText(candidate.entry);
-    candidate.explanation = explainDiscovery(candidate, term.words, data);
+    candidate.explanation = explainDiscovery(candidate, term.words, term.picture, data);
     found.push_back(std::move(candidate));
   }
   std::stable_sort(found.begin(), found.end(),

@@ -25,6 +25,7 @@ const std::vector<CatalogueEntry>& catalogueTable();
 EffectFactory positionRippleFactory();
 EffectFactory payloadFactory();
 EffectFactory dahlFrictionFactory();
+EffectFactory maxwellSlipFrictionFactory();
 std::unique_ptr<Effect> makeExpressionEffect(const EffectSpec& spec);
 
 // Per-joint typical UR10e values (joints beyond the sixth reuse the last one), used by
@@ -87,7 +88,9 @@ double noiseFloor(const Eigen::VectorXd& residual);
 // Diagnosis wording (diagnosis_text.cpp).
 std::string percentText(double fraction);
 std::string explainCandidate(const Effect& effect, const EffectCandidate& candidate, const Dataset& data);
-std::string explainDiscovery(const EffectCandidate& candidate, const std::string& words, const Dataset& data);
+// `words` says what the term follows, `picture` (may be empty) the physical picture it fits.
+std::string explainDiscovery(const EffectCandidate& candidate, const std::string& words, const std::string& picture,
+                             const Dataset& data);
 std::string diagnosisSummary(const Diagnosis& diagnosis, double minimumReduction);
 
 }  // namespace arcplan::model::detail

@@ -86,6 +86,7 @@ INSTANTIATE_TEST_SUITE_P(
         Scenario{"joint_current", kCurrentBase, "direction_asymmetry"},
         Scenario{"joint_current", kCurrentBase, "temperature_friction"},
         Scenario{"joint_current", kCurrentBase, "dahl_friction"},
+        Scenario{"joint_current", kCurrentBase, "maxwell_slip"},
         Scenario{"joint_current", kCurrentBase, "position_ripple"}, Scenario{"joint_current", kCurrentBase, "payload"},
         Scenario{"joint_current", kCurrentBase, "rotor_inertia"}, Scenario{"joint_current", kCurrentBase, "rigid_body"},
         // The base model's own effects, each hidden from a base without it.

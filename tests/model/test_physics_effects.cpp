@@ -1,6 +1,7 @@
 // Effects with physical parameters of the arm and effects with memory: the payload as ONE mass and
 // centre of mass fitted jointly across joints (simulated with a known payload), the "what changed"
-// workflow with a kept model, and Dahl friction against a numerical integration of its equation.
+// workflow with a kept model, Dahl friction against a numerical integration of its equation, and
+// Maxwell-slip friction against elements simulated by hand.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -147,6 +148,110 @@ TEST(DahlFriction, StateFollowsTheDahlEquationAndHoldsAtRest) {
   EXPECT_GT(column(199, 0), 0.99);            // saturated while moving up
   EXPECT_LT(column(299, 0), -0.6);            // reversed: -1 + 2·exp(-40·0.05) = -0.73
   EXPECT_EQ(column(599, 0), column(320, 0));  // at rest it keeps the value it stopped with
+}
+
+// A log whose joint 0 follows `path` (rad) and then rests at its last value.
+Dataset pathDataset(const std::vector<double>& path, int samples = 200) {
+  auto motion = arcplan::testing::makeMotionLog(samples, 100.0);
+  Eigen::MatrixXd& q = motion.log.vectors["actual_q"];
+  for (int k = 0; k < samples; ++k) q(k, 0) = path[std::min<std::size_t>(k, path.size() - 1)];
+  return makeJointDataset(motion.log, model(""));
+}
+
+Eigen::MatrixXd columnsOf(const EffectSpec& spec, const Dataset& data, double nonlinear = 0.0) {
+  const auto effect = createEffect(spec);
+  Eigen::MatrixXd columns(data.samples(0), static_cast<Eigen::Index>(effect->parameterNames().size()));
+  effect->regressor(data, 0, nonlinear, columns);
+  return columns;
+}
+
+// Two elements with breakaway displacements 1 and 3 mrad, driven through a known displacement
+// sequence; their deflections worked out by hand (δ ← clamp(δ + Δq, ±Δ), z = δ/Δ).
+TEST(MaxwellSlipFriction, ElementsFollowAHandSimulatedDisplacementSequence) {
+  const std::vector<double> path{0.0, 0.0005, 0.002, 0.005, 0.0045, 0.0046, 0.0045, 0.0045, 0.001, 0.0025};
+  const std::vector<std::pair<double, double>> expected{
+      {0.0, 0.0},              // start undeflected
+      {0.5, 0.0005 / 0.003},   // +0.5 mrad: both stick
+      {1.0, 0.002 / 0.003},    // +1.5 mrad: the first slips at 1 mrad
+      {1.0, 1.0},              // +3 mrad: both slip
+      {0.5, 0.0025 / 0.003},   // back 0.5 mrad: both stick again
+      {0.6, 0.0026 / 0.003},   // one step forward ...
+      {0.5, 0.0025 / 0.003},   // ... and back: exactly where they were (a closed minor loop)
+      {0.5, 0.0025 / 0.003},   // at rest
+      {-1.0, -0.001 / 0.003},  // back 3.5 mrad: the first slips the other way
+      {0.5, 0.0005 / 0.003},   // forward 1.5 mrad
+  };
+  const Dataset data = pathDataset(path);
+  EffectSpec spec;
+  spec.id = "maxwell_slip";
+  spec.options = {{"elements", 2.0}, {"breakaway_rad", 0.001}};
+  const Eigen::MatrixXd columns = columnsOf(spec, data);
+  ASSERT_EQ(columns.cols(), 2);
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    EXPECT_NEAR(columns(k, 0), expected[k].first, 1e-12) << "sample " << k;
+    EXPECT_NEAR(columns(k, 1), expected[k].second, 1e-12) << "sample " << k;
+  }
+  EXPECT_EQ(columns(199, 1), columns(9, 1));  // at rest it keeps the friction it stopped with
+
+  // With the level scaled by the load, the second half of the columns is z·|tau|.
+  spec.options["load_scaled"] = 1.0;
+  const Eigen::MatrixXd loaded = columnsOf(spec, data);
+  ASSERT_EQ(loaded.cols(), 4);
+  const auto& tau = data.signal("tau", 0);
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    EXPECT_NEAR(loaded(k, 2), expected[k].first * std::abs(tau[k]), 1e-12) << "sample " << k;
+    EXPECT_NEAR(loaded(k, 3), expected[k].second * std::abs(tau[k]), 1e-12) << "sample " << k;
+  }
+}
+
+// Why the real wrists prefer Maxwell-slip (docs/model-results.md): a joint at rest whose encoder
+// steps back and forth by one count keeps every element's deflection, while Dahl's state, pulled
+// towards the direction of each step, loses the friction the joint stopped with.
+TEST(MaxwellSlipFriction, KeepsItsMemoryThroughEncoderStepsThatDahlForgets) {
+  std::vector<double> path;
+  for (int k = 0; k <= 50; ++k) path.push_back(0.001 * k);                         // 50 mrad forward
+  for (int k = 0; k < 100; ++k) path.push_back(path[50] + (k % 2 ? 0.0 : -1e-4));  // one-count steps
+  const Dataset data = pathDataset(path);
+  EffectSpec maxwell;
+  maxwell.id = "maxwell_slip";
+  const Eigen::MatrixXd elements = columnsOf(maxwell, data);
+  // The same deflections after 50 steps back and forth.
+  EXPECT_LT((elements.row(50) - elements.row(150)).cwiseAbs().maxCoeff(), 1e-9);
+  EffectSpec dahl;
+  dahl.id = "dahl_friction";
+  const Eigen::MatrixXd state = columnsOf(dahl, data, 3000.0);
+  // After the first step back z = -1 + 2·exp(-0.3) = 0.48; every pair of steps pulls it towards 0.
+  EXPECT_NEAR(state(50, 0), 1.0, 1e-6);
+  EXPECT_NEAR(state(51, 0), -1.0 + 2.0 * std::exp(-0.3), 1e-9);
+  EXPECT_LT(std::abs(state(150, 0)), 0.2);
+}
+
+TEST(MaxwellSlipFriction, RejectsOptionsOutsideTheirRange) {
+  for (const auto& [name, value, expected] : std::vector<std::tuple<std::string, double, std::string>>{
+           {"elements", 0.0, "option elements: expected a whole number from 1 to 20, got 0"},
+           {"elements", 2.5, "option elements: expected a whole number from 1 to 20, got 2.5"},
+           {"breakaway_rad", -1e-3, "option breakaway_rad: expected a positive angle in rad, got -0.001"},
+           {"load_scaled", 2.0, "option load_scaled: expected 0 or 1, got 2"}}) {
+    const std::string message = arcplan::testing::errorMessageOf([&] {
+      parseModelYaml(kHeader + "effects: [{id: maxwell_slip, " + name + ": " + std::to_string(value) + "}]\n",
+                     "m.yaml");
+    });
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+}
+
+// Simulated with load-scaled levels (typical values: every level 1 % higher per N·m of load): the
+// fit with `load_scaled: 1` brings every joint to the noise; without it the heavily loaded
+// shoulder keeps an error above it.
+TEST(MaxwellSlipFriction, LoadScaledLevelsAreFittedByLeastSquares) {
+  const ModelSpec truth = model(kBase + ", {id: maxwell_slip, load_scaled: 1}");
+  const auto [data, validation] = arcplan::testing::simulatePair(truth, model(kBase), kNoise);
+  EffectSpec scaled = parseModelYaml(kHeader + "effects: [{id: maxwell_slip, load_scaled: 1}]\n", "m.yaml").effects[0];
+  const FitStep withLoad = addEffectsAndFit(model(kBase), {scaled}, data, &validation);
+  for (const auto& channel : withLoad.afterValidation->channels)
+    EXPECT_LE(channel.rmse, 1.3 * kNoise) << channel.channel;
+  const FitStep plain = addEffectsAndFit(model(kBase), {parseEffectArgument("maxwell_slip")}, data, &validation);
+  EXPECT_GT(plain.afterValidation->channels[1].rmse, 1.3 * kNoise);
 }
 
 }  // namespace
