@@ -6,7 +6,7 @@
 #include "arcplan/model/compare.h"
 #include "arcplan/model/diagnose.h"
 #include "arcplan/model/plots.h"
-#include "arcplan/model/report.h"
+#include "arcplan/model/result_formats.h"
 #include "arcplan/model/simulate.h"
 #include "arcplan/model/workflow.h"
 #include "cli_support.h"
@@ -16,9 +16,11 @@ namespace arcplan::apps {
 namespace {
 
 struct ModelOptions {
+  std::vector<std::string> dataRuns, validateRuns;  // compare / diagnose / fit
   std::string model, data, validate, columns, rows, validateRows, out, json, html;
   bool keepParameters = false;
   bool noDiscovery = false;
+  bool keepEvents = false;
   std::vector<std::string> add;
   std::string save;
   int folds = 5;
@@ -49,13 +51,20 @@ void writeSessionReport(const ModelOptions& o) {
 
 void addDataOptions(CLI::App& command, ModelOptions& o) {
   command.add_option("--model", o.model, "model file (YAML: kind, load_torque, effects)")->required();
-  command.add_option("--data", o.data, "measured log (RTDE CSV, headerless log with --columns, or force-transfer CSV)")
+  command
+      .add_option("--data", o.dataRuns,
+                  "measured log: RTDE CSV, headerless log with --columns, a run folder of one log_<signal>.csv per "
+                  "signal, or force-transfer CSV; several runs of one robot are joined end to end")
       ->required();
-  command.add_option("--validate", o.validate, "second log, held out: validation errors and the diagnosis score on it");
+  command.add_option("--validate", o.validateRuns,
+                     "held-out log(s) (files or run folders, joined like --data): validation errors, events and the "
+                     "diagnosis score on it");
   command.add_option("--columns", o.columns,
                      "column map for headerless logs: a preset (ur10e_real) or 'timestamp=1, actual_q=2-7, ...' "
                      "(1-based columns)");
-  command.add_option("--rows", o.rows, "use only these 1-based file lines of --data, e.g. 355-5090");
+  command.add_option("--rows", o.rows,
+                     "use only these 1-based file lines of --data (of every run; a run folder: of every file), e.g. "
+                     "355-5090");
   command.add_option("--validate-rows", o.validateRows, "use only these 1-based file lines of --validate");
   auto* out =
       command.add_option("--out", o.out, "directory for PNG plots, their data, and the session history (session.json)");
@@ -65,8 +74,12 @@ void addDataOptions(CLI::App& command, ModelOptions& o) {
 
 model::DataFiles dataFiles(const ModelOptions& o) {
   model::DataFiles files;
-  files.data = o.data;
-  files.validation = o.validate;
+  files.data = o.dataRuns.front();
+  files.moreData.assign(o.dataRuns.begin() + 1, o.dataRuns.end());
+  if (!o.validateRuns.empty()) {
+    files.validation = o.validateRuns.front();
+    files.moreValidation.assign(o.validateRuns.begin() + 1, o.validateRuns.end());
+  }
   if (!o.columns.empty())
     files.dataOptions.columns = files.validationOptions.columns = model::parseColumnMap(o.columns);
   if (!o.rows.empty())
@@ -131,6 +144,7 @@ void runDiagnose(const ModelOptions& o) {
   options.minimumReduction = o.minimumReduction;
   options.keepParameters = o.keepParameters;
   options.discover = !o.noDiscovery;
+  options.leaveOutEvents = !o.keepEvents;
   const auto diagnosis = model::diagnose(spec, loaded.data, loaded.validationOrNull(), options);
   std::cout << model::formatDiagnosis(diagnosis);
   if (!o.json.empty()) writeJson(o.json, model::toJson(diagnosis));
@@ -232,7 +246,7 @@ void registerModelCommand(CLI::App& app) {
   auto* compare = modelCommand->add_subcommand(
       "compare",
       "fit the model to --data and report RMSE, NRMSE, R² per channel (and on --validate), the worst time "
-      "windows and the residual by regime");
+      "windows, events (moments the residual leaves its noise band, e.g. a push) and the residual by regime");
   addDataOptions(*compare, *o);
   addKeepParameters(*compare, *o, "compare them with the data as they are");
   compare->callback([o] { runCompare(*o); });
@@ -251,6 +265,9 @@ void registerModelCommand(CLI::App& app) {
   addKeepParameters(*diagnose, *o, "every candidate is fitted to what the kept model leaves");
   diagnose->add_flag("--no-discovery", o->noDiscovery,
                      "try only registered effects, not the library of terms from every joint's signals");
+  diagnose->add_flag("--keep-events", o->keepEvents,
+                     "score on every sample: do not leave out the events (moments the residual leaves its noise band "
+                     "and comes back, e.g. a push)");
   diagnose->callback([o] { runDiagnose(*o); });
 
   auto* fit = modelCommand->add_subcommand(

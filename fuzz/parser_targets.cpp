@@ -13,6 +13,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_parsing.h"
 #include "arcplan/model/force_transfer.h"
+#include "arcplan/model/log_folder.h"
 #include "arcplan/model/measurements.h"
 #include "arcplan/model/model_spec.h"
 #include "arcplan/robot/robot_model.h"
@@ -54,6 +55,38 @@ void parseHeaderlessLog(const std::string& input) {
   options.columns = model::parseColumnMap("ur10e_real");
   model::readLog(writeInput(input, ".csv"), options);
 }
+// A run folder in one input: a line "=== NAME" starts file NAME (a plain file name); the files are
+// written to a fresh folder for every input.
+void parseLogFolder(const std::string& input) {
+  static struct Folder {
+    std::filesystem::path path = inputFile("_folder");
+    ~Folder() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  } folder;
+  std::filesystem::remove_all(folder.path);
+  std::filesystem::create_directory(folder.path);
+  std::ofstream file;
+  std::size_t start = 0;
+  while (start < input.size()) {
+    const auto end = std::min(input.find('\n', start), input.size());
+    const std::string line = input.substr(start, end - start);
+    start = end + 1;
+    if (line.rfind("=== ", 0) == 0) {
+      const std::string name = line.substr(4);
+      const bool plain = !name.empty() && name.size() < 100 && name != "." && name != ".." &&
+                         name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_.-") == std::string::npos;
+      if (!plain) throw Error("fuzz input: '" + name + "' is not a plain file name");
+      file.close();
+      file.open(folder.path / name, std::ios::binary | std::ios::trunc);
+    } else if (file.is_open()) {
+      file << line << '\n';
+    }
+  }
+  file.close();
+  model::readLogFolder(folder.path);
+}
 void parseColumnMap(const std::string& input) { model::parseColumnMap(input); }
 void parseForceTransfer(const std::string& input) { model::readForceTransferData(writeInput(input, ".csv")); }
 void parseModel(const std::string& input) { model::parseModelYaml(input, "fuzz_model.yaml"); }
@@ -78,6 +111,7 @@ const std::vector<ParserTarget>& parserTargets() {
       {"joint_path", ".csv", parseJointPath},
       {"rtde_log", ".csv", parseRtdeLog},
       {"headerless_log", ".csv", parseHeaderlessLog},
+      {"log_folder", "", parseLogFolder},
       {"column_map", "", parseColumnMap},
       {"force_transfer", ".csv", parseForceTransfer},
       {"model", ".yaml", parseModel},

@@ -262,6 +262,7 @@ Comparison compareModel(const FittedModel& model, const Dataset& data, const Dat
   std::vector<Eigen::VectorXd> residuals;
   for (int c = 0; c < failures->channelCount(); ++c) residuals.push_back(failures->measured(c) - failurePredictions[c]);
   comparison.worstWindows = worstWindows(*failures, residuals);
+  comparison.events = findEvents(model, *failures, residuals);
   comparison.regimes = residualRegimes(*failures, residuals);
   comparison.strongestCorrelations = residualCorrelations(*failures, residuals);
   return comparison;

@@ -119,7 +119,15 @@ Dataset makeJointDataset(const Log& log, const ModelSpec& spec) {
   dataset.source_ = log.source.string();
   dataset.quality_ = log.quality;
   const bool current = spec.kind == ModelKind::JointCurrent;
-  const Eigen::MatrixXd& measured = current ? log.vector("actual_current") : log.vector("actual_q");
+  // Newer controllers log the current also (or only) as a torque; the amps are used when present.
+  const std::string measuredSignal =
+      !current ? "actual_q"
+               : (log.has("actual_current") || !log.has("actual_current_as_torque") ? "actual_current"
+                                                                                    : "actual_current_as_torque");
+  const Eigen::MatrixXd& measured = log.vector(measuredSignal);
+  if (measuredSignal == "actual_current_as_torque") {
+    dataset.notes_.push_back("measured: actual_current_as_torque (the motor current as a joint torque, N·m)");
+  }
   const int joints = static_cast<int>(measured.cols());
   if (log.rows() < 10) {
     throw Error(log.source.string() + ": only " + std::to_string(log.rows()) + " valid rows; a fit needs at least 10");
@@ -142,9 +150,9 @@ Dataset makeJointDataset(const Log& log, const ModelSpec& spec) {
   if (spec.loadTorque == LoadTorqueSource::TargetMoment) {
     if (current) {
       if (!log.has("target_moment")) {
-        throw Error(log.source.string() +
-                    ": load_torque: target_moment needs target_moment_* columns, which the log "
-                    "does not have; use load_torque: rigid_body to compute it from the URDF");
+        throw Error(log.missing("target_moment") +
+                    "; load_torque: target_moment needs it, or use load_torque: rigid_body to compute the load "
+                    "torque from the URDF");
       }
       tau = log.vector("target_moment");
     } else if (log.has("target_moment")) {
@@ -164,7 +172,7 @@ Dataset makeJointDataset(const Log& log, const ModelSpec& spec) {
   }
   for (int j = 0; j < joints; ++j) {
     Dataset::Channel channel;
-    channel.name = (current ? "actual_current_" : "actual_q_") + std::to_string(j);
+    channel.name = measuredSignal + "_" + std::to_string(j);
     channel.measured = measured.col(j);
     channel.base = current ? Eigen::VectorXd::Zero(measured.rows()) : Eigen::VectorXd(log.vector("target_q").col(j));
     channel.signals["time"] = log.time;
@@ -236,6 +244,91 @@ Dataset makeSimulationDataset(const ModelSpec& spec, std::vector<Dataset::Channe
   dataset.quality_.dataRows = dataset.quality_.keptRows =
       dataset.channels_.empty() ? 0 : static_cast<std::size_t>(dataset.channels_.front().measured.size());
   return dataset;
+}
+
+Dataset selectSamples(const Dataset& data, const std::vector<bool>& keep) {
+  const auto kept = static_cast<Eigen::Index>(std::count(keep.begin(), keep.end(), true));
+  auto select = [&](const Eigen::VectorXd& values) {
+    Eigen::VectorXd result(kept);
+    Eigen::Index out = 0;
+    for (Eigen::Index k = 0; k < values.size(); ++k) {
+      if (keep[static_cast<std::size_t>(k)]) result[out++] = values[k];
+    }
+    return result;
+  };
+  Dataset result;
+  result.settings_ = data.settings_;
+  result.source_ = data.source_;
+  result.quality_ = data.quality_;
+  result.notes_ = data.notes_;
+  result.timeOrdered_ = data.timeOrdered_;
+  result.robot_ = data.robot_;
+  for (const auto& channel : data.channels_) {
+    Dataset::Channel selected{channel.name, select(channel.measured), select(channel.base), {}};
+    for (const auto& [name, values] : channel.signals) selected.signals[name] = select(values);
+    result.channels_.push_back(std::move(selected));
+  }
+  for (const auto& signals : data.robotSignals_) {
+    result.robotSignals_.emplace_back();
+    for (const auto& [name, values] : signals) result.robotSignals_.back()[name] = select(values);
+  }
+  return result;
+}
+
+Dataset joinRuns(const std::vector<Dataset>& runs) {
+  if (runs.size() == 1) return runs.front();
+  Dataset joined;
+  joined.settings_ = runs.front().settings_;
+  joined.timeOrdered_ = runs.front().timeOrdered_;
+  joined.robot_ = runs.front().robot_;
+  joined.channels_ = runs.front().channels_;
+  for (auto& channel : joined.channels_) {
+    for (auto& [name, values] : channel.signals) values.resize(0);
+    channel.measured.resize(0);
+    channel.base.resize(0);
+  }
+  auto append = [](Eigen::VectorXd& to, const Eigen::VectorXd& values) {
+    to.conservativeResize(to.size() + values.size());
+    to.tail(values.size()) = values;
+  };
+  double shift = 0.0;
+  for (const auto& run : runs) {
+    if (run.channelCount() != joined.channelCount() || run.kind() != joined.kind()) {
+      throw Error(run.source_ + ": mismatched joint count: " + std::to_string(run.channelCount()) + " channels, but " +
+                  runs.front().source_ + " has " + std::to_string(joined.channelCount()));
+    }
+    const Eigen::VectorXd& time = run.channels_.front().signals.at("time");
+    if (!joined.source_.empty()) {
+      const Eigen::VectorXd& sofar = joined.channels_.front().signals.at("time");
+      const double step = time.size() > 1 ? time[1] - time[0] : 0.0;
+      shift = sofar[sofar.size() - 1] + step - time[0];
+    }
+    for (int c = 0; c < joined.channelCount(); ++c) {
+      auto& to = joined.channels_[c];
+      const auto& from = run.channels_[c];
+      append(to.measured, from.measured);
+      append(to.base, from.base);
+      for (auto& [name, values] : to.signals) {
+        if (!from.signals.count(name)) {
+          throw Error(run.source_ + ": has no signal '" + name + "', which " + runs.front().source_ + " has");
+        }
+        append(values, name == "time" ? Eigen::VectorXd(from.signals.at(name).array() + shift) : from.signals.at(name));
+      }
+    }
+    joined.source_ += (joined.source_.empty() ? "" : " + ") + run.source_;
+    joined.quality_.dataRows += run.quality_.dataRows;
+    joined.quality_.keptRows += run.quality_.keptRows;
+    for (const auto& d : run.quality_.dropped) joined.quality_.dropped.push_back(d);
+    for (const auto& note : run.quality_.notes) joined.quality_.notes.push_back(note);
+    for (const auto& note : run.notes_) {
+      if (std::find(joined.notes_.begin(), joined.notes_.end(), note) == joined.notes_.end()) {
+        joined.notes_.push_back(note);
+      }
+    }
+  }
+  joined.notes_.push_back(std::to_string(runs.size()) + " runs joined end to end (each run's time shifted to follow " +
+                          "the previous one)");
+  return joined;
 }
 
 Dataset loadDataset(const std::filesystem::path& file, const ModelSpec& spec, const LogReadOptions& options) {

@@ -166,13 +166,23 @@ std::string describeChannels(const Dataset& data, const std::vector<int>& channe
   return text;
 }
 
-Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* validation,
-                   const DiagnoseOptions& options) {
-  if (validation && validation->channelCount() != data.channelCount()) {
-    throw Error(validation->source() + ": mismatched joint count: " + std::to_string(validation->channelCount()) +
-                " channels, the data has " + std::to_string(data.channelCount()));
-  }
-  const FittedModel base = options.keepParameters ? modelFromParameters(spec, data, false) : fitModel(spec, data);
+namespace {
+
+FittedModel baseModel(const ModelSpec& spec, const Dataset& data, const DiagnoseOptions& options) {
+  return options.keepParameters ? modelFromParameters(spec, data, false) : fitModel(spec, data);
+}
+
+std::vector<Event> eventsOf(const FittedModel& model, const Dataset& data) {
+  const auto predictions = predictAll(model, data);
+  std::vector<Eigen::VectorXd> residuals;
+  for (int c = 0; c < data.channelCount(); ++c) residuals.push_back(data.measured(c) - predictions[c]);
+  return findEvents(model, data, residuals);
+}
+
+// The diagnosis proper, on logs without events.
+Diagnosis diagnoseWithoutEvents(const ModelSpec& spec, const Dataset& data, const Dataset* validation,
+                                const DiagnoseOptions& options) {
+  const FittedModel base = baseModel(spec, data, options);
   const int folds = std::max(2, options.folds);
   Diagnosis diagnosis;
   diagnosis.heldout = validation ? "validation data (" + validation->source() + ")"
@@ -247,6 +257,38 @@ Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* va
   diagnosis.catalogueExplains = catalogueTogether(diagnosis.ranking, data, validation, baseline);
   diagnosis.residualFollows = residualCorrelations(heldData, baseline.heldOutResidual);
   diagnosis.summary = detail::diagnosisSummary(diagnosis, options.minimumReduction);
+  return diagnosis;
+}
+
+}  // namespace
+
+Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* validation,
+                   const DiagnoseOptions& options) {
+  if (validation && validation->channelCount() != data.channelCount()) {
+    throw Error(validation->source() + ": mismatched joint count: " + std::to_string(validation->channelCount()) +
+                " channels, the data has " + std::to_string(data.channelCount()));
+  }
+  if (!options.leaveOutEvents || !data.timeOrdered()) return diagnoseWithoutEvents(spec, data, validation, options);
+  const FittedModel base = baseModel(spec, data, options);
+  const auto dataEvents = eventsOf(base, data);
+  const auto validationEvents = validation ? eventsOf(base, *validation) : std::vector<Event>{};
+  if (dataEvents.empty() && validationEvents.empty()) return diagnoseWithoutEvents(spec, data, validation, options);
+  const Dataset cleanData = withoutEvents(data, dataEvents);
+  const std::optional<Dataset> cleanValidation =
+      validation ? std::optional<Dataset>(withoutEvents(*validation, validationEvents)) : std::nullopt;
+  Diagnosis diagnosis = diagnoseWithoutEvents(spec, cleanData, cleanValidation ? &*cleanValidation : nullptr, options);
+  std::string leftOut;
+  if (!dataEvents.empty()) leftOut += "data: " + describeEvents(dataEvents, data);
+  if (!validationEvents.empty()) {
+    leftOut +=
+        (leftOut.empty() ? "" : "; ") + std::string("validation: ") + describeEvents(validationEvents, *validation);
+  }
+  diagnosis.heldout += ", event windows left out";
+  diagnosis.summary =
+      "Left out as moments, not effects (the residual leaves its noise band and comes back): " + leftOut + ".\n" +
+      diagnosis.summary;
+  diagnosis.dataEvents = dataEvents;
+  diagnosis.validationEvents = validationEvents;
   return diagnosis;
 }
 

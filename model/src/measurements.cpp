@@ -9,70 +9,22 @@
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_parsing.h"
+#include "arcplan/model/log_folder.h"
+#include "log_reading.h"
 
 namespace arcplan::model {
 namespace {
 
-// Reads a log line by line: a one-hour 500 Hz log is gigabytes of text, so it is never held whole.
-class LineReader {
-public:
-  explicit LineReader(const std::filesystem::path& file) {
-    if (!std::filesystem::exists(file)) throw Error("log file " + file.string() + " does not exist");
-    if (std::filesystem::is_directory(file)) throw Error("log file " + file.string() + " is a directory");
-    in_.open(file, std::ios::binary);
-    if (!in_) throw Error("cannot read log file " + file.string());
-  }
-  // The next line without its '\n'; false at the end of the file.
-  bool next(std::string& line) {
-    if (!std::getline(in_, line)) return false;
-    ++lineNumber_;
-    return true;
-  }
-  std::size_t lineNumber() const { return lineNumber_; }  // 1-based number of the line last read
-
-private:
-  std::ifstream in_;
-  std::size_t lineNumber_ = 0;
-};
-
-bool isKnownVector(const std::string& name) {
-  const auto& known = knownVectorSignals();
-  return std::find(known.begin(), known.end(), name) != known.end();
-}
-
-bool isKnownScalar(const std::string& name) {
-  const auto& known = knownScalarSignals();
-  return std::find(known.begin(), known.end(), name) != known.end();
-}
-
-std::string joinNames(const std::vector<std::string>& names) {
-  std::string text;
-  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
-}
+using detail::isBlank;
+using detail::isKnownScalar;
+using detail::isKnownVector;
+using detail::joinNames;
 
 // Where the values of one signal come from in a row.
 struct ColumnSource {
   std::string signal;  // "timestamp", a vector or a scalar name
   int joint = -1;      // -1 for timestamp / scalars
   int column = 0;      // 0-based field index
-};
-
-class DropCounter {
-public:
-  void add(const std::string& reason, std::size_t line) {
-    auto it = std::find_if(dropped_.begin(), dropped_.end(), [&](const DroppedRows& d) { return d.reason == reason; });
-    if (it == dropped_.end()) {
-      dropped_.push_back({reason, 0, {}});
-      it = std::prev(dropped_.end());
-    }
-    ++it->count;
-    if (it->firstLines.size() < DroppedRows::kReportedLines) it->firstLines.push_back(line);
-  }
-  std::vector<DroppedRows> take() { return std::move(dropped_); }
-
-private:
-  std::vector<DroppedRows> dropped_;
 };
 
 // Header fields -> column sources; vector signals must be name_0..name_{N-1} with one N for all.
@@ -137,8 +89,6 @@ std::vector<ColumnSource> sourcesFromMap(const ColumnMap& map) {
   return sources;
 }
 
-bool isBlank(std::string_view line) { return trim(line).empty(); }
-
 void appendNumber(std::string& out, double value) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
@@ -169,19 +119,28 @@ int Log::jointCount() const { return vectors.empty() ? 0 : static_cast<int>(vect
 
 const Eigen::MatrixXd& Log::vector(const std::string& signal) const {
   const auto it = vectors.find(signal);
-  if (it == vectors.end()) {
-    std::vector<std::string> present;
-    for (const auto& [name, values] : vectors) present.push_back(name + "_*");
-    throw Error(source.string() + ": the log has no " + signal + "_* columns (it has: " +
-                (present.empty() ? std::string("no joint signals") : joinNames(present)) + ")");
-  }
+  if (it == vectors.end()) throw Error(missing(signal));
   return it->second;
 }
 
+std::string Log::missing(const std::string& signal) const {
+  std::vector<std::string> present;
+  if (std::filesystem::is_directory(source)) {
+    for (const auto& [name, values] : vectors) present.push_back(name);
+    return source.string() + ": no file of signal " + signal + " (" + joinNames(folderFileNames(signal)) +
+           "); the folder has " + (present.empty() ? std::string("no joint signals") : joinNames(present));
+  }
+  for (const auto& [name, values] : vectors) present.push_back(name + "_*");
+  return source.string() + ": the log has no " + signal +
+         "_* columns (it has: " + (present.empty() ? std::string("no joint signals") : joinNames(present)) + ")";
+}
+
 const std::vector<std::string>& knownVectorSignals() {
-  static const std::vector<std::string> names{"target_q",       "target_qd",      "target_qdd",
-                                              "target_current", "target_moment",  "actual_q",
-                                              "actual_qd",      "actual_current", "joint_temperatures"};
+  static const std::vector<std::string> names{
+      "target_q", "target_qd", "target_qdd", "target_current", "target_moment", "actual_q", "actual_qd",
+      "actual_current", "joint_temperatures",
+      // Newer controllers also send the measured current converted to a joint torque (N·m).
+      "actual_current_as_torque"};
   return names;
 }
 
@@ -275,7 +234,8 @@ std::pair<std::size_t, std::size_t> parseLineRange(const std::string& text, cons
 }
 
 Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
-  LineReader reader(file);
+  if (std::filesystem::is_directory(file)) return readLogFolder(file, options);
+  detail::LineReader reader(file);
   std::string firstLine;
   bool found = false;
   while (!found && reader.next(firstLine)) found = !isBlank(firstLine) && trim(firstLine).front() != '#';
@@ -310,7 +270,7 @@ Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
   // Values are gathered per source column, then moved into the log's matrices.
   std::vector<std::vector<double>> values(sources.size());
   std::vector<std::size_t> keptLines;
-  DropCounter dropped;
+  detail::DropCounter dropped;
   std::size_t dataRows = 0;
   int timestampSource = -1;
   for (std::size_t s = 0; s < sources.size(); ++s) {
@@ -334,16 +294,7 @@ Log readLog(const std::filesystem::path& file, const LogReadOptions& options) {
     }
     const char* problem = nullptr;
     for (std::size_t s = 0; s < sources.size() && !problem; ++s) {
-      const auto value = parseDouble(fields[sources[s].column]);
-      if (!value) {
-        problem = "unparseable value";
-      } else if (!std::isfinite(*value)) {
-        problem = "NaN or infinite value";
-      } else if (std::abs(*value) > options.corruptMagnitude) {
-        problem = "corrupted value (magnitude above 1e12)";
-      } else {
-        row[s] = *value;
-      }
+      problem = detail::valueProblem(fields[sources[s].column], options.corruptMagnitude, row[s]);
     }
     if (problem) {
       dropped.add(problem, lineNumber);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
@@ -11,6 +10,7 @@
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_parsing.h"
+#include "arcplan/common/yaml_reading.h"
 #include "arcplan/model/effect.h"
 
 namespace arcplan::model {
@@ -21,28 +21,23 @@ constexpr double kMaxJoint = 1000.0;  // far beyond any arm; keeps indices in in
 // "coulomb:1,2" as data, without resolving the id.
 EffectSpec effectFromText(const std::string& text);
 
-std::string at(const std::filesystem::path& source, const YAML::Node& node) {
-  std::string text = source.empty() ? std::string("model") : source.string();
-  if (node.Mark().line >= 0) text += ":" + std::to_string(node.Mark().line + 1);
-  return text;
-}
+// Positions, numbers and keys are read like every arcplan YAML file (common/yaml_reading.h).
+YamlReader reader(const std::filesystem::path& source) { return YamlReader(source.empty() ? "model" : source); }
+
+std::string at(const std::filesystem::path& source, const YAML::Node& node) { return reader(source).position(node); }
 
 double number(const YAML::Node& node, const std::filesystem::path& source, const std::string& field) {
-  double value = 0.0;
-  if (!node.IsScalar() || !YAML::convert<double>::decode(node, value) || !std::isfinite(value)) {
-    throw Error(at(source, node) + ": " + field + ": expected a finite number");
-  }
-  return value;
+  return reader(source).number(node, field);
 }
 
+// Stored per-channel values: .nan marks a channel the effect does not apply to, so NaN is allowed.
 std::vector<double> numbers(const YAML::Node& node, const std::filesystem::path& source, const std::string& field) {
-  if (!node.IsSequence()) throw Error(at(source, node) + ": " + field + ": expected a list of numbers");
+  if (!node.IsSequence()) reader(source).fail(node, field, "expected a list of numbers");
   std::vector<double> values;
   for (const auto& item : node) {
-    // .nan marks a channel the effect does not apply to.
     double value = 0.0;
     if (!item.IsScalar() || !YAML::convert<double>::decode(item, value)) {
-      throw Error(at(source, item) + ": " + field + ": expected a list of numbers");
+      reader(source).fail(item, field, "expected a list of numbers");
     }
     values.push_back(value);
   }
@@ -53,23 +48,16 @@ std::vector<int> jointList(const YAML::Node& node, const std::filesystem::path& 
   std::vector<int> joints;
   for (double value : numbers(node, source, field)) {
     if (value < 0 || value > kMaxJoint || value != std::floor(value)) {
-      throw Error(at(source, node) + ": " + field + ": joint indices are 0-based integers");
+      reader(source).fail(node, field, "joint indices are 0-based integers");
     }
     joints.push_back(static_cast<int>(value));
   }
   return joints;
 }
 
-void checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::filesystem::path& source,
-               const std::string& where) {
-  for (const auto& entry : map) {
-    const auto key = entry.first.as<std::string>();
-    if (!allowed.count(key)) {
-      std::string names;
-      for (const auto& a : allowed) names += (names.empty() ? "" : ", ") + a;
-      throw Error(at(source, entry.first) + ": " + where + "unknown key '" + key + "' (expected: " + names + ")");
-    }
-  }
+void checkKeys(const YAML::Node& map, const std::vector<std::string>& allowed, const std::filesystem::path& source,
+               const std::string& field) {
+  reader(source).checkKeys(map, field, allowed);
 }
 
 EffectSpec parseEffect(const YAML::Node& node, const std::filesystem::path& source, std::size_t index) {
@@ -154,6 +142,19 @@ LoadTorqueSource parseLoadTorque(const YAML::Node& node, const std::filesystem::
   throw Error(at(source, node) + ": load_torque: unknown source '" + text + "' (expected target_moment or rigid_body)");
 }
 
+// `robot: ur10e` (arcplan's own, the default) or `robot: {urdf: FILE}` (relative to the model file), as
+// in scene files.
+std::filesystem::path parseRobot(const YAML::Node& node, const std::filesystem::path& source) {
+  if (node.IsScalar() && node.as<std::string>() == "ur10e") return {};
+  if (!node.IsMap() || !node["urdf"] || !node["urdf"].IsScalar()) {
+    reader(source).fail(node, "robot", "expected 'ur10e' (built in) or a mapping {urdf: FILE}");
+  }
+  checkKeys(node, {"urdf"}, source, "robot");
+  std::filesystem::path urdf = node["urdf"].as<std::string>();
+  if (urdf.is_relative() && !source.empty()) urdf = source.parent_path() / urdf;
+  return urdf;
+}
+
 Eigen::Vector3d vector3(const YAML::Node& node, const std::filesystem::path& source, const std::string& field) {
   const auto values = numbers(node, source, field);
   if (values.size() != 3) throw Error(at(source, node) + ": " + field + ": expected 3 numbers");
@@ -219,17 +220,16 @@ ModelSpec parseModelYaml(const std::string& yaml, const std::filesystem::path& s
   try {
     root = YAML::Load(yaml);
   } catch (const YAML::Exception& e) {
-    throw Error((source.empty() ? std::string("model") : source.string()) + ":" + std::to_string(e.mark.line + 1) +
-                ": malformed YAML: " + e.msg);
+    throw Error(reader(source).position(e.mark) + ": malformed YAML: " + e.msg);
   }
   if (!root.IsMap()) throw Error(at(source, root) + ": a model file is a map with at least 'kind' and 'effects'");
   ModelSpec spec;
   spec.source = source;
   try {
     checkKeys(root,
-              {"name", "kind", "load_torque", "joints", "urdf", "gravity", "payload", "derivative_cutoff_hz",
+              {"name", "kind", "load_torque", "joints", "robot", "gravity", "payload", "derivative_cutoff_hz",
                "velocity_smoothing", "reference_temperature", "effects"},
-              source, "");
+              source, "model");
     if (!root["kind"])
       throw Error(at(source, root) + ": missing 'kind' (joint_current, joint_tracking or gearbox_ftd)");
     spec.kind = parseKind(root["kind"], source);
@@ -242,14 +242,11 @@ ModelSpec parseModelYaml(const std::string& yaml, const std::filesystem::path& s
       }
       spec.joints = static_cast<int>(joints);
     }
-    if (root["urdf"]) {
-      spec.urdf = root["urdf"].as<std::string>();
-      if (spec.urdf.is_relative() && !source.empty()) spec.urdf = source.parent_path() / spec.urdf;
-    }
+    if (root["robot"]) spec.urdf = parseRobot(root["robot"], source);
     if (root["gravity"]) spec.dynamics.gravity = vector3(root["gravity"], source, "gravity");
     if (const auto payload = root["payload"]) {
       if (!payload.IsMap()) throw Error(at(source, payload) + ": payload: expected {mass, center_of_mass}");
-      checkKeys(payload, {"mass", "center_of_mass"}, source, "payload: ");
+      checkKeys(payload, {"mass", "center_of_mass"}, source, "payload");
       if (payload["mass"]) spec.dynamics.payload.mass = number(payload["mass"], source, "payload.mass");
       if (payload["center_of_mass"]) {
         spec.dynamics.payload.centerOfMass = vector3(payload["center_of_mass"], source, "payload.center_of_mass");
@@ -277,8 +274,7 @@ ModelSpec parseModelYaml(const std::string& yaml, const std::filesystem::path& s
       spec.effects.push_back(std::move(effect));
     }
   } catch (const YAML::Exception& e) {
-    throw Error((source.empty() ? std::string("model") : source.string()) + ":" + std::to_string(e.mark.line + 1) +
-                ": " + e.msg);
+    throw Error(reader(source).position(e.mark) + ": " + e.msg);
   }
   return spec;
 }
@@ -299,7 +295,10 @@ std::string toYaml(const ModelSpec& spec) {
   out << YAML::Key << "kind" << YAML::Value << toString(spec.kind);
   if (spec.kind != ModelKind::GearboxFtd) out << YAML::Key << "load_torque" << YAML::Value << toString(spec.loadTorque);
   if (spec.joints > 0) out << YAML::Key << "joints" << YAML::Value << spec.joints;
-  if (!spec.urdf.empty()) out << YAML::Key << "urdf" << YAML::Value << std::filesystem::absolute(spec.urdf).string();
+  if (!spec.urdf.empty()) {
+    out << YAML::Key << "robot" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "urdf" << YAML::Value
+        << std::filesystem::absolute(spec.urdf).string() << YAML::EndMap;
+  }
   const robot::DynamicsParameters defaults;
   if (spec.dynamics.gravity != defaults.gravity) {
     out << YAML::Key << "gravity" << YAML::Value;

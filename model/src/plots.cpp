@@ -4,7 +4,7 @@
 #include <map>
 
 #include "arcplan/common/atomic_file.h"
-#include "arcplan/model/report.h"
+#include "arcplan/model/result_formats.h"
 
 namespace arcplan::model {
 namespace {

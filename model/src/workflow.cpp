@@ -7,14 +7,25 @@
 
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/error.h"
-#include "arcplan/model/report.h"
+#include "arcplan/model/result_formats.h"
 
 namespace arcplan::model {
 
+namespace {
+
+Dataset loadRuns(const std::filesystem::path& first, const std::vector<std::filesystem::path>& more,
+                 const ModelSpec& spec, const LogReadOptions& options) {
+  std::vector<Dataset> runs{loadDataset(first, spec, options)};
+  for (const auto& run : more) runs.push_back(loadDataset(run, spec, options));
+  return joinRuns(runs);
+}
+
+}  // namespace
+
 LoadedData loadData(const ModelSpec& spec, const DataFiles& files) {
-  LoadedData loaded{loadDataset(files.data, spec, files.dataOptions), std::nullopt};
+  LoadedData loaded{loadRuns(files.data, files.moreData, spec, files.dataOptions), std::nullopt};
   if (!files.validation.empty()) {
-    loaded.validation = loadDataset(files.validation, spec, files.validationOptions);
+    loaded.validation = loadRuns(files.validation, files.moreValidation, spec, files.validationOptions);
     if (loaded.validation->channelCount() != loaded.data.channelCount()) {
       throw Error(files.validation.string() +
                   ": mismatched joint count: " + std::to_string(loaded.validation->channelCount()) + " channels, but " +

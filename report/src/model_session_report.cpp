@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "arcplan/common/error.h"
-#include "arcplan/model/report.h"
+#include "arcplan/model/result_formats.h"
 #include "arcplan/model/workflow.h"
 #include "arcplan/report/model_series.h"
 #include "compact_number.h"

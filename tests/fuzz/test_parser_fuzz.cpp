@@ -39,6 +39,20 @@ std::string headerlessLog() {
   return text;
 }
 
+// A run folder as the log_folder target reads it: "=== NAME" starts a file.
+std::string logFolder() {
+  std::string text;
+  for (const char* signal : {"q_actual", "qd_actual", "i_actual", "m_target"}) {
+    text += std::string("=== log_") + signal + ".csv\n";
+    for (int row = 0; row < 12; ++row) {
+      text += std::to_string(0.008 * row);
+      for (int j = 0; j < 6; ++j) text += ", " + std::to_string(0.01 * row + 0.1 * j);
+      text += "\n";
+    }
+  }
+  return text;
+}
+
 std::vector<std::string> seedsFor(const std::string& target) {
   using arcplan::testing::readFile;
   if (target == "urdf") return {readFile(kData / "ur10e" / "ur10e.urdf")};
@@ -48,6 +62,7 @@ std::vector<std::string> seedsFor(const std::string& target) {
   if (target == "joint_path") return {"q0,q1,q2,q3,q4,q5\n# a comment\n0,0,0,0,0,0\n0.1,-0.2,0.3,-0.4,0.5,-0.6\n"};
   if (target == "rtde_log") return {rtdeLog(','), rtdeLog(' ')};
   if (target == "headerless_log") return {headerlessLog()};
+  if (target == "log_folder") return {logFolder()};
   if (target == "column_map") return {"timestamp=1, actual_q=2-7, actual_qd=8-13, actual_current=14-19", "ur10e_real"};
   if (target == "force_transfer") return {readFile(kData / "thesis" / "force_transfer_diagrams.csv")};
   if (target == "model") {
@@ -198,7 +213,7 @@ TEST_P(ParserFuzz, MutatedInputsParseOrGiveAnArcplanError) {
 
 INSTANTIATE_TEST_SUITE_P(Parsers, ParserFuzz,
                          ::testing::Values("urdf", "scene", "allowed_collisions", "joint_path", "rtde_log",
-                                           "headerless_log", "column_map", "force_transfer", "model", "suite",
-                                           "number_list", "ompl_log", "baseline"));
+                                           "headerless_log", "log_folder", "column_map", "force_transfer", "model",
+                                           "suite", "number_list", "ompl_log", "baseline"));
 
 }  // namespace

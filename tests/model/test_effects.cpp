@@ -77,6 +77,18 @@ TEST(ModelFile, ParsesJointsOptionsExpressionsAndRoundTripsWithParameters) {
   EXPECT_DOUBLE_EQ(back.dynamics.payload.centerOfMass.z(), 0.1);
 }
 
+TEST(ModelFile, TheRobotIsArcplansUr10eOrTheUrdfItNames) {
+  const auto named = parseModelYaml("kind: joint_current\nrobot: {urdf: arms/ur5.urdf}\neffects: []\n", "/m/x.yaml");
+  EXPECT_EQ(named.urdf, std::filesystem::path("/m/arms/ur5.urdf"));  // relative to the model file
+  EXPECT_NE(toYaml(named).find("robot: {urdf: /m/arms/ur5.urdf}"), std::string::npos) << toYaml(named);
+  EXPECT_TRUE(parseModelYaml("kind: joint_current\nrobot: ur10e\neffects: []\n", "m.yaml").urdf.empty());
+  const auto other = errorMessageOf([] { parseModelYaml("kind: joint_current\nrobot: ur5\neffects: []\n", "m.yaml"); });
+  EXPECT_NE(other.find("m.yaml:2:8: robot: expected 'ur10e' (built in) or a mapping {urdf: FILE}"), std::string::npos)
+      << other;
+  const auto missing = parseModelYaml("kind: joint_current\nrobot: {urdf: /no/such.urdf}\neffects: []\n", "m.yaml");
+  EXPECT_NE(errorMessageOf([&] { modelRobot(missing); }).find("/no/such.urdf does not exist"), std::string::npos);
+}
+
 TEST(ModelFile, BadFilesNameTheFieldAndWhatWasExpected) {
   const auto unknownEffect = errorMessageOf([] { currentModel("[drive_gain, frobnication]"); });
   EXPECT_NE(unknownEffect.find("unknown effect 'frobnication'"), std::string::npos) << unknownEffect;

@@ -265,7 +265,7 @@ TEST_F(ModelCommandErrors, ExpressionThatDoesNotParseNamesTheFileAndTheEntry) {
         "\"qd*(abs(qd)\"}\n");
   expectFailure({"fit", "--model", (dir / "bad_expression.yaml").string(), "--data", (dir / "fit.csv").string(),
                  "--add", "offset"},
-                "bad_expression.yaml:5: effects[1]: effect 'drag': expression 'qd*(abs(qd)'");
+                "bad_expression.yaml:5:5: effects[1]: effect 'drag': expression 'qd*(abs(qd)'");
 }
 
 TEST_F(ModelCommandErrors, KeptModelWithoutFittedParametersNamesTheFileAndTheParameter) {

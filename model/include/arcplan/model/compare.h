@@ -4,7 +4,7 @@
 // Per channel: RMSE, normalised RMSE (RMSE / standard deviation of the measured values) and R²;
 // overall NRMSE = root mean square of the channels' NRMSE. Where it fails: the time windows with
 // the largest normalised residual, and the residual binned by regime (direction of motion,
-// motoring vs regenerating, speed, load, temperature, joint angle).
+// motoring vs regenerating, speed, load, temperature, joint angle), and events (events.h).
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "arcplan/model/dataset.h"
+#include "arcplan/model/events.h"
 #include "arcplan/model/fitting.h"
 
 namespace arcplan::model {
@@ -66,6 +67,7 @@ struct Comparison {
   std::optional<ErrorSummary> validation;
   std::string failuresOn;  // "validation" or "data": where windows and regimes were computed
   std::vector<WorstWindow> worstWindows;
+  std::vector<Event> events;  // moments the residual leaves its noise band and comes back (events.h)
   std::vector<ChannelRegimes> regimes;
   std::vector<ResidualCorrelation> strongestCorrelations;  // |r| >= 0.1, the 50 strongest first
 };

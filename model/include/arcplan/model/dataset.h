@@ -61,9 +61,14 @@ public:
   friend Dataset makeJointDataset(const Log& log, const ModelSpec& spec);
   friend Dataset makeGearboxDataset(const std::vector<ForceTransferPoint>& points, const ModelSpec& spec,
                                     const std::string& source);
-  // For the simulator: signals it computed exactly, measured values filled in later.
+  // For the simulator: the exact signals its truth model predicts from (measured values are zero).
   friend Dataset makeSimulationDataset(const ModelSpec& spec, std::vector<Channel> channels, std::string source);
-  void setMeasured(int channel, Eigen::VectorXd values) { channels_[channel].measured = std::move(values); }
+  friend Dataset selectSamples(const Dataset& data, const std::vector<bool>& keep);
+  // Several runs of one robot as one dataset, end to end: each run's time is shifted to start one
+  // sample step after the previous run ends (derivatives were taken per run). The runs must have
+  // the same channels.
+  Dataset joinRuns(const std::vector<Dataset>& runs);
+  friend Dataset joinRuns(const std::vector<Dataset>& runs);
 
 private:
   void computeRobotSignals() const;
@@ -85,6 +90,13 @@ Dataset makeJointDataset(const Log& log, const ModelSpec& spec);
 Dataset makeGearboxDataset(const std::vector<ForceTransferPoint>& points, const ModelSpec& spec,
                            const std::string& source);
 Dataset makeSimulationDataset(const ModelSpec& spec, std::vector<Dataset::Channel> channels, std::string source);
+// The samples where `keep` is true (one flag per sample), every signal alike; source, notes and
+// quality stay (the diagnosis leaves event windows out this way).
+Dataset selectSamples(const Dataset& data, const std::vector<bool>& keep);
+// Several runs of one robot as one dataset, end to end: each run's time is shifted to start one
+// sample step after the previous run ends (derivatives were taken per run). The runs must have
+// the same channels.
+Dataset joinRuns(const std::vector<Dataset>& runs);
 
 // Reads the file the way the model kind needs it (RTDE/headerless log, or force-transfer CSV).
 Dataset loadDataset(const std::filesystem::path& file, const ModelSpec& spec, const LogReadOptions& options = {});

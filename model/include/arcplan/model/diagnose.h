@@ -23,6 +23,10 @@
 //
 // With `keepParameters` the model's stored parameters stay fixed (a model fitted on another log):
 // every candidate is fitted and scored on what that model leaves.
+//
+// Events (events.h: a push, a collision) are not effects: with `leaveOutEvents` the events of the
+// model's residual on both logs are found first and their samples left out of every fit and
+// score, and the summary says so.
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +34,7 @@
 #include "arcplan/model/compare.h"
 #include "arcplan/model/dataset.h"
 #include "arcplan/model/effect.h"
+#include "arcplan/model/events.h"
 #include "arcplan/model/model_spec.h"
 
 namespace arcplan::model {
@@ -41,6 +46,7 @@ struct DiagnoseOptions {
   bool discover = true;                 // also search the term library (joint logs)
   int screenedPerChannel = 6;           // library terms per channel scored on held-out data
   bool keepParameters = false;          // the model's stored parameters stay fixed
+  bool leaveOutEvents = true;           // score without the events of the model's residual (events.h)
 };
 
 struct EffectCandidate {
@@ -69,6 +75,8 @@ struct Diagnosis {
   double explainable = 0.0;                          // fraction of the held-out residual RMS above the noise floor
   double catalogueExplains = 0.0;                    // fraction the suggested catalogue effects remove together
   std::string summary;                               // the top suggestions in words, or why nothing is suggested
+  // Moments left out before anything was fitted or scored (events of the model as it is), per log.
+  std::vector<Event> dataEvents, validationEvents;
 };
 
 Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* validation,

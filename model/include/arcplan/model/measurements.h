@@ -1,9 +1,9 @@
 #pragma once
 // Robot logs as arcplan reads and writes them: RTDE CSV (UR's record.py, space-separated, or
-// ur_rtde, comma-separated; a header row with vectors expanded as name_0..name_5) and headerless
-// logs read through an explicit column map. Rows that cannot be trusted (short, unparseable,
-// NaN/inf, corrupted magnitudes, duplicated or backward timestamps) are dropped and reported with
-// their line numbers, never used.
+// ur_rtde, comma-separated; a header row with vectors expanded as name_0..name_5), headerless
+// logs read through an explicit column map, and run folders of one CSV per signal (log_folder.h). Rows that cannot be
+// trusted (short, unparseable, NaN/inf, corrupted magnitudes, duplicated or backward timestamps) are dropped and
+// reported with their line numbers, never used.
 #include <cstddef>
 #include <filesystem>
 #include <map>
@@ -47,6 +47,8 @@ struct Log {
   bool has(const std::string& signal) const { return vectors.count(signal) > 0; }
   // Throws arcplan::Error naming the file and the signal when absent.
   const Eigen::MatrixXd& vector(const std::string& signal) const;
+  // Why `signal` is absent, naming the file (or, for a run folder, the file names it would have).
+  std::string missing(const std::string& signal) const;
 };
 
 // The RTDE joint signals arcplan understands (docs/model.md, "Inputs"), and its scalar ones. Other header
@@ -83,9 +85,9 @@ struct LogReadOptions {
   double corruptMagnitude = 1e12;
 };
 
-// Reads an RTDE CSV or a headerless log. Throws arcplan::Error when the file is missing or empty,
-// when a column the map names does not exist, when vector signals disagree on the joint count,
-// or when no valid row is left.
+// Reads an RTDE CSV or a headerless log, or a run folder of one CSV per signal (log_folder.h).
+// Throws arcplan::Error when the file is missing or empty, when a column the map names does not
+// exist, when vector signals disagree on the joint count, or when no valid row is left.
 Log readLog(const std::filesystem::path& file, const LogReadOptions& options = {});
 
 // "355-5090" -> lines 355..5090; "355-" open end. Throws arcplan::Error naming `what`.

@@ -44,7 +44,7 @@ struct ModelSpec {
   ModelKind kind = ModelKind::JointCurrent;
   LoadTorqueSource loadTorque = LoadTorqueSource::TargetMoment;
   int joints = 0;                      // expected joint (channel) count of the data; 0 = take the data's
-  std::filesystem::path urdf;          // empty: arcplan's UR10e
+  std::filesystem::path urdf;          // `robot: {urdf: F}`; empty (`robot: ur10e`): arcplan's UR10e
   robot::DynamicsParameters dynamics;  // gravity and a known payload for the rigid-body load torque
   double derivativeCutoffHz = 10.0;    // zero-phase filter of derived velocities/accelerations
   double velocitySmoothing = 0.01;     // rad/s: sgn(qd) is smoothed as tanh(qd / this)

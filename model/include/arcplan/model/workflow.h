@@ -19,6 +19,8 @@ struct DataFiles {
   std::filesystem::path data;
   std::filesystem::path validation;  // empty: none
   LogReadOptions dataOptions, validationOptions;
+  // Further runs of the same robot, joined after `data` / `validation` (joinRuns in dataset.h).
+  std::vector<std::filesystem::path> moreData, moreValidation;
 };
 
 struct LoadedData {
@@ -27,7 +29,8 @@ struct LoadedData {
   const Dataset* validationOrNull() const { return validation ? &*validation : nullptr; }
 };
 
-// Reads both files for the model's kind; the validation data must have the data's channel count.
+// Reads both files (and their further runs) for the model's kind; the validation data must have the
+// data's channel count.
 LoadedData loadData(const ModelSpec& spec, const DataFiles& files);
 
 struct FitStep {

@@ -1,4 +1,6 @@
-#include "arcplan/model/report.h"
+// The JSON and text forms of every result of the model loop, in one place so each format has one
+// owner (a little over 400 lines for that reason).
+#include "arcplan/model/result_formats.h"
 
 #include <cmath>
 #include <cstdio>
@@ -56,6 +58,42 @@ ErrorSummary summaryFromJson(const nlohmann::json& json) {
 
 }  // namespace
 
+nlohmann::json toJson(const std::vector<Event>& events) {
+  nlohmann::json result = nlohmann::json::array();
+  for (const auto& e : events) {
+    nlohmann::json wrench = nullptr;
+    if (e.wrench) wrench = {e.wrench->x(), e.wrench->y(), e.wrench->z()};
+    result.push_back({{"start_s", e.start},
+                      {"end_s", e.end},
+                      {"joints", e.joints},
+                      {"peak", e.peak},
+                      {"peak_scales", e.peakScales},
+                      {"wrench_N", wrench},
+                      {"wrench_fit", e.wrench ? nlohmann::json(e.wrenchFit) : nlohmann::json(nullptr)}});
+  }
+  return result;
+}
+
+std::string formatEvents(const std::vector<Event>& events) {
+  if (events.empty()) return "none: the residual stays within its noise band\n";
+  std::ostringstream text;
+  for (const auto& e : events) {
+    std::string joints, peaks;
+    for (std::size_t k = 0; k < e.joints.size(); ++k) {
+      joints += (k ? "," : "") + std::to_string(e.joints[k]);
+      peaks += (k ? ", " : "") + format("%.3g", e.peak[k]);
+    }
+    text << "  " << format("%.3f", e.start) << " .. " << format("%.3f", e.end) << " s  joints " << joints << "  peak "
+         << peaks << " (" << format("%.1f", e.peakScales) << " noise scales)";
+    if (e.wrench) {
+      text << "  tool force (" << format("%.1f", e.wrench->x()) << ", " << format("%.1f", e.wrench->y()) << ", "
+           << format("%.1f", e.wrench->z()) << ") N, |f| = " << format("%.1f", e.wrench->norm()) << " N";
+    }
+    text << "\n";
+  }
+  return text.str();
+}
+
 nlohmann::json toJson(const ErrorSummary& summary) {
   nlohmann::json channels = nlohmann::json::object();
   for (const auto& c : summary.channels) {
@@ -102,6 +140,7 @@ nlohmann::json toJson(const Comparison& comparison, const FittedModel& model, co
                        {"axis", data.timeOrdered() ? "time_s" : "load_Nm"}});
   }
   result["worst_windows"] = windows;
+  result["events"] = toJson(comparison.events);
   nlohmann::json regimes = nlohmann::json::object();
   for (const auto& channel : comparison.regimes) {
     nlohmann::json byRegime = nlohmann::json::object();
@@ -129,10 +168,10 @@ nlohmann::json toJson(const Comparison& comparison, const FittedModel& model, co
   for (const auto& d : data.quality().dropped) {
     dropped.push_back({{"reason", d.reason}, {"count", d.count}, {"first_lines", d.firstLines}});
   }
-  result["data_quality"] = {{"rows", data.quality().dataRows},
-                            {"kept", data.quality().keptRows},
-                            {"dropped", dropped},
-                            {"notes", data.notes()}};
+  std::vector<std::string> notes = data.quality().notes;
+  notes.insert(notes.end(), data.notes().begin(), data.notes().end());
+  result["data_quality"] = {
+      {"rows", data.quality().dataRows}, {"kept", data.quality().keptRows}, {"dropped", dropped}, {"notes", notes}};
   return result;
 }
 
@@ -163,15 +202,17 @@ nlohmann::json toJson(const Diagnosis& diagnosis) {
   auto number = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
   nlohmann::json noise = nlohmann::json::array();
   for (double v : diagnosis.noiseFloor) noise.push_back(number(v));
-  return {{"heldout", diagnosis.heldout},
-          {"heldout_base", toJson(diagnosis.heldoutBase)},
-          {"noise_floor", noise},
-          {"explainable", number(diagnosis.explainable)},
-          {"catalogue_explains", diagnosis.catalogueExplains},
-          {"ranking", ranking},
-          {"skipped", diagnosis.skipped},
-          {"residual_follows", follows},
-          {"summary", diagnosis.summary}};
+  return {
+      {"heldout", diagnosis.heldout},
+      {"heldout_base", toJson(diagnosis.heldoutBase)},
+      {"noise_floor", noise},
+      {"explainable", number(diagnosis.explainable)},
+      {"catalogue_explains", diagnosis.catalogueExplains},
+      {"ranking", ranking},
+      {"skipped", diagnosis.skipped},
+      {"residual_follows", follows},
+      {"events_left_out", {{"data", toJson(diagnosis.dataEvents)}, {"validation", toJson(diagnosis.validationEvents)}}},
+      {"summary", diagnosis.summary}};
 }
 
 nlohmann::json toJson(const FitStep& step) {
@@ -205,6 +246,7 @@ SessionStep sessionStepFromJson(const nlohmann::json& json) {
 std::string formatDataQuality(const Dataset& data) {
   std::ostringstream text;
   text << data.source() << ": " << data.quality().summary() << "\n";
+  for (const auto& note : data.quality().notes) text << "  " << note << "\n";
   for (const auto& note : data.notes()) text << "  " << note << "\n";
   return text.str();
 }
@@ -262,6 +304,8 @@ std::string formatComparison(const Comparison& comparison) {
     text << "  " << format("%.3f", w.start) << " .. " << format("%.3f", w.end) << "  NRMSE " << format("%.3f", w.nrmse)
          << "  worst " << w.worstChannel << "\n";
   }
+  text << "\nevents (" << comparison.failuresOn << "): " << (comparison.events.empty() ? "" : "\n")
+       << formatEvents(comparison.events);
   text << "\nresidual by regime (" << comparison.failuresOn << "; mean / rms):\n";
   for (const auto& channel : comparison.regimes) {
     text << "  " << channel.channel << "\n";

@@ -8,6 +8,7 @@
 
 #include "arcplan/model/compare.h"
 #include "arcplan/model/diagnose.h"
+#include "arcplan/model/events.h"
 #include "arcplan/model/fitting.h"
 #include "arcplan/model/workflow.h"
 
@@ -18,7 +19,9 @@ nlohmann::json toJson(const ErrorSummary& summary);
 // channel -> effect -> {parameter: {value, standard_error}, nonlinear parameter: value}; effects
 // fitted jointly across channels add their physical quantities (payload: mass_kg, center_of_mass_m).
 nlohmann::json parametersJson(const FittedModel& model);
-// compare: channels, overall_nrmse, validation, worst_windows, regimes, residual_follows, parameters
+// [{start_s, end_s, joints, peak, peak_scales, wrench_N, wrench_fit}] (wrench null where the arm is not known)
+nlohmann::json toJson(const std::vector<Event>& events);
+// compare: channels, overall_nrmse, validation, worst_windows, events, regimes, residual_follows, parameters
 nlohmann::json toJson(const Comparison& comparison, const FittedModel& model, const Dataset& data);
 // diagnose: ranking [{effect, joints, heldout_reduction, score, explanation, ...}], summary, ...
 nlohmann::json toJson(const Diagnosis& diagnosis);
@@ -30,6 +33,7 @@ SessionStep sessionStepFromJson(const nlohmann::json& json);
 std::string formatDataQuality(const Dataset& data);
 std::string formatErrors(const ErrorSummary& data, const ErrorSummary* validation);
 std::string formatParameters(const FittedModel& model);
+std::string formatEvents(const std::vector<Event>& events);
 std::string formatComparison(const Comparison& comparison);
 std::string formatDiagnosis(const Diagnosis& diagnosis);
 std::string formatFitStep(const FitStep& step);
