@@ -8,7 +8,6 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -24,9 +23,8 @@
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/planning_problem.h"
 #include "arcplan/trajectory/joint_path.h"
-#include "arcplan/trajectory/metrics.h"
-#include "arcplan/trajectory/path_densification.h"
-#include "arcplan/trajectory/time_scaling.h"
+#include "arcplan/trajectory/metric_descriptors.h"
+#include "arcplan/trajectory/path_measurement.h"
 #include "cli_support.h"
 #include "commands.h"
 
@@ -117,13 +115,20 @@ std::string plannerParameterHelp() {
   return text.str();
 }
 
+// A metric's value in the result document, under its key from the metric table.
+const nlohmann::json& metricOf(const nlohmann::json& document, double trajectory::TrajectoryMetrics::*member) {
+  return document[trajectory::metricDescriptor(member).key];
+}
+
 void printSummary(const nlohmann::json& document, const std::string& reason, const planners::ArcPlanner* arc,
                   const PlanOptions& options, std::size_t waypoints) {
+  using M = trajectory::TrajectoryMetrics;
   std::cout << "plan: scene " << document["scene"].get<std::string>() << ", query "
             << document["query"].get<std::string>() << ", planner " << document["planner"].get<std::string>() << "\n"
             << "status              " << document["status"].get<std::string>() << "\n";
   if (!reason.empty()) std::cout << "reason              " << reason << "\n";
-  std::cout << std::setprecision(6) << "solve time          " << document["solve_time_s"].get<double>() << " s\n";
+  std::cout << std::setprecision(6) << "solve time          "
+            << document[trajectory::solveTimeDescriptor().key].get<double>() << " s\n";
   if (arc && !arc->lastResult().mode().empty()) {
     std::cout << "mode                " << arc->lastResult().mode() << " (cartesian fraction "
               << arc->lastResult().cartesianFraction << ")\n";
@@ -142,14 +147,14 @@ void printSummary(const nlohmann::json& document, const std::string& reason, con
   }
   if (waypoints > 0) {
     std::cout << "waypoints           " << waypoints << "\n"
-              << "tcp path length     " << document["tcp_path_length_m"].get<double>() << " m\n"
-              << "joint path length   " << document["joint_path_length_rad"].get<double>() << " rad\n";
-    if (!document["min_clearance_m"].is_null()) {
-      std::cout << "min clearance       " << document["min_clearance_m"].get<double>() << " m\n";
+              << "tcp path length     " << metricOf(document, &M::tcpPathLength).get<double>() << " m\n"
+              << "joint path length   " << metricOf(document, &M::jointPathLength).get<double>() << " rad\n";
+    if (!metricOf(document, &M::minClearance).is_null()) {
+      std::cout << "min clearance       " << metricOf(document, &M::minClearance).get<double>() << " m\n";
     }
     if (options.maxTcpSpeed) {
-      std::cout << "execution time      " << document["execution_time_s"].get<double>() << " s at vmax "
-                << *options.maxTcpSpeed << " m/s (peak TCP speed " << document["peak_tcp_speed_mps"].get<double>()
+      std::cout << "execution time      " << metricOf(document, &M::executionTime).get<double>() << " s at vmax "
+                << *options.maxTcpSpeed << " m/s (peak TCP speed " << metricOf(document, &M::peakTcpSpeed).get<double>()
                 << " m/s)\n";
     }
   }
@@ -183,12 +188,13 @@ void runPlan(const PlanOptions& options) {
   // The arc path is already the TCP path; sampling planners' paths get OMPL's shortcutting.
   if (havePath && benchmarks::simplifiesSolution(plannerName)) setup.simplifySolution();
 
-  nlohmann::json document = {{"scene", scene->name},
-                             {"query", problem.queryName},
-                             {"planner", plannerName},
-                             {"status", statusName(status, haveExact)},
-                             {"solve_time_s", arc ? arc->lastResult().solveTime : setup.getLastPlanComputationTime()},
-                             {"time_limit_s", options.time}};
+  nlohmann::json document = {
+      {"scene", scene->name},
+      {"query", problem.queryName},
+      {"planner", plannerName},
+      {"status", statusName(status, haveExact)},
+      {trajectory::solveTimeDescriptor().key, arc ? arc->lastResult().solveTime : setup.getLastPlanComputationTime()},
+      {"time_limit_s", options.time}};
   std::map<std::string, std::string> parameterValues;
   planner->params().getParams(parameterValues);
   document["parameters"] = parameterValues;
@@ -213,22 +219,13 @@ void runPlan(const PlanOptions& options) {
       return collision::distance(model, data, q).obstacleDistance;
     };
     document["waypoints"] = path.size();
+    std::optional<trajectory::TimeScalingOptions> scaling;
     if (options.maxTcpSpeed) {
-      trajectory::TimeScalingOptions scaling;
-      scaling.maxTcpSpeed = *options.maxTcpSpeed;
-      const trajectory::TimedTrajectory timed = trajectory::scaleToTcpSpeed(model.robot(), path, scaling);
-      document.update(trajectory::toJson(trajectory::computeMetrics(path, timed, clearance)));
+      scaling.emplace();
+      scaling->maxTcpSpeed = *options.maxTcpSpeed;
       document["vmax_mps"] = *options.maxTcpSpeed;
-    } else {
-      // The same densification as the metrics of a scaled trajectory (docs/metrics.md).
-      const trajectory::DensePath dense = trajectory::densifyJointPath(model.robot(), path);
-      double minClearance = std::numeric_limits<double>::infinity();
-      for (const robot::Vector6& q : dense.waypoints) minClearance = std::min(minClearance, clearance(q));
-      document["tcp_path_length_m"] = dense.tcpArcLength.back();
-      document["joint_path_length_rad"] = trajectory::jointPathLength(path);
-      document["min_clearance_m"] =
-          std::isfinite(minClearance) ? nlohmann::json(minClearance) : nlohmann::json(nullptr);
     }
+    document.update(trajectory::toJson(trajectory::measurePath(model.robot(), path, scaling, clearance)));
   }
 
   // With the JSON on stdout, the summary would corrupt it.

@@ -9,6 +9,7 @@
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
+#include "arcplan/planners/planning_problem.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/robot_model.h"
@@ -122,19 +123,14 @@ struct CheckOptions {
   std::string json;
 };
 
-// A query endpoint as joints: given directly, or the IK solution of its pose nearest to its seed
-// (to the zero configuration without one).
-robot::Vector6 endpointJoints(const collision::Scene& scene, const collision::Query& query, const char* end,
-                              const collision::QueryEndpoint& endpoint, const robot::RobotModel& model) {
+// A query endpoint as the joints `plan` would start or end at: joints as given (a collision there is
+// the check's result), a pose through planners::resolveEndpoint, the one resolver of query poses.
+Eigen::VectorXd endpointJoints(const collision::Scene& scene, const collision::Query& query, const std::string& end,
+                               const collision::QueryEndpoint& endpoint, const collision::CollisionModel& model) {
   if (endpoint.joints) return *endpoint.joints;
-  const robot::UrInverseKinematics ik(model);
-  const auto& p = *endpoint.pose;
-  const auto solution = ik.solveNearest(robot::poseFromXyzRpy(p), endpoint.seed.value_or(robot::Vector6::Zero()));
-  if (!solution) {
-    throw Error(scene.sourceFile.string() + ": query '" + query.name + "' " + end +
-                " pose is out of reach or outside the joint limits");
-  }
-  return *solution;
+  const robot::UrInverseKinematics ik(model.robot());
+  const std::string label = "scene " + scene.sourceFile.string() + ", query '" + query.name + "', " + end;
+  return planners::resolveEndpoint(endpoint, model, ik, label);
 }
 
 nlohmann::json checkConfiguration(const collision::CollisionModel& model, const Eigen::VectorXd& q) {
@@ -187,7 +183,7 @@ void runCollisionCheck(const CheckOptions& options) {
   } else {
     query = &scene.query(options.query);
     for (const auto& [end, endpoint] : {std::make_pair("start", &query->start), std::make_pair("goal", &query->goal)}) {
-      configurations.emplace_back(end, endpointJoints(scene, *query, end, *endpoint, model->robot()));
+      configurations.emplace_back(end, endpointJoints(scene, *query, end, *endpoint, *model));
     }
   }
   std::cout << "scene " << scene.name << " (" << scene.sourceFile.string() << "), " << model->robot().name() << "\n";

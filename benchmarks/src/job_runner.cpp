@@ -29,8 +29,7 @@
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/planning_problem.h"
 #include "arcplan/trajectory/metric_descriptors.h"
-#include "arcplan/trajectory/metrics.h"
-#include "arcplan/trajectory/time_scaling.h"
+#include "arcplan/trajectory/path_measurement.h"
 #include "run_properties.h"
 
 namespace arcplan::benchmarks::detail {
@@ -38,9 +37,6 @@ namespace {
 
 namespace ob = ompl::base;
 
-// Clearance is a distance query per sample; one every 5 mm of TCP travel resolves the closest approach
-// to obstacles of >= 1 cm well, at a tenth of the cost of querying every sample of the 2 ms time grid.
-constexpr double kClearanceSpacing = 0.005;
 // Samples kept of the median run for the speed-profile and 3D plots.
 constexpr std::size_t kProfileSamples = 600;
 
@@ -163,20 +159,6 @@ void reseedQuietly(std::uint32_t seed) {
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
   ompl::RNG::setSeed(seed);
   ompl::msg::setLogLevel(level);
-}
-
-// Smallest robot–obstacle distance over the executed motion, sampled every kClearanceSpacing of TCP travel.
-double minClearanceAlong(const trajectory::TimedTrajectory& trajectory, const collision::CollisionModel& model,
-                         collision::CollisionData& data) {
-  double minimum = std::numeric_limits<double>::infinity();
-  const std::size_t last = trajectory.time.size() - 1;
-  Eigen::Vector3d checkedAt = trajectory.tcpPosition.front();
-  for (std::size_t i = 0; i <= last; ++i) {
-    if (i != 0 && i != last && (trajectory.tcpPosition[i] - checkedAt).norm() < kClearanceSpacing) continue;
-    minimum = std::min(minimum, collision::distance(model, data, trajectory.position[i]).obstacleDistance);
-    checkedAt = trajectory.tcpPosition[i];
-  }
-  return minimum;
 }
 
 // The trajectory metrics as run properties, under their names from the metric table; a metric
@@ -332,6 +314,9 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
 
   const auto& collisionModel = *planning.collisionModel;
   collision::CollisionData collisionData(collisionModel);
+  const trajectory::ClearanceFunction clearanceOf = [&](const robot::Vector6& q) {
+    return collision::distance(collisionModel, collisionData, q).obstacleDistance;
+  };
   trajectory::TimeScalingOptions scaling;
   scaling.maxTcpSpeed = suite.vMax;
 
@@ -359,18 +344,16 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
     if (setup.haveExactSolutionPath()) {
       try {
         const trajectory::JointPath path = collision::waypointsOf(setup.getSolutionPath());
-        const auto timed = trajectory::scaleToTcpSpeed(collisionModel.robot(), path, scaling);
-        auto metrics = trajectory::computeMetrics(path, timed);
-        const double clearance = minClearanceAlong(timed, collisionModel, collisionData);
-        metrics.minClearance = clearance;
-        recordMetrics(metrics, run);
+        const auto measured = trajectory::measurePath(collisionModel.robot(), path, scaling, clearanceOf);
+        const double clearance = measured.metrics.minClearance;
+        recordMetrics(measured.metrics, run);
         // A path that comes closer than the suite's clearance is not a success, whatever validated it:
         // OMPL's "solved" is withdrawn, which is what the ranking and ompl_benchmark_statistics count.
         const bool keptClearance = !(clearance < suite.clearance);
         run["clearance kept BOOLEAN"] = keptClearance ? "1" : "0";
         if (!keptClearance) run["solved BOOLEAN"] = "0";
         success = keptClearance;
-        if (success && !files.medianRun.empty()) recorded.push_back(recordProfile(currentRun, timed));
+        if (success && !files.medianRun.empty()) recorded.push_back(recordProfile(currentRun, *measured.timed));
       } catch (const Error&) {
         // A path that cannot be time-scaled is a failed run: it has no execution time.
       }

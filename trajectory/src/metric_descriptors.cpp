@@ -69,4 +69,13 @@ const MetricDescriptor& metricDescriptor(const std::string& key) {
   throw Error("unknown trajectory metric '" + key + "'");
 }
 
+const MetricDescriptor& metricDescriptor(double TrajectoryMetrics::*member) {
+  for (const auto& descriptor : metricDescriptors()) {
+    if (descriptor.member == member) return descriptor;
+  }
+  throw Error("trajectory metric without a row in the metric table");
+}
+
+const MetricDescriptor& solveTimeDescriptor() { return metricDescriptor(nullptr); }
+
 }  // namespace arcplan::trajectory

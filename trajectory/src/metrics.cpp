@@ -43,11 +43,15 @@ TrajectoryMetrics computeMetrics(const JointPath& path, const TimedTrajectory& t
       }
     }
   }
-  if (clearance) {
-    metrics.minClearance = std::numeric_limits<double>::infinity();
-    for (const auto& q : trajectory.densePath) metrics.minClearance = std::min(metrics.minClearance, clearance(q));
-  }
+  metrics.minClearance = minClearanceAlong(trajectory.densePath, clearance);
   return metrics;
+}
+
+double minClearanceAlong(const JointPath& densePath, const ClearanceFunction& clearance) {
+  if (!clearance) return std::numeric_limits<double>::quiet_NaN();
+  double minimum = std::numeric_limits<double>::infinity();
+  for (const auto& q : densePath) minimum = std::min(minimum, clearance(q));
+  return minimum;
 }
 
 nlohmann::json toJson(const TrajectoryMetrics& metrics) {

@@ -32,5 +32,10 @@ const std::vector<MetricDescriptor>& metricDescriptors();
 
 // The row with this key; throws arcplan::Error for an unknown key.
 const MetricDescriptor& metricDescriptor(const std::string& key);
+// The row of a member of TrajectoryMetrics, so that code outside this table names a metric by its
+// member rather than by a copy of its key.
+const MetricDescriptor& metricDescriptor(double TrajectoryMetrics::*member);
+// The row of the planner's solve time, the one metric that is not a member of TrajectoryMetrics.
+const MetricDescriptor& solveTimeDescriptor();
 
 }  // namespace arcplan::trajectory

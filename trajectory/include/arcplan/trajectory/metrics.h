@@ -31,6 +31,9 @@ using ClearanceFunction = std::function<double(const robot::Vector6&)>;
 TrajectoryMetrics computeMetrics(const JointPath& path, const TimedTrajectory& trajectory,
                                  const ClearanceFunction& clearance = {});
 
+// The smallest clearance at the waypoints of a densified path; NaN without a clearance function.
+double minClearanceAlong(const JointPath& densePath, const ClearanceFunction& clearance);
+
 // Every trajectory metric under its key from metricDescriptors(); null for a value that is not finite
 // (min_clearance_m when no clearance function was given).
 nlohmann::json toJson(const TrajectoryMetrics& metrics);
