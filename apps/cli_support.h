@@ -5,9 +5,11 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "arcplan/common/error.h"
+#include "arcplan/robot/robot_source.h"
 
 namespace arcplan::apps {
 
@@ -26,5 +28,22 @@ std::vector<double> parseVector(const std::string& text, const std::string& opti
 
 // Throws UsageError "<option> must be a positive number (<unit>), got <value>" unless value > 0 and finite.
 void requirePositive(double value, const std::string& option, const std::string& unit);
+
+// The robot options of every command that takes a robot (robot fk|ik|check, scale): --urdf F, or
+// --ur-type T [--description DIR] [--kinematics F] (docs/cli.md), and the TCP: --tip LINK, --tcp-offset.
+struct RobotSourceOptions {
+  std::string urdf;
+  std::string urType;
+  std::string description;
+  std::string kinematics;
+  std::string tip = "tool0";
+  std::string tcpOffset;
+  bool given() const { return !urdf.empty() || !urType.empty() || tip != "tool0" || !tcpOffset.empty(); }
+};
+void addRobotSourceOptions(CLI::App& command, RobotSourceOptions& options, const std::string& urdfHelp);
+
+// What those options name; nothing given: arcplan's built-in UR10e. UsageError for --description or
+// --kinematics without --ur-type or a malformed --tcp-offset; Error for a file or folder that does not exist.
+robot::RobotSource robotSourceFrom(const RobotSourceOptions& options);
 
 }  // namespace arcplan::apps

@@ -25,7 +25,7 @@ namespace {
 
 struct ScaleOptions {
   std::string scene;
-  std::string urdf;
+  RobotSourceOptions robot;
   std::string pathCsv;
   double maxTcpSpeed = 0.25;
   double riseTime = 0.2;
@@ -36,11 +36,12 @@ struct ScaleOptions {
 };
 
 robot::RobotModel loadRobot(const ScaleOptions& options) {
-  std::filesystem::path urdf = options.urdf;
-  if (!options.scene.empty()) urdf = collision::loadScene(resolveDataPath(options.scene)).robotUrdf;
-  if (urdf.empty()) return robot::ur10e();
-  if (!std::filesystem::exists(urdf)) throw Error("URDF file " + urdf.string() + " does not exist");
-  return robot::loadRobotModel(urdf);
+  if (!options.scene.empty() && options.robot.given()) {
+    throw UsageError("--scene brings its own robot; give --scene or the robot options, not both");
+  }
+  const robot::RobotSource source = options.scene.empty() ? robotSourceFrom(options.robot)
+                                                          : collision::loadScene(resolveDataPath(options.scene)).robot;
+  return source.isBuiltIn() ? robot::ur10e() : robot::loadRobot(source);
 }
 
 void printMetrics(const trajectory::TrajectoryMetrics& metrics, const trajectory::TimedTrajectory& trajectory,
@@ -117,8 +118,8 @@ void registerScaleCommand(CLI::App& app) {
   scale->footer(
       "Time-scales a joint path (PCHIP) so the TCP speed never exceeds --vmax: ramp up over --rise, cruise, brake; "
       "slower where a joint speed limit requires it; checked with forward kinematics every 2 ms.");
-  auto* scene = scale->add_option("--scene", options->scene, "scene YAML; its robot is used (default: built-in UR10e)");
-  scale->add_option("--urdf", options->urdf, "robot URDF instead of a scene")->excludes(scene);
+  scale->add_option("--scene", options->scene, "scene YAML; its robot is used (default: built-in UR10e)");
+  addRobotSourceOptions(*scale, options->robot, "robot URDF instead of a scene");
   scale->add_option("--path-csv", options->pathCsv, "joint path: header q0,...,q5, one waypoint [rad] per line")
       ->required();
   scale->add_option("--vmax", options->maxTcpSpeed, "TCP speed limit [m/s] (ISO/TS 15066 collaborative: 0.25)")

@@ -1,8 +1,12 @@
 #include "arcplan/collision/allowed_collisions.h"
 
+#include <set>
+
 #include "arcplan/common/error.h"
 #include "arcplan/common/yaml_reading.h"
 #include "arcplan/common/resources.h"
+#include "arcplan/common/text_formatting.h"
+#include "arcplan/robot/srdf.h"
 
 namespace arcplan::collision {
 namespace {
@@ -73,6 +77,27 @@ AllowedCollisionMatrix defaultAllowedCollisions(const robot::RobotModel& model) 
   AllowedCollisionMatrix allowed = adjacentLinkPairs(model);
   if (isBuiltInUr10e(model)) allowed.allow(loadAllowedCollisions(ur10eAllowedCollisionsPath()));
   return allowed;
+}
+
+AllowedCollisionMatrix srdfAllowedCollisions(const std::filesystem::path& srdfFile, const robot::RobotModel& model) {
+  std::set<std::string> links;
+  for (const auto& link : model.links()) links.insert(link.name);
+  AllowedCollisionMatrix allowed;
+  for (const auto& pair : robot::loadSrdfDisabledCollisions(srdfFile)) {
+    for (const auto* name : {&pair.link1, &pair.link2}) {
+      if (links.count(*name) == 0) {
+        throw Error(std::filesystem::absolute(srdfFile).string() + ":" + std::to_string(pair.line) + ": link '" +
+                    *name + "' is not a link of robot '" + model.name() +
+                    "' (links: " + joinText({links.begin(), links.end()}, ", ") + ")");
+      }
+    }
+    allowed.allow(pair.link1, pair.link2);
+  }
+  return allowed;
+}
+
+AllowedCollisionMatrix robotAllowedCollisions(const robot::RobotModel& model, const std::filesystem::path& srdfFile) {
+  return srdfFile.empty() ? defaultAllowedCollisions(model) : srdfAllowedCollisions(srdfFile, model);
 }
 
 }  // namespace arcplan::collision

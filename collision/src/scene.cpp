@@ -5,11 +5,13 @@
 #include <initializer_list>
 #include <set>
 
+#include "arcplan/collision/allowed_collisions.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/yaml_reading.h"
 #include "arcplan/robot/package_path.h"
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/robot_model.h"
+#include "arcplan/robot/robot_source.h"
 
 namespace arcplan::collision {
 namespace {
@@ -85,24 +87,63 @@ private:
       return;
     }
     if (node.IsScalar()) {
-      if (node.Scalar() != "ur10e")
-        yaml_.fail(node, "robot", "expected 'ur10e' (built in) or a mapping {urdf: FILE}, got '" + node.Scalar() + "'");
+      if (node.Scalar() != "ur10e") {
+        yaml_.fail(
+            node, "robot",
+            "expected 'ur10e' (built in) or a mapping {urdf: FILE} or {ur_type: TYPE}, got '" + node.Scalar() + "'");
+      }
       linkNames_ = linkNamesOf(robot::ur10e());
       return;
     }
     yaml_.expectMap(node, "robot");
-    yaml_.checkKeys(node, "robot", {"urdf"});
-    const auto urdf = yaml_.required(node, "urdf", "robot");
-    std::filesystem::path path = yaml_.text(urdf, "robot.urdf");
-    if (path.is_relative()) path = yaml_.file().parent_path() / path;
-    if (!std::filesystem::exists(path))
-      yaml_.fail(urdf, "robot.urdf", "URDF file " + path.string() + " does not exist");
-    scene.robotUrdf = path;
-    try {
-      linkNames_ = linkNamesOf(robot::loadRobotModel(path));
-    } catch (const Error& e) {
-      yaml_.fail(urdf, "robot.urdf", e.what());
+    yaml_.checkKeys(node, "robot", {"urdf", "ur_type", "description", "kinematics", "srdf", "tcp"});
+    robot::RobotSource& source = scene.robot;
+    if (node["urdf"] && node["ur_type"]) yaml_.fail(node, "robot", "give either urdf or ur_type, not both");
+    if (const auto urdf = node["urdf"]) {
+      source.urdf = existingPath(urdf, "robot.urdf", "URDF file");
+      for (const char* key : {"description", "kinematics"}) {
+        if (node[key]) yaml_.fail(node[key], std::string("robot.") + key, "only a robot given by ur_type has it");
+      }
+    } else if (const auto type = node["ur_type"]) {
+      source.urType = yaml_.text(type, "robot.ur_type");
+      if (const auto folder = node["description"])
+        source.description = existingPath(folder, "robot.description", "folder");
+      if (const auto file = node["kinematics"]) source.kinematics = existingPath(file, "robot.kinematics", "file");
+    } else {
+      yaml_.fail(node, "robot", "missing 'urdf' or 'ur_type'");
     }
+    if (const auto tcp = node["tcp"]) readTcp(tcp, source.chain);
+    if (const auto srdf = node["srdf"]) source.srdf = existingPath(srdf, "robot.srdf", "SRDF file");
+    const auto where = node["ur_type"] ? node["ur_type"] : node["urdf"];
+    try {
+      const robot::RobotModel model = robot::loadRobot(source);
+      linkNames_ = linkNamesOf(model);
+      if (!source.srdf.empty()) srdfAllowedCollisions(source.srdf, model);  // every pair names a link of it
+    } catch (const Error& e) {
+      yaml_.fail(where, "robot", e.what());
+    }
+  }
+
+  // `tcp: LINK` or `tcp: {link: LINK, offset: [x, y, z, roll, pitch, yaw]}` (link default tool0).
+  void readTcp(const YAML::Node& node, robot::ChainSelection& chain) const {
+    if (node.IsScalar()) {
+      chain.tipLink = yaml_.text(node, "robot.tcp");
+      return;
+    }
+    yaml_.checkKeys(node, "robot.tcp", {"link", "offset"});
+    if (const auto link = node["link"]) chain.tipLink = yaml_.text(link, "robot.tcp.link");
+    if (const auto offset = node["offset"]) {
+      const auto values = yaml_.numbers(offset, "robot.tcp.offset", 6);
+      chain.tcpOffset = robot::poseFromXyzRpy({values[0], values[1], values[2], values[3], values[4], values[5]});
+    }
+  }
+
+  // A file or folder named relative to the scene file; it must exist.
+  std::filesystem::path existingPath(const YAML::Node& node, const std::string& field, const std::string& what) const {
+    std::filesystem::path path = yaml_.text(node, field);
+    if (path.is_relative()) path = yaml_.file().parent_path() / path;
+    if (!std::filesystem::exists(path)) yaml_.fail(node, field, what + " " + path.string() + " does not exist");
+    return path;
   }
 
   static std::set<std::string> linkNamesOf(const robot::RobotModel& model) {

@@ -67,6 +67,35 @@ void emitEndpoint(YAML::Emitter& out, const char* key, const QueryEndpoint& endp
   out << YAML::EndMap;
 }
 
+// `ur10e`, or the mapping the scene reader takes: urdf or ur_type (+ description, kinematics), srdf, tcp.
+void emitRobot(YAML::Emitter& out, const robot::RobotSource& source) {
+  const robot::ChainSelection defaultChain;
+  const bool defaultTcp = source.chain.tipLink == defaultChain.tipLink && !source.chain.tcpOffset;
+  if (source.isBuiltIn() && source.srdf.empty() && defaultTcp) {
+    out << "ur10e";
+    return;
+  }
+  out << YAML::BeginMap;
+  const auto path = [&](const char* key, const std::filesystem::path& value) {
+    if (!value.empty()) out << YAML::Key << key << YAML::Value << value.string();
+  };
+  path("urdf", source.isBuiltIn() ? robot::ur10eUrdfPath() : source.urdf);
+  if (!source.urType.empty()) out << YAML::Key << "ur_type" << YAML::Value << source.urType;
+  path("description", source.description);
+  path("kinematics", source.kinematics);
+  path("srdf", source.srdf);
+  if (!defaultTcp) {
+    out << YAML::Key << "tcp" << YAML::Value << YAML::BeginMap << YAML::Key << "link" << YAML::Value
+        << source.chain.tipLink;
+    if (source.chain.tcpOffset) {
+      out << YAML::Key << "offset" << YAML::Value;
+      emitVector(out, robot::xyzRpyFromPose(*source.chain.tcpOffset).data(), 6);
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+}
+
 }  // namespace
 
 std::string sceneToYaml(const Scene& scene) {
@@ -75,11 +104,7 @@ std::string sceneToYaml(const Scene& scene) {
   out << YAML::BeginMap;
   out << YAML::Key << "name" << YAML::Value << scene.name;
   out << YAML::Key << "robot" << YAML::Value;
-  if (scene.robotUrdf.empty()) {
-    out << "ur10e";
-  } else {
-    out << YAML::BeginMap << YAML::Key << "urdf" << YAML::Value << scene.robotUrdf.string() << YAML::EndMap;
-  }
+  emitRobot(out, scene.robot);
   out << YAML::Key << "obstacles" << YAML::Value << YAML::BeginSeq;
   for (const auto& obstacle : scene.obstacles) emitObstacle(out, obstacle);
   out << YAML::EndSeq;

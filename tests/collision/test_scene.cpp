@@ -39,7 +39,7 @@ const char* kValidHeader = "name: t\nrobot: ur10e\n";
 TEST(Scene, ThesisObstacleSceneHasTheIssuesNumbers) {
   const Scene scene = loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml");
   EXPECT_EQ(scene.name, "thesis_obstacle");
-  EXPECT_TRUE(scene.robotUrdf.empty());
+  EXPECT_TRUE(scene.robot.urdf.empty());
   ASSERT_EQ(scene.obstacles.size(), 2u);
   const Obstacle& table = scene.obstacles[0];
   EXPECT_EQ(table.shape, Obstacle::Shape::Box);
@@ -141,7 +141,13 @@ void expectSameEndpoint(const arcplan::collision::QueryEndpoint& read, const arc
 // Field by field; numbers to the 15 significant digits the writer keeps.
 void expectSameScene(const Scene& read, const Scene& given) {
   EXPECT_EQ(read.name, given.name);
-  EXPECT_EQ(read.robotUrdf, given.robotUrdf);
+  EXPECT_EQ(read.robot.urdf, given.robot.urdf);
+  EXPECT_EQ(read.robot.urType, given.robot.urType);
+  EXPECT_EQ(read.robot.srdf, given.robot.srdf);
+  EXPECT_EQ(read.robot.chain.tipLink, given.robot.chain.tipLink);
+  ASSERT_EQ(read.robot.chain.tcpOffset.has_value(), given.robot.chain.tcpOffset.has_value());
+  if (given.robot.chain.tcpOffset)
+    EXPECT_TRUE(read.robot.chain.tcpOffset->isApprox(*given.robot.chain.tcpOffset, 1e-14));
   ASSERT_EQ(read.obstacles.size(), given.obstacles.size());
   for (std::size_t i = 0; i < given.obstacles.size(); ++i) {
     SCOPED_TRACE(given.obstacles[i].name);
@@ -168,7 +174,14 @@ void expectSameScene(const Scene& read, const Scene& given) {
 
 TEST(SceneWriter, WrittenScenesReadBackAsTheSameScene) {
   const auto dir = arcplan::testing::freshTempDirectory("scene_round_trip");
-  for (const auto& source : {everyShapeScene(dir), arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"}) {
+  // arcplan's UR10e from its URDF with an SRDF and a TCP offset: the robot entry as a mapping.
+  std::ofstream(dir / "r.srdf") << "<robot name=\"ur10e\"><disable_collisions link1=\"wrist_1_link\" "
+                                   "link2=\"wrist_3_link\" reason=\"Never\"/></robot>";
+  const auto robotScene = dir / "robot_entry.yaml";
+  std::ofstream(robotScene) << "name: robot_entry\nrobot: {urdf: " << arcplan::robot::ur10eUrdfPath().string()
+                            << ", srdf: r.srdf, tcp: {link: flange, offset: [0, 0.01, 0.2, 0, 0, pi/4]}}\n";
+  for (const auto& source :
+       {everyShapeScene(dir), arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml", robotScene}) {
     SCOPED_TRACE(source.string());
     const Scene scene = loadScene(source);
     const auto written = dir / ("written_" + source.filename().string());

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
 #include "arcplan/common/error.h"
@@ -264,6 +266,115 @@ TEST(UrDescription, MissingFieldInACalibrationNamesFileLineAndField) {
     EXPECT_NE(message.find((dir / "k.yaml").string() + ":"), std::string::npos) << message;
     EXPECT_NE(message.find("kinematics.wrist_2: missing 'yaw'"), std::string::npos) << message;
   }
+}
+
+}  // namespace
+
+// The command line and scenes on these robots, through the real `arcplan` binary.
+namespace {
+
+using arcplan::testing::runArcplan;
+
+std::filesystem::path writeScene(const std::string& name, const std::string& robot, const std::string& rest = "") {
+  const auto file = arcplan::testing::freshTempDirectory("scene_" + name) / "scene.yaml";
+  std::ofstream(file) << "name: " << name << "\nrobot: " << robot << "\n" << rest;
+  return file;
+}
+
+const char* kJointQuery = R"(obstacles:
+  - name: post
+    cylinder: {radius: 0.05, length: 2.0}
+    position: [1.5, 1.5, 0.0]
+queries:
+  - name: swing
+    start: {joints: [0, -1.57, 1.0, -1.0, -1.57, 0]}
+    goal: {joints: [1.2, -1.2, 1.3, -1.6, -1.57, 0.6]}
+)";
+
+TEST(UrArmsOnTheCommandLine, EveryDescriptionTypePlansFromAScene) {
+  for (const auto& type : typesInFolder()) {
+    const auto scene = writeScene("plan_" + type, "{ur_type: " + type + "}", kJointQuery);
+    const auto json = scene.parent_path() / "plan.json";
+    const auto result = runArcplan({"plan", "--scene", scene.string(), "--planner", "RRTConnect", "--time", "5",
+                                    "--seed", "1", "--json", json.string()});
+    ASSERT_EQ(result.exitCode, 0) << type << ": " << result.err;
+    EXPECT_EQ(nlohmann::json::parse(arcplan::testing::readFile(json))["status"], "exact") << type;
+  }
+}
+
+TEST(UrArmsOnTheCommandLine, MotionBenchMakerUr5PlansWithItsSrdf) {
+  const auto scene = writeScene(
+      "plan_mbm",
+      "{urdf: " + mbmUr5Urdf().string() + ", srdf: " + (mbmUr5Urdf().parent_path() / "ur5.srdf").string() + "}",
+      kJointQuery);
+  const auto json = scene.parent_path() / "plan.json";
+  const auto result = runArcplan({"plan", "--scene", scene.string(), "--planner", "RRTConnect", "--time", "5", "--seed",
+                                  "1", "--json", json.string()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(nlohmann::json::parse(arcplan::testing::readFile(json))["status"], "exact");
+}
+
+TEST(UrArmsOnTheCommandLine, GripperFingersCollideWhereTheyAre) {
+  // A small box where the left finger tip of the MBM UR5 is at this configuration: the finger (a link
+  // beyond the flange that only fixed joints reach) is what touches it.
+  const RobotModel model = arcplan::robot::loadRobotModel(mbmUr5Urdf());
+  Vector6 q;
+  q << 0.3, -1.2, 1.4, -1.8, -1.57, 0.2;
+  arcplan::robot::KinematicsData data(model);
+  arcplan::robot::forwardKinematics(model, q, data);
+  const Eigen::Vector3d finger = data.linkPoses[model.linkIndex("robotiq_85_left_finger_tip_link")].translation();
+  std::ostringstream obstacle;
+  obstacle.precision(17);
+  obstacle << "obstacles:\n  - name: crumb\n    sphere: {radius: 0.004}\n    position: [" << finger.x() << ", "
+           << finger.y() << ", " << finger.z() << "]\n";
+  const auto scene = writeScene("finger", "{urdf: " + mbmUr5Urdf().string() + "}", obstacle.str());
+  const auto json = scene.parent_path() / "check.json";
+  const auto result = runArcplan({"robot", "check", "--scene", scene.string(), "--joints",
+                                  "0.3,-1.2,1.4,-1.8,-1.57,0.2", "--json", json.string()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto document = nlohmann::json::parse(arcplan::testing::readFile(json));
+  EXPECT_FALSE(document["valid"].get<bool>());
+  bool fingerHit = false;
+  for (const auto& pair : document["collisions"]) {
+    fingerHit |= pair[0] == "robotiq_85_left_finger_tip_link" && pair[1] == "crumb";
+  }
+  EXPECT_TRUE(fingerHit) << document["collisions"].dump();
+}
+
+TEST(UrArmsOnTheCommandLine, ForwardKinematicsOfATypeMatchesItsYaml) {
+  Vector6 q;
+  q << 0.2, -1.1, 1.3, -0.7, 1.2, 0.4;
+  const auto json = arcplan::testing::freshTempDirectory("fk_ur3e") / "fk.json";
+  const auto result = runArcplan({"robot", "fk", "--ur-type", "ur3e", "--description", descriptionFolder().string(),
+                                  "--joints", "0.2,-1.1,1.3,-0.7,1.2,0.4", "--json", json.string()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto document = nlohmann::json::parse(arcplan::testing::readFile(json));
+  const Eigen::Isometry3d tool0 = framesFromYaml(descriptionFolder() / "config/ur3e/default_kinematics.yaml", q).back();
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(document["position"][k].get<double>(), tool0.translation()[k], 1e-12);
+  EXPECT_EQ(document["link"], "tool0");
+}
+
+TEST(UrArmsOnTheCommandLine, BadRobotInputSaysWhatAndWhere) {
+  const auto unknown = writeScene("unknown_type", "{ur_type: ur7e}", kJointQuery);
+  auto result = runArcplan({"robot", "check", "--scene", unknown.string(), "--joints", "0,-1.57,1,-1,-1.57,0"});
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_NE(result.err.find(unknown.string() + ":2:"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("unknown UR type 'ur7e'"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("ur10e, ur16e"), std::string::npos) << result.err;
+
+  const auto dir = arcplan::testing::freshTempDirectory("bad_srdf");
+  std::ofstream(dir / "r.srdf")
+      << "<robot name=\"r\">\n<disable_collisions link1=\"base_link\" link2=\"gripper\"/>\n</robot>\n";
+  const auto badSrdf = writeScene("bad_srdf", "{ur_type: ur5e, srdf: " + (dir / "r.srdf").string() + "}", kJointQuery);
+  result = runArcplan({"robot", "check", "--scene", badSrdf.string(), "--joints", "0,-1.57,1,-1,-1.57,0"});
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_NE(result.err.find((dir / "r.srdf").string() + ":2: link 'gripper' is not a link of robot 'ur5e'"),
+            std::string::npos)
+      << result.err;
+
+  result = runArcplan({"robot", "fk", "--joints", "0,0,0,0,0,0", "--kinematics", (dir / "r.srdf").string()});
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_NE(result.err.find("--description and --kinematics need --ur-type"), std::string::npos) << result.err;
 }
 
 }  // namespace

@@ -35,6 +35,14 @@ AllowedCollisionMatrix loadAllowedCollisions(const std::filesystem::path& file);
 // data/ur10e/allowed_collisions.yaml (written by arcplan_generate_allowed_collisions).
 std::filesystem::path ur10eAllowedCollisionsPath();
 
+// The <disable_collisions> pairs of an SRDF (robot/srdf.h). Throws arcplan::Error with file:line for
+// a pair naming a link `model` does not have.
+AllowedCollisionMatrix srdfAllowedCollisions(const std::filesystem::path& srdfFile, const robot::RobotModel& model);
+
+// The robot's own allowed pairs: an SRDF's pairs when `srdfFile` is given (MoveIt's meaning: what the
+// SRDF does not disable is checked), else defaultAllowedCollisions.
+AllowedCollisionMatrix robotAllowedCollisions(const robot::RobotModel& model, const std::filesystem::path& srdfFile);
+
 // Adjacent pairs; for arcplan's built-in UR10e also the recorded never-colliding pairs, which hold
 // only for its own link meshes (a model loaded from another URDF gets the adjacent pairs alone).
 AllowedCollisionMatrix defaultAllowedCollisions(const robot::RobotModel& model);
