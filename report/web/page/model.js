@@ -50,6 +50,13 @@
     return comparison.worst_windows.filter(w => w.axis === "time_s");
   }
 
+  // Events (moments the residual leaves its noise band and comes back, e.g. a push), where failures were analysed.
+  function events(dataset) {
+    const comparison = data.comparison;
+    if (!comparison || !comparison.events || comparison.failures_analysed_on !== dataset) return [];
+    return comparison.events;
+  }
+
   function seriesSection() {
     const available = ["validation", "data"].filter(which => data.series[which]);
     if (available.length === 0) return;
@@ -60,7 +67,9 @@
       label: which === "validation" ? "validation data (held out) — " + data.series[which].file : "fitted data — " + data.series[which].file}));
     selectablePlotGrid(section, "data", options, (which, grid) => {
       const shading = worstWindows(which).map(w => ({type: "rect", xref: "x", yref: "paper", x0: w.start, x1: w.end, y0: 0, y1: 1,
-                                                     fillcolor: "#f4a261", opacity: 0.25, line: {width: 0}}));
+                                                     fillcolor: "#f4a261", opacity: 0.25, line: {width: 0}}))
+        .concat(events(which).map(e => ({type: "rect", xref: "x", yref: "paper", x0: e.start_s, x1: e.end_s, y0: 0, y1: 1,
+                                         fillcolor: "#d62728", opacity: 0.2, line: {width: 0}})));
       data.series[which].channels.forEach((channel, index) => {
         const container = el("div", {class: "plot series-plot", id: "series-" + index, "data-channel": channel.channel});
         grid.appendChild(container);
@@ -79,6 +88,17 @@
         {label: "start", value: w => w.start}, {label: "end", value: w => w.end}, {label: "NRMSE in window", value: w => w.nrmse},
         {label: "worst channel", text: true, value: w => w.worst_channel, cell: w => w.worst_channel}],
         windows.map((w, i) => Object.assign({key: i}, w))));
+    }
+    const found = data.comparison && data.comparison.events;
+    if (found && found.length) {
+      section.appendChild(el("h3", {text: "Events: moments the residual leaves its noise band and comes back (" +
+                                          data.comparison.failures_analysed_on + " data, shaded red)"}));
+      section.appendChild(sortableTable("events", [
+        {label: "start (s)", value: e => e.start_s}, {label: "end (s)", value: e => e.end_s},
+        {label: "joints", text: true, value: e => e.joints.join(","), cell: e => e.joints.join(", ")},
+        {label: "peak (noise scales)", value: e => e.peak_scales},
+        {label: "tool force (N)", value: e => (e.wrench_N ? Math.hypot(...e.wrench_N) : null)}],
+        found.map((e, i) => Object.assign({key: i}, e))));
     }
   }
 
