@@ -6,7 +6,7 @@
 #include <unistd.h>
 
 #include "arcplan/benchmarks/baseline.h"
-#include "arcplan/benchmarks/statistics_database.h"
+#include "arcplan/benchmarks/benchmark_log_check.h"
 #include "arcplan/benchmarks/suite.h"
 #include "arcplan/collision/allowed_collisions.h"
 #include "arcplan/collision/scene.h"

@@ -11,7 +11,7 @@ using namespace arcplan::benchmarks;
 // The generated suite's shape: 50 problems x 11 planners x `runs` runs, a quarter of them failed.
 void BM_RankRuns(benchmark::State& state) {
   const int runs = static_cast<int>(state.range(0));
-  std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>> data;
+  arcplan::benchmarks::CampaignRuns data;
   for (int p = 0; p < 50; ++p) {
     for (int q = 0; q < 11; ++q) {
       auto& list = data["problem" + std::to_string(p)]["planner" + std::to_string(q)];
@@ -20,7 +20,7 @@ void BM_RankRuns(benchmark::State& state) {
           list.push_back({});
         } else {
           const double t = 3.0 + 0.01 * ((p * 7 + q * 13 + r * 3) % 97);
-          list.push_back({{"execution_time_s", t}, {"tcp_path_length_m", 0.25 * t}, {"solve_time_s", 0.01}});
+          list.push_back({true, {{"execution_time_s", t}, {"tcp_path_length_m", 0.25 * t}, {"solve_time_s", 0.01}}});
         }
       }
     }

@@ -15,6 +15,7 @@
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/error.h"
 #include "campaign_layout.h"
+#include "campaign_lock.h"
 #include "campaign_plots.h"
 #include "job_runner.h"
 #include "worker_pool.h"

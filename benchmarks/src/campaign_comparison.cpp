@@ -4,28 +4,22 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <functional>
 #include <limits>
 #include <set>
-#include <sstream>
 #include <tuple>
 
-#include "arcplan/benchmarks/baseline.h"
 #include "arcplan/benchmarks/comparison_statistics.h"
-#include "arcplan/benchmarks/ranking.h"
-#include "arcplan/common/atomic_file.h"
+#include "arcplan/benchmarks/median_run.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_formatting.h"
-#include "arcplan/common/text_parsing.h"
 #include "arcplan/trajectory/metric_descriptors.h"
 
 namespace arcplan::benchmarks {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-const std::string kSolveTimeKey = "solve_time_s";
-
-std::string pairName(const std::string& problem, const std::string& planner) { return problem + " · " + planner; }
+std::string pairName(const ProblemName& problem, const PlannerLabel& planner) { return problem + " · " + planner; }
 
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -50,71 +44,44 @@ Verdict directionVerdict(double change, bool lowerIsBetter) {
   return (change < 0.0) == lowerIsBetter ? Verdict::Better : Verdict::Worse;
 }
 
-// ---- median-run files: the first waypoint where two deterministic paths part -------------------
+// ---- median runs: the first waypoint where two deterministic paths part ------------------------
 
-struct PathTable {
-  std::vector<std::string> columns;
-  std::vector<std::vector<double>> rows;
-};
-
-PathTable readPathTable(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw Error("cannot read median-run file " + file.string());
-  PathTable table;
-  std::string line;
-  int lineNumber = 0;
-  while (std::getline(in, line)) {
-    ++lineNumber;
-    if (line.empty() || line.front() == '#') continue;
-    const auto fields = splitFields(line, ',');
-    if (table.columns.empty()) {
-      for (const auto field : fields) table.columns.emplace_back(trim(field));
-      continue;
-    }
-    std::vector<double> row;
-    for (const auto field : fields) {
-      const auto value = parseDouble(field);
-      if (!value)
-        throw Error(file.string() + ":" + std::to_string(lineNumber) + ": expected numbers, got '" + line + "'");
-      row.push_back(*value);
-    }
-    if (row.size() != table.columns.size()) {
-      throw Error(file.string() + ":" + std::to_string(lineNumber) + ": expected " +
-                  std::to_string(table.columns.size()) + " values as in the header");
-    }
-    table.rows.push_back(std::move(row));
+// A median run's sample columns by name, the positions (x, y, z, q0..q5 when recorded) before the timing
+// (t, tcp_speed): where paths part geometrically says more than where their timing does.
+std::vector<std::pair<std::string, std::function<double(std::size_t)>>> sampleColumns(const MedianRun& run,
+                                                                                      bool joints) {
+  std::vector<std::pair<std::string, std::function<double(std::size_t)>>> columns;
+  for (int k = 0; k < 3; ++k)
+    columns.emplace_back(std::string(1, "xyz"[k]), [&run, k](std::size_t i) { return run.tcp[i][k]; });
+  for (int j = 0; joints && j < 6; ++j) {
+    columns.emplace_back("q" + std::to_string(j), [&run, j](std::size_t i) { return run.joints[i][j]; });
   }
-  return table;
+  columns.emplace_back("t", [&run](std::size_t i) { return run.time[i]; });
+  columns.emplace_back("tcp_speed", [&run](std::size_t i) { return run.tcpSpeed[i]; });
+  return columns;
 }
 
 // "" when the paths agree within the tolerance; else where they first differ.
 std::string firstPathDifference(const std::filesystem::path& baseFile, const std::filesystem::path& currentFile,
                                 double tolerance) {
-  const auto base = readPathTable(baseFile), current = readPathTable(currentFile);
-  std::vector<std::pair<std::size_t, std::size_t>> shared;  // column index in base, in current
-  for (std::size_t i = 0; i < base.columns.size(); ++i) {
-    const auto found = std::find(current.columns.begin(), current.columns.end(), base.columns[i]);
-    if (found != current.columns.end())
-      shared.emplace_back(i, static_cast<std::size_t>(found - current.columns.begin()));
-  }
-  // Where the paths part geometrically says more than where their timing does: positions first.
-  const auto timing = [&](const std::pair<std::size_t, std::size_t>& columns) {
-    return base.columns[columns.first] == "t" || base.columns[columns.first] == "tcp_speed";
-  };
-  const std::size_t rows = std::min(base.rows.size(), current.rows.size());
-  for (const bool timingColumns : {false, true}) {
+  const MedianRun base = readMedianRun(baseFile), current = readMedianRun(currentFile);
+  const bool joints = !base.joints.empty() && !current.joints.empty();
+  const auto baseColumns = sampleColumns(base, joints), currentColumns = sampleColumns(current, joints);
+  const std::size_t rows = std::min(base.time.size(), current.time.size());
+  for (const auto& [begin, end] :
+       {std::pair<std::size_t, std::size_t>{0, baseColumns.size() - 2}, {baseColumns.size() - 2, baseColumns.size()}}) {
     for (std::size_t r = 0; r < rows; ++r) {
-      for (const auto& columns : shared) {
-        const auto [b, c] = columns;
-        if (timing(columns) != timingColumns || std::abs(base.rows[r][b] - current.rows[r][c]) <= tolerance) continue;
-        return "median runs first differ at waypoint " + std::to_string(r) + ": " + base.columns[b] + " " +
-               formatNumber(base.rows[r][b], 9) + " -> " + formatNumber(current.rows[r][c], 9);
+      for (std::size_t c = begin; c < end; ++c) {
+        const double b = baseColumns[c].second(r), n = currentColumns[c].second(r);
+        if (std::abs(b - n) <= tolerance) continue;
+        return "median runs first differ at waypoint " + std::to_string(r) + ": " + baseColumns[c].first + " " +
+               formatNumber(b, 9) + " -> " + formatNumber(n, 9);
       }
     }
   }
-  if (base.rows.size() != current.rows.size()) {
+  if (base.time.size() != current.time.size()) {
     return "median runs agree on their first " + std::to_string(rows) + " waypoints, then have " +
-           std::to_string(base.rows.size()) + " -> " + std::to_string(current.rows.size()) + " waypoints";
+           std::to_string(base.time.size()) + " -> " + std::to_string(current.time.size()) + " waypoints";
   }
   return "";
 }
@@ -193,7 +160,8 @@ ComparisonRow metricRow(const std::string& problem, const std::string& planner,
 Verdict stochasticVerdict(const ComparisonRow& row, const ComparisonOptions& options) {
   if (!(row.adjustedPValue < options.alpha) || !(std::abs(row.effect) >= options.minEffect)) return Verdict::Same;
   if (row.method == ComparisonMethod::Fisher) return directionVerdict(row.effect, false);
-  if (row.metric == kSolveTimeKey && std::abs(row.current - row.base) < options.solveTimeFloor) return Verdict::Same;
+  if (row.metric == trajectory::solveTimeDescriptor().key && std::abs(row.current - row.base) < options.solveTimeFloor)
+    return Verdict::Same;
   return directionVerdict(row.current - row.base, trajectory::metricDescriptor(row.metric).lowerIsBetter);
 }
 
@@ -211,45 +179,14 @@ void addSettingDifferences(
   }
 }
 
-// ---- formatting --------------------------------------------------------------------------------
-
-std::string number(double value) { return std::isnan(value) ? "-" : formatNumber(value, 7); }
-
-std::string effectText(const ComparisonRow& row) {
-  if (row.method == ComparisonMethod::None) return "-";
-  if (row.metric == kSuccessRateKey) return (row.effect >= 0 ? "+" : "") + formatNumber(100.0 * row.effect, 3) + " pp";
-  return (row.effect >= 0 ? "+" : "") + formatNumber(100.0 * row.effect, 3) + " %";
-}
-
-std::string pText(double p) { return std::isnan(p) ? "-" : formatNumber(p, 3); }
-
-std::string valueText(const ComparisonRow& row, double value) {
-  if (row.metric == kSuccessRateKey && !std::isnan(value)) return formatNumber(100.0 * value, 4) + " %";
-  return number(value);
-}
-
-std::string metricLabel(const std::string& key) {
-  if (key == kSuccessRateKey) return "success rate";
-  if (key == "-") return "-";
-  return trajectory::metricDescriptor(key).label;
-}
-
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
-nlohmann::json jsonNumber(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
 }  // namespace
 
 const std::vector<std::string>& defaultComparedMetrics() {
-  static const std::vector<std::string> keys{"execution_time_s", "tcp_path_length_m", "solve_time_s", "min_clearance_m",
-                                             "peak_tcp_speed_mps"};
+  using M = trajectory::TrajectoryMetrics;
+  static const std::vector<std::string> keys{
+      trajectory::metricDescriptor(&M::executionTime).key, trajectory::metricDescriptor(&M::tcpPathLength).key,
+      trajectory::solveTimeDescriptor().key, trajectory::metricDescriptor(&M::minClearance).key,
+      trajectory::metricDescriptor(&M::peakTcpSpeed).key};
   return keys;
 }
 
@@ -284,58 +221,6 @@ std::string methodName(ComparisonMethod method) {
 int CampaignComparison::count(Verdict verdict) const {
   return static_cast<int>(
       std::count_if(rows.begin(), rows.end(), [&](const ComparisonRow& row) { return row.verdict == verdict; }));
-}
-
-CampaignResults campaignResultsFromRuns(
-    const std::string& source,
-    const std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>>& runs,
-    const std::map<std::string, std::map<std::string, std::map<std::string, std::string>>>& settings) {
-  CampaignResults results;
-  results.source = source;
-  for (const auto& [problem, planners] : runs) {
-    for (const auto& [planner, plannerRuns] : planners) {
-      auto& entry = results.problems[problem][planner];
-      for (const auto& run : plannerRuns) {
-        ++entry.runs;
-        const auto time = run.find("execution_time_s");
-        if (time == run.end() || !std::isfinite(time->second)) continue;  // a failed run (rankRuns' rule)
-        ++entry.successes;
-        for (const auto& [key, value] : run) {
-          if (std::isfinite(value)) entry.values[key].push_back(value);
-        }
-      }
-      const auto problemSettings = settings.find(problem);
-      if (problemSettings == settings.end()) continue;
-      const auto plannerSettings = problemSettings->second.find(planner);
-      if (plannerSettings != problemSettings->second.end()) entry.settings = plannerSettings->second;
-    }
-  }
-  return results;
-}
-
-CampaignResults loadCampaignResults(const std::filesystem::path& input) {
-  if (std::filesystem::is_directory(input)) {
-    const auto database = input / "benchmark.db";
-    if (!std::filesystem::is_regular_file(database)) {
-      throw Error(input.string() +
-                  ": not a finished campaign folder (no benchmark.db; `arcplan bench` writes it once "
-                  "every job of the campaign is done)");
-    }
-    const auto recorded = readRecordedRuns(database);
-    auto results = campaignResultsFromRuns(input.string(), recorded.runs, recorded.settings);
-    for (auto& [problem, planners] : results.problems) {
-      for (auto& [planner, entry] : planners) {
-        const auto medianRun = input / "paths" / problem / (planner + ".csv");
-        if (std::filesystem::is_regular_file(medianRun)) entry.medianRun = medianRun;
-      }
-    }
-    return results;
-  }
-  if (!std::filesystem::exists(input))
-    throw Error(input.string() + ": no such campaign folder, database or baseline file");
-  if (isBaselineFile(input)) return baselineResults(readBaseline(input), input.string());
-  const auto recorded = readRecordedRuns(input);
-  return campaignResultsFromRuns(input.string(), recorded.runs, recorded.settings);
 }
 
 void checkComparisonOptions(const ComparisonOptions& options) {
@@ -427,123 +312,6 @@ CampaignComparison compareCampaigns(const CampaignResults& base, const CampaignR
     row.verdict = stochasticVerdict(row, options);
   }
   return comparison;
-}
-
-std::string comparisonMarkdown(const CampaignComparison& comparison, bool onlyChanges) {
-  std::ostringstream out;
-  const auto& o = comparison.options;
-  out << "# Campaign comparison\n\n"
-      << "- base: `" << comparison.base << "`\n- new: `" << comparison.current << "`\n"
-      << "- verdicts: " << comparison.count(Verdict::Worse) << " worse, " << comparison.count(Verdict::Better)
-      << " better, " << comparison.count(Verdict::Same) << " same, " << comparison.count(Verdict::NotComparable)
-      << " not comparable\n"
-      << "- thresholds: alpha " << formatNumber(o.alpha, 3) << " (Holm over the stochastic rows), minimum effect "
-      << formatNumber(100.0 * o.minEffect, 3) << " %, exact tolerance " << formatNumber(o.tolerance, 3)
-      << ", solve-time floor " << formatNumber(o.solveTimeFloor, 3) << " s\n";
-
-  if (!comparison.onlyInBase.empty() || !comparison.onlyInNew.empty()) {
-    out << "\n## On one side only\n\n";
-    for (const auto& pair : comparison.onlyInBase) out << "- only in base: " << pair << "\n";
-    for (const auto& pair : comparison.onlyInNew) out << "- only in new: " << pair << "\n";
-  }
-  if (!comparison.settings.empty()) {
-    out << "\n## Different settings\n\n| setting | base | new | where |\n|---|---|---|---|\n";
-    for (const auto& difference : comparison.settings) {
-      out << "| " << difference.setting << " | " << difference.base << " | " << difference.current << " | "
-          << (difference.pairs.empty() ? std::string("every pair") : joinText(difference.pairs, ", ")) << " |\n";
-    }
-  }
-  out << "\n## Results\n\n";
-  int hidden = 0;
-  std::ostringstream table;
-  for (const auto& row : comparison.rows) {
-    if (onlyChanges && row.verdict == Verdict::Same) {
-      ++hidden;
-      continue;
-    }
-    table << "| " << row.problem << " | " << row.planner << " | " << metricLabel(row.metric) << " | " << row.baseCount
-          << " → " << row.newCount << " | " << valueText(row, row.base) << " | " << valueText(row, row.current) << " | "
-          << effectText(row) << " | " << methodName(row.method) << " | " << pText(row.pValue) << " | "
-          << pText(row.adjustedPValue) << " | **" << verdictName(row.verdict) << "** | " << row.note << " |\n";
-  }
-  if (hidden < static_cast<int>(comparison.rows.size())) {
-    out << "Values: success rate, the exact value, or the median of the successful runs; n: runs (success rate) or "
-           "successful runs (metrics).\n\n"
-        << "| problem | planner | metric | n | base | new | effect | test | p | p (Holm) | verdict | note |\n"
-        << "|---|---|---|---:|---:|---:|---:|---|---:|---:|---|---|\n"
-        << table.str();
-  }
-  if (hidden > 0) out << "\n" << hidden << " row(s) with verdict \"same\" not shown.\n";
-  return out.str();
-}
-
-nlohmann::json comparisonJson(const CampaignComparison& comparison) {
-  const auto& o = comparison.options;
-  nlohmann::json settings = nlohmann::json::array();
-  for (const auto& difference : comparison.settings) {
-    settings.push_back(
-        {{"setting", difference.setting},
-         {"base", difference.base},
-         {"new", difference.current},
-         {"pairs", difference.pairs.empty() ? nlohmann::json("all") : nlohmann::json(difference.pairs)}});
-  }
-  nlohmann::json rows = nlohmann::json::array();
-  for (const auto& row : comparison.rows) {
-    rows.push_back({{"problem", row.problem},
-                    {"planner", row.planner},
-                    {"metric", row.metric},
-                    {"test", methodName(row.method)},
-                    {"base_n", row.baseCount},
-                    {"new_n", row.newCount},
-                    {"base", jsonNumber(row.base)},
-                    {"new", jsonNumber(row.current)},
-                    {"effect", row.method == ComparisonMethod::None ? nlohmann::json(nullptr) : jsonNumber(row.effect)},
-                    {"p", jsonNumber(row.pValue)},
-                    {"p_holm", jsonNumber(row.adjustedPValue)},
-                    {"rank_biserial", jsonNumber(row.rankBiserial)},
-                    {"verdict", verdictName(row.verdict)},
-                    {"note", row.note}});
-  }
-  return {{"base", comparison.base},
-          {"new", comparison.current},
-          {"options",
-           {{"alpha", o.alpha},
-            {"min_effect", o.minEffect},
-            {"tolerance", o.tolerance},
-            {"solve_time_floor_s", o.solveTimeFloor},
-            {"metrics", o.metrics}}},
-          {"counts",
-           {{"worse", comparison.count(Verdict::Worse)},
-            {"better", comparison.count(Verdict::Better)},
-            {"same", comparison.count(Verdict::Same)},
-            {"not_comparable", comparison.count(Verdict::NotComparable)}}},
-          {"only_in_base", comparison.onlyInBase},
-          {"only_in_new", comparison.onlyInNew},
-          {"settings", settings},
-          {"rows", rows}};
-}
-
-std::string comparisonCsv(const CampaignComparison& comparison) {
-  std::ostringstream out;
-  out << "problem,planner,metric,test,base_n,new_n,base,new,effect,p,p_holm,verdict,note\n";
-  const auto csvNumber = [](double value) { return std::isnan(value) ? std::string() : formatNumber(value, 10); };
-  for (const auto& row : comparison.rows) {
-    out << csvField(row.problem) << "," << csvField(row.planner) << "," << row.metric << "," << methodName(row.method)
-        << "," << row.baseCount << "," << row.newCount << "," << csvNumber(row.base) << "," << csvNumber(row.current)
-        << "," << (row.method == ComparisonMethod::None ? std::string() : csvNumber(row.effect)) << ","
-        << csvNumber(row.pValue) << "," << csvNumber(row.adjustedPValue) << "," << verdictName(row.verdict) << ","
-        << csvField(row.note) << "\n";
-  }
-  return out.str();
-}
-
-void writeComparison(const CampaignComparison& comparison, const std::filesystem::path& directory) {
-  std::error_code ec;
-  std::filesystem::create_directories(directory, ec);
-  if (ec) throw Error("cannot create directory " + directory.string() + ": " + ec.message());
-  writeFileAtomically(directory / "comparison.md", comparisonMarkdown(comparison));
-  writeFileAtomically(directory / "comparison.json", comparisonJson(comparison).dump(2) + "\n");
-  writeFileAtomically(directory / "comparison.csv", comparisonCsv(comparison));
 }
 
 }  // namespace arcplan::benchmarks

@@ -20,6 +20,7 @@
 
 #include "arcplan/benchmarks/campaign.h"
 #include "arcplan/benchmarks/interrupt.h"
+#include "arcplan/benchmarks/median_run.h"
 #include "arcplan/benchmarks/solution_policy.h"
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/joint_states.h"
@@ -175,9 +176,7 @@ struct RecordedRun {
   unsigned run = 0;
   double executionTime = 0.0;
   double tcpPathLength = 0.0;
-  std::vector<double> time, speed;
-  std::vector<Eigen::Vector3d> tcp;
-  std::vector<robot::Vector6> joints;  // the HTML report moves the arm along them
+  MedianRun samples;  // with the joints: the HTML report moves the arm along them
 };
 
 RecordedRun recordProfile(unsigned run, const trajectory::TimedTrajectory& trajectory) {
@@ -185,13 +184,14 @@ RecordedRun recordProfile(unsigned run, const trajectory::TimedTrajectory& traje
   recorded.run = run;
   recorded.executionTime = trajectory.duration();
   recorded.tcpPathLength = trajectory.tcpPathLength;
+  MedianRun& samples = recorded.samples;
   const std::size_t n = trajectory.time.size();
   const std::size_t stride = std::max<std::size_t>(1, n / kProfileSamples);
   const auto keep = [&](std::size_t i) {
-    recorded.time.push_back(trajectory.time[i]);
-    recorded.speed.push_back(trajectory.tcpSpeed[i]);
-    recorded.tcp.push_back(trajectory.tcpPosition[i]);
-    recorded.joints.push_back(trajectory.position[i]);
+    samples.time.push_back(trajectory.time[i]);
+    samples.tcpSpeed.push_back(trajectory.tcpSpeed[i]);
+    samples.tcp.push_back(trajectory.tcpPosition[i]);
+    samples.joints.push_back(trajectory.position[i]);
   };
   for (std::size_t i = 0; i < n; i += stride) keep(i);
   if (n > 0 && (n - 1) % stride != 0) keep(n - 1);
@@ -199,24 +199,18 @@ RecordedRun recordProfile(unsigned run, const trajectory::TimedTrajectory& traje
 }
 
 // The run with the median execution time among the successful ones (the lower one of an even count).
-void writeMedianRun(const std::filesystem::path& file, const std::string& planner, std::vector<RecordedRun> runs) {
+void writeMedianRunFile(const std::filesystem::path& file, const std::string& planner, std::vector<RecordedRun> runs) {
   if (runs.empty()) return;
   std::sort(runs.begin(), runs.end(), [](const RecordedRun& a, const RecordedRun& b) {
     return a.executionTime < b.executionTime || (a.executionTime == b.executionTime && a.run < b.run);
   });
-  const RecordedRun& median = runs[(runs.size() - 1) / 2];
-  writeJobOutput(file, [&](AtomicOutputFile& out) {
-    out.stream() << std::setprecision(9) << "# planner: " << planner << "\n# run: " << median.run
-                 << "\n# execution time (s): " << median.executionTime
-                 << "\n# tcp path length (m): " << median.tcpPathLength << "\n# successful runs: " << runs.size()
-                 << "\nt,tcp_speed,x,y,z,q0,q1,q2,q3,q4,q5\n";
-    for (std::size_t i = 0; i < median.time.size(); ++i) {
-      out.stream() << median.time[i] << "," << median.speed[i] << "," << median.tcp[i].x() << "," << median.tcp[i].y()
-                   << "," << median.tcp[i].z();
-      for (int j = 0; j < 6; ++j) out.stream() << "," << median.joints[i][j];
-      out.stream() << "\n";
-    }
-  });
+  RecordedRun& median = runs[(runs.size() - 1) / 2];
+  median.samples.notes = {{"planner", planner},
+                          {"run", std::to_string(median.run)},
+                          {"execution time (s)", formatNumber(median.executionTime, 9)},
+                          {"tcp path length (m)", formatNumber(median.tcpPathLength, 9)},
+                          {"successful runs", std::to_string(runs.size())}};
+  writeJobOutput(file, [&](AtomicOutputFile& out) { writeMedianRun(out.stream(), median.samples); });
 }
 
 // Every planner's validity checker and motion validator keep the suite's clearance.
@@ -338,8 +332,8 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
       run["time cap reached BOOLEAN"] = budgeted->capReached() ? "1" : "0";
     }
     // The arc planner reports its own solve time; OMPL planners' is OMPL's "time".
-    const std::string& solveTime = trajectory::metricDescriptor("solve_time_s").omplProperty;
-    if (run.count(solveTime) == 0) run[solveTime] = run["time REAL"];
+    const std::string& solveTime = trajectory::solveTimeDescriptor().omplProperty;
+    if (run.count(solveTime) == 0) run[solveTime] = run[kOmplTimeProperty];
     bool success = false;
     if (setup.haveExactSolutionPath()) {
       try {
@@ -372,7 +366,7 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   benchmark.setRecordedSeed(seed);
 
   // The plot data first: a job counts as done once its log exists.
-  if (!files.medianRun.empty()) writeMedianRun(files.medianRun, configuration.label, std::move(recorded));
+  if (!files.medianRun.empty()) writeMedianRunFile(files.medianRun, configuration.label, std::move(recorded));
   writeJobOutput(files.log, [&](AtomicOutputFile& log) {
     if (!benchmark.saveResultsToStream(log.stream())) {
       throw Error("writing " + files.log.string() + " failed: " + std::strerror(errno));

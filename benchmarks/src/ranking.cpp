@@ -6,6 +6,8 @@
 #include <limits>
 #include <numeric>
 
+#include "arcplan/benchmarks/benchmark_database.h"
+
 namespace arcplan::benchmarks {
 namespace {
 
@@ -13,11 +15,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Execution times and mean ranks closer than this are a tie (they come from identical paths).
 constexpr double kTieTolerance = 1e-9;
 
-using RunValues = std::map<std::string, double>;
-
-bool succeeded(const RunValues& run) {
-  const auto found = run.find("execution_time_s");
-  return found != run.end() && std::isfinite(found->second);
+const std::string& key(double trajectory::TrajectoryMetrics::*member) {
+  return trajectory::metricDescriptor(member).key;
 }
 
 double medianOfSorted(const std::vector<double>& sorted) {
@@ -43,15 +42,15 @@ MetricSummary summarize(std::vector<double> values) {
   return summary;
 }
 
-PlannerStanding standingFromRuns(const std::string& planner, const std::vector<const RunValues*>& runs) {
+PlannerStanding standingFromRuns(const std::string& planner, const std::vector<const RunRecord*>& runs) {
   PlannerStanding standing;
   standing.planner = planner;
   standing.runs = static_cast<int>(runs.size());
   std::vector<double> executionTimes;  // every run, failures as +inf
   for (const auto* run : runs) {
-    if (succeeded(*run)) {
+    if (run->succeeded()) {
       ++standing.successes;
-      executionTimes.push_back(run->at("execution_time_s"));
+      executionTimes.push_back(*run->value(key(&trajectory::TrajectoryMetrics::executionTime)));
     } else {
       executionTimes.push_back(kInfinity);
     }
@@ -62,9 +61,8 @@ PlannerStanding standingFromRuns(const std::string& planner, const std::vector<c
   for (const auto& metric : rankedMetrics()) {
     std::vector<double> values;
     for (const auto* run : runs) {
-      if (!succeeded(*run)) continue;
-      const auto found = run->find(metric.key);
-      if (found != run->end() && std::isfinite(found->second)) values.push_back(found->second);
+      if (!run->succeeded()) continue;
+      if (const auto value = run->value(metric.key)) values.push_back(*value);
     }
     standing.metrics[metric.key] = summarize(std::move(values));
   }
@@ -90,7 +88,8 @@ void rankProblem(std::vector<PlannerStanding>& planners) {
   std::sort(planners.begin(), planners.end(), [&](const PlannerStanding& a, const PlannerStanding& b) {
     if (better(a, b)) return true;
     if (better(b, a)) return false;
-    const double la = medianOf(a, "tcp_path_length_m"), lb = medianOf(b, "tcp_path_length_m");
+    const std::string& length = key(&trajectory::TrajectoryMetrics::tcpPathLength);
+    const double la = medianOf(a, length), lb = medianOf(b, length);
     if (la != lb) return la < lb;
     return a.planner < b.planner;
   });
@@ -101,11 +100,9 @@ void rankProblem(std::vector<PlannerStanding>& planners) {
 }
 
 // Mean rank, pooled runs and first places of every planner over `problems`, best first.
-std::vector<PlannerStanding> aggregate(
-    const std::vector<const ProblemRanking*>& problems,
-    const std::map<std::string, std::map<std::string, std::vector<RunValues>>>& runs) {
-  std::map<std::string, std::vector<int>> ranksOf;
-  std::map<std::string, std::vector<const RunValues*>> runsOf;
+std::vector<PlannerStanding> aggregate(const std::vector<const ProblemRanking*>& problems, const CampaignRuns& runs) {
+  std::map<PlannerLabel, std::vector<int>> ranksOf;
+  std::map<PlannerLabel, std::vector<const RunRecord*>> runsOf;
   for (const auto* problem : problems) {
     for (const auto& standing : problem->planners) {
       ranksOf[standing.planner].push_back(standing.rank);
@@ -141,14 +138,13 @@ std::vector<PlannerStanding> aggregate(
 
 const std::vector<RankedMetric>& rankedMetrics() { return trajectory::metricDescriptors(); }
 
-Ranking rankRuns(const std::map<std::string, std::map<std::string, std::vector<RunValues>>>& runs,
-                 const std::map<std::string, std::string>& families) {
+Ranking rankRuns(const CampaignRuns& runs, const std::map<ProblemName, std::string>& families) {
   Ranking ranking;
   for (const auto& [problem, planners] : runs) {
     ProblemRanking entry;
     entry.problem = problem;
     for (const auto& [planner, plannerRuns] : planners) {
-      std::vector<const RunValues*> pointers;
+      std::vector<const RunRecord*> pointers;
       for (const auto& run : plannerRuns) pointers.push_back(&run);
       entry.planners.push_back(standingFromRuns(planner, pointers));
     }
@@ -169,6 +165,13 @@ Ranking rankRuns(const std::map<std::string, std::map<std::string, std::vector<R
       ranking.families.push_back({family, static_cast<int>(members.size()), aggregate(members, runs)});
     }
   }
+  return ranking;
+}
+
+Ranking rankDatabase(const std::filesystem::path& file) {
+  const auto database = readBenchmarkDatabase(file);
+  auto ranking = rankRuns(database.runs, database.families);
+  ranking.database = file;
   return ranking;
 }
 

@@ -60,19 +60,22 @@ std::string standingsTable(const std::vector<PlannerStanding>& standings, bool o
          "|\n";
   out << "|---:|---|" << (overall ? "---:|---:|---:|" : "") << "---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& s : standings) {
-    const auto summary = [&](const char* key) -> const MetricSummary& { return s.metrics.at(key); };
-    const auto& length = summary("tcp_path_length_m");
+    using M = trajectory::TrajectoryMetrics;
+    const auto summary = [&](double M::*member) -> const MetricSummary& {
+      return s.metrics.at(trajectory::metricDescriptor(member).key);
+    };
+    const auto& length = summary(&M::tcpPathLength);
     out << "| " << s.rank << " | " << s.planner << " |";
     if (overall) out << " " << tableNumber(s.meanRank, 3) << " | " << s.problems << " | " << s.firstPlaces << " |";
     out << " " << percent(s.successRate) << " (" << s.successes << "/" << s.runs << ") |"
-        << " " << tableNumber(summary("execution_time_s").median) << " |"
+        << " " << tableNumber(summary(&M::executionTime).median) << " |"
         << " " << tableNumber(length.median) << " [" << tableNumber(length.min) << ", " << tableNumber(length.max)
         << "] |"
-        << " " << tableNumber(summary("solve_time_s").median, 3) << " |"
-        << " " << tableNumber(summary("peak_tcp_speed_mps").median) << " |"
-        << " " << tableNumber(summary("time_above_limit_s").max, 3) << " |"
-        << " " << tableNumber(summary("min_clearance_m").median, 3) << " |"
-        << " " << tableNumber(summary("max_joint_speed_ratio").max, 3) << " |\n";
+        << " " << tableNumber(s.metrics.at(trajectory::solveTimeDescriptor().key).median, 3) << " |"
+        << " " << tableNumber(summary(&M::peakTcpSpeed).median) << " |"
+        << " " << tableNumber(summary(&M::timeAboveLimit).max, 3) << " |"
+        << " " << tableNumber(summary(&M::minClearance).median, 3) << " |"
+        << " " << tableNumber(summary(&M::maxJointSpeedRatio).max, 3) << " |\n";
   }
   return out.str();
 }

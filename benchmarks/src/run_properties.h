@@ -1,6 +1,6 @@
 #pragma once
 // Names that cross from the benchmark logs arcplan writes (job_runner.cpp) through Debian's
-// ompl_benchmark_statistics into the database the ranking reads (ranking_database.cpp). The metric
+// ompl_benchmark_statistics into the database arcplan reads back (benchmark_database.cpp). The metric
 // run properties are in trajectory/metric_descriptors.h; this holds the others that are read back.
 // Internal to arcplan::benchmarks.
 #include <algorithm>
@@ -12,6 +12,9 @@ struct ExperimentParameter {
   const char* name;  // as in the log: only [A-Za-z0-9 ] (the statistics script pastes it into SQL)
   const char* type;  // SQL type
 };
+
+// OMPL's own run property of the planner's wall-clock solve time (the solve time of OMPL planners).
+inline constexpr const char* kOmplTimeProperty = "time REAL";
 
 // The problem family ("line-sphere", "pillar", "scene file"): the ranking's per-family tables.
 inline constexpr ExperimentParameter kProblemKindParameter{"problem kind", "TEXT"};

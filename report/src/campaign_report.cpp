@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "arcplan/benchmarks/benchmark_database.h"
+#include "arcplan/benchmarks/median_run.h"
 #include "arcplan/benchmarks/ranking.h"
 #include "arcplan/common/error.h"
-#include "arcplan/report/benchmark_runs.h"
-#include "arcplan/report/median_run.h"
 #include "arcplan/report/robot_animation.h"
 #include "arcplan/robot/robot_model.h"
 #include "compact_number.h"
@@ -22,7 +22,7 @@ std::string relativeLink(const std::filesystem::path& target, const std::filesys
   return std::filesystem::weakly_canonical(std::filesystem::absolute(target)).lexically_relative(from).generic_string();
 }
 
-nlohmann::json runsJson(const BenchmarkRuns& runs) {
+nlohmann::json runsJson(const benchmarks::BenchmarkDatabase& runs) {
   nlohmann::json problems = nlohmann::json::object();
   for (const auto& [problem, planners] : runs.runs) {
     for (const auto& [planner, plannerRuns] : planners) {
@@ -43,7 +43,7 @@ nlohmann::json runsJson(const BenchmarkRuns& runs) {
   return problems;
 }
 
-nlohmann::json medianRunJson(const MedianRun& run, const robot::RobotModel& robot,
+nlohmann::json medianRunJson(const benchmarks::MedianRun& run, const robot::RobotModel& robot,
                              const CampaignReportOptions& options) {
   nlohmann::json t = nlohmann::json::array(), speed = nlohmann::json::array(), tcp = nlohmann::json::array();
   const auto keep = [&](std::size_t i) {
@@ -62,7 +62,7 @@ nlohmann::json medianRunJson(const MedianRun& run, const robot::RobotModel& robo
 }
 
 // Speed profiles, TCP paths and arm frames of every problem with a paths/ folder.
-nlohmann::json pathsJson(const std::filesystem::path& campaign, const BenchmarkRuns& runs,
+nlohmann::json pathsJson(const std::filesystem::path& campaign, const benchmarks::BenchmarkDatabase& runs,
                          const CampaignReportOptions& options, nlohmann::json& missing, bool& anyFrames) {
   nlohmann::json paths = nlohmann::json::object();
   const auto& robot = robot::ur10e();
@@ -74,7 +74,7 @@ nlohmann::json pathsJson(const std::filesystem::path& campaign, const BenchmarkR
     for (const auto& [planner, plannerRuns] : planners) {
       const auto file = folder / (planner + ".csv");
       if (!std::filesystem::exists(file)) continue;  // no successful run: nothing to draw
-      const auto run = readMedianRun(file);
+      const auto run = benchmarks::readMedianRun(file);
       if (run.joints.empty()) withoutJoints.push_back(file.string());
       auto runJson = medianRunJson(run, robot, options);
       anyFrames = anyFrames || !runJson["frames"].is_null();
@@ -102,7 +102,7 @@ nlohmann::json campaignReportData(const std::filesystem::path& input, const std:
   const bool isFolder = std::filesystem::is_directory(input);
   const auto database = isFolder ? input / "benchmark.db" : input;
   const auto campaign = database.parent_path().empty() ? std::filesystem::path(".") : database.parent_path();
-  const auto runs = readBenchmarkRuns(database);
+  const auto runs = benchmarks::readBenchmarkDatabase(database);
 
   nlohmann::json data{{"kind", "campaign"}, {"missing", nlohmann::json::array()}};
   auto& missing = data["missing"];
@@ -139,7 +139,9 @@ nlohmann::json campaignReportData(const std::filesystem::path& input, const std:
   data["runs"] = runsJson(runs);
   data["arcplan_columns"] = runs.arcplanColumns;
   if (runs.arcplanColumns) {
-    data["ranking"] = benchmarks::rankingJson(benchmarks::rankDatabase(database));
+    auto ranking = benchmarks::rankRuns(runs.runs, runs.families);
+    ranking.database = database;
+    data["ranking"] = benchmarks::rankingJson(ranking);
   } else {
     data["ranking"] = nullptr;
     missing.push_back(

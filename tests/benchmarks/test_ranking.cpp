@@ -10,11 +10,11 @@
 namespace arcplan::benchmarks {
 namespace {
 
-using RunValues = std::map<std::string, double>;
-using Runs = std::map<std::string, std::map<std::string, std::vector<RunValues>>>;
+using RunValues = RunRecord;
+using Runs = CampaignRuns;
 
 RunValues success(double executionTime, double tcpLength = 1.0) {
-  return {{"execution_time_s", executionTime}, {"tcp_path_length_m", tcpLength}, {"solve_time_s", 0.01}};
+  return {true, {{"execution_time_s", executionTime}, {"tcp_path_length_m", tcpLength}, {"solve_time_s", 0.01}}};
 }
 RunValues failure() { return {}; }
 
@@ -110,6 +110,23 @@ TEST(Ranking, MetricSummariesUseSuccessfulRunsOnly) {
   EXPECT_DOUBLE_EQ(x.metrics.at("tcp_path_length_m").median, 2.5);
   EXPECT_EQ(x.metrics.at("min_clearance_m").count, 0);  // never reported
   EXPECT_DOUBLE_EQ(x.successRate, 0.8);
+}
+
+TEST(Ranking, ASuccessIsSolvedWithAnExecutionTime) {
+  RunRecord unscaled = success(1.0);  // OMPL solved it, but the path could not be time-scaled
+  unscaled.values.erase("execution_time_s");
+  RunRecord tooClose = success(1.0);  // scaled, but it came closer than the clearance: "solved" withdrawn
+  tooClose.solved = false;
+  RunRecord infinite = success(INFINITY);
+  EXPECT_TRUE(success(1.0).succeeded());
+  EXPECT_FALSE(unscaled.succeeded());
+  EXPECT_FALSE(tooClose.succeeded());
+  EXPECT_FALSE(infinite.succeeded());
+  Runs data;
+  data["p"]["x"] = {success(2.0), unscaled, tooClose, infinite};
+  const auto& x = rankRuns(data).problems[0].planners[0];
+  EXPECT_EQ(x.successes, 1);
+  EXPECT_EQ(x.metrics.at("tcp_path_length_m").count, 1);  // metrics of successful runs only
 }
 
 TEST(Ranking, OverallRankIsTheMeanRankOverProblems) {

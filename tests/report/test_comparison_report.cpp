@@ -8,11 +8,12 @@
 
 namespace {
 
-using RunValues = std::map<std::string, double>;
+using RunValues = arcplan::benchmarks::RunRecord;
 
 std::vector<RunValues> runs(std::initializer_list<double> lengths) {
   std::vector<RunValues> result;
-  for (double length : lengths) result.push_back({{"execution_time_s", 4 * length}, {"tcp_path_length_m", length}});
+  for (double length : lengths)
+    result.push_back({true, {{"execution_time_s", 4 * length}, {"tcp_path_length_m", length}}});
   result.push_back({});  // one failed run
   return result;
 }

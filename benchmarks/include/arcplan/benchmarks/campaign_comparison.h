@@ -17,30 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "arcplan/benchmarks/campaign_results.h"
+
 namespace arcplan::benchmarks {
-
-// One planner configuration on one problem, as one campaign recorded it.
-struct PlannerResults {
-  int runs = 0;
-  int successes = 0;
-  std::map<std::string, std::vector<double>> values;  // metric key -> values of the successful runs
-  std::map<std::string, std::string> settings;        // see RecordedRuns::settings
-  std::filesystem::path medianRun;                    // median-run CSV (paths/), empty when none
-};
-
-struct CampaignResults {
-  std::string source;  // the folder or file it was read from, for the report
-  std::map<std::string, std::map<std::string, PlannerResults>> problems;  // problem -> planner -> results
-};
-
-// A campaign folder (its benchmark.db and paths/), a benchmark database, or a baseline file
-// (baseline.h). Throws arcplan::Error naming the file when it is none of these.
-CampaignResults loadCampaignResults(const std::filesystem::path& campaignDatabaseOrBaseline);
-// Runs as rankRuns takes them (RecordedRuns::runs) plus their settings, without median runs.
-CampaignResults campaignResultsFromRuns(
-    const std::string& source,
-    const std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>>& runs,
-    const std::map<std::string, std::map<std::string, std::map<std::string, std::string>>>& settings = {});
 
 // The metrics compared unless told otherwise: execution time, TCP path length, solve time, minimum
 // clearance and peak TCP speed (with the success rate, which is always compared).

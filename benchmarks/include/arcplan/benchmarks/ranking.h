@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "arcplan/benchmarks/run_record.h"
 #include "arcplan/trajectory/metric_descriptors.h"
 
 namespace arcplan::benchmarks {
@@ -66,30 +67,14 @@ struct Ranking {
   int problemCount() const { return static_cast<int>(problems.size()); }
 };
 
-// Reads every run of the database. Throws arcplan::Error if the file is missing, is not an OMPL
-// benchmark database (no runs/experiments/plannerConfigs tables) or holds no runs.
+// Reads every run of the database (benchmark_database.h). Throws arcplan::Error if the file is
+// missing, is not an OMPL benchmark database or holds no runs.
 Ranking rankDatabase(const std::filesystem::path& database);
 
-// What rankDatabase reads, for readers other than the ranking (bench compare).
-struct RecordedRuns {
-  // problem (experiment name) -> planner label -> one entry per run, metric key -> value; a failed
-  // run has no "execution_time_s" (see rankRuns).
-  std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>> runs;
-  std::map<std::string, std::string> families;  // problem -> family, where the experiments name one
-  // problem -> planner -> setting -> value, as the logs recorded them: "runs", "time limit (s)",
-  // "vmax (m/s)", "clearance (m)", iteration budget, seeds, library versions, host, and "parameter <name>" for each
-  // planner parameter (OMPL's projection cell sizes left out: OMPL derives them from random samples). Settings that
-  // differ between the jobs of one pair are joined with " | ".
-  std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> settings;
-};
-// Throws arcplan::Error as rankDatabase does.
-RecordedRuns readRecordedRuns(const std::filesystem::path& database);
-
-// Rank planners from per-run data (what rankDatabase does after reading): `runs` maps problem ->
-// planner -> one entry per run; an entry without "execution_time_s" is a failed run. `families`
-// maps problems to their family (the experiments' `problemkind` column in a database).
-Ranking rankRuns(const std::map<std::string, std::map<std::string, std::vector<std::map<std::string, double>>>>& runs,
-                 const std::map<std::string, std::string>& families = {});
+// Rank planners from per-run data (what rankDatabase does after reading); a run counts as a success
+// when RunRecord::succeeded(). `families` maps problems to their family (the experiments'
+// `problemkind` column in a database).
+Ranking rankRuns(const CampaignRuns& runs, const std::map<ProblemName, std::string>& families = {});
 
 std::string rankingMarkdown(const Ranking& ranking);
 nlohmann::json rankingJson(const Ranking& ranking);

@@ -37,7 +37,6 @@ public:
 
   std::size_t knotCount() const { return knots_.size(); }
   Eigen::Index dimension() const { return values_.cols(); }
-  double startKnot() const { return knots_.front(); }
   double endKnot() const { return knots_.back(); }
   const std::vector<double>& knots() const { return knots_; }
   // Slopes (first derivatives) at the knots, same layout as the values.

@@ -1,11 +1,12 @@
-#include "arcplan/report/median_run.h"
+#include "arcplan/benchmarks/median_run.h"
 
 #include <fstream>
+#include <iomanip>
 
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_parsing.h"
 
-namespace arcplan::report {
+namespace arcplan::benchmarks {
 namespace {
 
 std::size_t columnIndex(const std::vector<std::string>& header, const std::string& name) {
@@ -74,4 +75,18 @@ MedianRun readMedianRun(const std::filesystem::path& file) {
   return run;
 }
 
-}  // namespace arcplan::report
+void writeMedianRun(std::ostream& out, const MedianRun& run) {
+  for (const auto& [key, value] : run.notes) out << "# " << key << ": " << value << "\n";
+  const bool joints = !run.joints.empty();
+  out << "t,tcp_speed,x,y,z" << (joints ? ",q0,q1,q2,q3,q4,q5" : "") << "\n" << std::setprecision(9);
+  for (std::size_t i = 0; i < run.time.size(); ++i) {
+    out << run.time[i] << "," << run.tcpSpeed[i] << "," << run.tcp[i].x() << "," << run.tcp[i].y() << ","
+        << run.tcp[i].z();
+    if (joints) {
+      for (int j = 0; j < 6; ++j) out << "," << run.joints[i][j];
+    }
+    out << "\n";
+  }
+}
+
+}  // namespace arcplan::benchmarks

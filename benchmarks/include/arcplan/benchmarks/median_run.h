@@ -1,11 +1,11 @@
 #pragma once
-// The plot data a campaign keeps per plot problem (benchmarks/campaign.h): paths/<suite>/<problem>/
-// scene.json (obstacles, start and goal TCP, v_max) and <planner>.csv, the planner's median run —
-// '#' comment lines ("# run: 3"), a header naming the columns (t, tcp_speed, x, y, z and, from
-// campaigns that record them, the joints q0..q5), then one sample per line.
+// A planner's median run as a campaign keeps it for its plot problems (campaign.h):
+// paths/<suite>/<problem>/<planner>.csv — '#' comment lines ("# run: 3"), a header naming the columns
+// (t, tcp_speed, x, y, z and, from campaigns that record them, the joints q0..q5), then one sample
+// per line. The one reader and writer of that file, for the campaign, `bench compare` and the report.
 #include <filesystem>
 #include <map>
-#include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -13,7 +13,7 @@
 
 #include "arcplan/robot/ur_inverse_kinematics.h"
 
-namespace arcplan::report {
+namespace arcplan::benchmarks {
 
 struct MedianRun {
   std::string planner;                       // the file name without .csv
@@ -26,4 +26,8 @@ struct MedianRun {
 // Throws arcplan::Error naming the file and line for a missing column or a malformed number.
 MedianRun readMedianRun(const std::filesystem::path& file);
 
-}  // namespace arcplan::report
+// The file's text: the notes as comment lines, the header with q0..q5 when the run has joints, the
+// samples with 9 significant digits.
+void writeMedianRun(std::ostream& out, const MedianRun& run);
+
+}  // namespace arcplan::benchmarks
