@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "arcplan/benchmarks/campaign.h"
+#include "arcplan/benchmarks/moveit_problems.h"
 #include "arcplan/benchmarks/progress.h"
 #include "arcplan/benchmarks/ranking.h"
 #include "arcplan/benchmarks/statistics_database.h"
@@ -103,6 +104,12 @@ void runBench(const BenchOptions& options) {
   std::cerr << ", vmax " << suite.vMax << " m/s";
   if (campaign.shard.count > 1) std::cerr << ", shard " << campaign.shard.index << "/" << campaign.shard.count;
   std::cerr << " -> " << campaign.outDirectory.string() << "\n";
+  // MoveIt problems whose start or goal is invalid under the exact meshes are reported, not planned.
+  if (!suite.excludedProblems.empty()) {
+    std::cerr << "bench: " << suite.excludedProblems.size()
+              << " problem(s) not planned (start or goal invalid under the exact meshes):\n"
+              << benchmarks::validityTable(suite);
+  }
 
   const auto result = benchmarks::runCampaign(suite, campaign);
   std::cerr << "bench: " << result.jobsRun << " job(s) run, " << result.jobsSkipped << " already done, of "

@@ -13,9 +13,11 @@
 #include <optional>
 #include <sstream>
 
+#include "arcplan/benchmarks/moveit_problems.h"
 #include "arcplan/benchmarks/solution_policy.h"
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/joint_states.h"
+#include "arcplan/collision/moveit_scene.h"
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
@@ -33,6 +35,7 @@ namespace {
 
 struct PlanOptions {
   std::string scene;
+  std::string moveitScene, moveitRequest, urdf, srdf;  // a MoveIt problem instead of --scene
   std::string query;
   std::string planner = "arc";
   std::vector<std::string> parameters;
@@ -160,6 +163,51 @@ void printSummary(const nlohmann::json& document, const std::string& reason, con
   }
 }
 
+// The scene and query to plan: --scene (and --query), or a MoveIt scene + request read against --urdf.
+std::shared_ptr<const collision::Scene> loadPlanScene(const PlanOptions& options) {
+  const bool moveit = !options.moveitScene.empty() || !options.moveitRequest.empty();
+  if (moveit == !options.scene.empty())
+    throw UsageError("give either --scene or --moveit-scene with --moveit-request (and --urdf)");
+  if (!moveit) {
+    if (!options.urdf.empty() || !options.srdf.empty()) throw UsageError("--urdf and --srdf go with --moveit-scene");
+    return std::make_shared<const collision::Scene>(collision::loadScene(resolveDataPath(options.scene)));
+  }
+  if (options.moveitScene.empty() || options.moveitRequest.empty() || options.urdf.empty())
+    throw UsageError("--moveit-scene needs --moveit-request and --urdf");
+  if (!options.query.empty()) throw UsageError("--query names a query of --scene; a MoveIt request is one query");
+  auto problem = collision::loadMoveItProblem(options.moveitScene, options.moveitRequest, {options.urdf, options.srdf});
+  for (const auto& name : problem.ignoredMatrixNames) {
+    std::cerr
+        << "arcplan: note: allowed_collision_matrix name '" << name
+        << "' is no link of the URDF and no object; ignored (the matrix names every link, as MoveIt exports it)\n";
+  }
+  return std::make_shared<const collision::Scene>(std::move(problem.scene));
+}
+
+// MoveIt problems come with their own start and goal: an invalid one is reported (JSON start_valid /
+// goal_valid and the pairs in contact) and not planned.
+void checkMoveItEndpoints(const collision::Scene& scene, const PlanOptions& options, nlohmann::json& validity) {
+  if (options.moveitScene.empty()) return;
+  const benchmarks::ProblemValidity checked = benchmarks::checkEndpoints(scene);
+  validity = {{"start_valid", checked.start.valid}, {"goal_valid", checked.goal.valid}};
+  if (checked.valid()) return;
+  std::string why;
+  for (const auto& [end, check] : {std::pair{"start", &checked.start}, std::pair{"goal", &checked.goal}}) {
+    if (check->valid) continue;
+    validity[std::string(end) + "_problem"] = check->problem;
+    why += (why.empty() ? "" : "; ") + std::string(end) + " " + check->problem;
+  }
+  if (!options.json.empty()) {
+    nlohmann::json document = {{"scene", scene.name},
+                               {"query", scene.queries.front().name},
+                               {"planner", planners::canonicalPlannerName(options.planner)},
+                               {"status", "invalid"}};
+    document.update(validity);
+    writeJson(options.json, document);
+  }
+  throw Error("MoveIt problem " + scene.sourceFile.string() + " not planned: " + why);
+}
+
 void runPlan(const PlanOptions& options) {
   // OMPL's seed is process-global and must be set before anything random exists.
   if (options.seed) ompl::RNG::setSeed(*options.seed);
@@ -173,7 +221,9 @@ void runPlan(const PlanOptions& options) {
   for (const std::string& text : options.parameters) parameters.push_back(planners::parseParameterAssignment(text));
   const std::string plannerName = planners::canonicalPlannerName(options.planner);
 
-  const auto scene = std::make_shared<const collision::Scene>(collision::loadScene(resolveDataPath(options.scene)));
+  const auto scene = loadPlanScene(options);
+  nlohmann::json validity;
+  checkMoveItEndpoints(*scene, options, validity);
   planners::PlanningProblem problem = planners::makePlanningProblem(scene, options.query);
   ompl::geometric::SimpleSetup& setup = *problem.setup;
   const ompl::base::PlannerPtr planner =
@@ -199,6 +249,7 @@ void runPlan(const PlanOptions& options) {
   planner->params().getParams(parameterValues);
   document["parameters"] = parameterValues;
   if (options.seed) document["seed"] = *options.seed;
+  if (!validity.is_null()) document.update(validity);
   std::string reason;
   if (!haveExact) reason = arc ? arc->lastResult().reason : omplReason(status, setup, options.time);
   if (!reason.empty()) document["reason"] = reason;
@@ -256,10 +307,14 @@ void registerPlanCommand(CLI::App& app) {
       "Solves a scene query with the arc planner (thesis ch. 3) or an OMPL planner; reports status, reason, "
       "solve time, TCP/joint path length and clearance; writes the joint path.");
   command->footer(plannerParameterHelp);
-  command
-      ->add_option("--scene", options->scene,
-                   "scene YAML (a path, or a name under data/, e.g. scenes/thesis_obstacle.yaml)")
-      ->required();
+  command->add_option("--scene", options->scene,
+                      "scene YAML (a path, or a name under data/, e.g. scenes/thesis_obstacle.yaml)");
+  command->add_option("--moveit-scene", options->moveitScene,
+                      "instead of --scene: a moveit_msgs/PlanningScene YAML (with --moveit-request and --urdf)");
+  command->add_option("--moveit-request", options->moveitRequest,
+                      "the moveit_msgs/MotionPlanRequest YAML to plan in --moveit-scene");
+  command->add_option("--urdf", options->urdf, "the robot of the MoveIt problem (URDF; joint and link names)");
+  command->add_option("--srdf", options->srdf, "its SRDF (disabled collision pairs), optional");
   command->add_option("--query", options->query, "query name in the scene (default: the first)");
   command
       ->add_option("--planner", options->planner,

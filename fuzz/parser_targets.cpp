@@ -9,6 +9,7 @@
 #include "arcplan/benchmarks/benchmark_log_check.h"
 #include "arcplan/benchmarks/suite.h"
 #include "arcplan/collision/allowed_collisions.h"
+#include "arcplan/collision/moveit_scene.h"
 #include "arcplan/collision/scene.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_parsing.h"
@@ -60,6 +61,17 @@ void parseUrVisualParameters(const std::string& input) {
 }
 void parseSrdf(const std::string& input) { robot::parseSrdfDisabledCollisions(input, "fuzz.srdf"); }
 void parseScene(const std::string& input) { collision::loadScene(writeInput(input, ".yaml")); }
+// MoveIt messages read against arcplan's UR10e; a request is read with an empty scene beside it.
+void parseMoveItScene(const std::string& input) {
+  collision::loadMoveItScene(writeInput(input, ".yaml"), {robot::ur10eUrdfPath(), {}});
+}
+void parseMoveItRequest(const std::string& input) {
+  const auto scene = writeInput("name: fuzz\n", "_scene.yaml");
+  collision::loadMoveItProblem(scene, writeInput(input, ".yaml"), {robot::ur10eUrdfPath(), {}});
+}
+void parseMoveItTextScene(const std::string& input) {
+  collision::loadMoveItTextScene(writeInput(input, ".scene"), {robot::ur10eUrdfPath(), {}});
+}
 void parseAllowedCollisions(const std::string& input) { collision::loadAllowedCollisions(writeInput(input, ".yaml")); }
 void parseJointPath(const std::string& input) { trajectory::readJointPathCsv(writeInput(input, ".csv")); }
 void parseRtdeLog(const std::string& input) { model::readLog(writeInput(input, ".csv")); }
@@ -121,6 +133,9 @@ const std::vector<ParserTarget>& parserTargets() {
       {"urdf", ".urdf", parseUrdf},
       {"scene", ".yaml", parseScene},
       {"allowed_collisions", ".yaml", parseAllowedCollisions},
+      {"moveit_scene", ".yaml", parseMoveItScene},
+      {"moveit_request", ".yaml", parseMoveItRequest},
+      {"moveit_text_scene", ".scene", parseMoveItTextScene},
       {"ur_kinematics", ".yaml", parseUrKinematics},
       {"ur_joint_limits", ".yaml", parseUrJointLimits},
       {"ur_physical_parameters", ".yaml", parseUrPhysicalParameters},

@@ -235,6 +235,26 @@ std::vector<Part> obstacleShapeParts(const Obstacle& obstacle, const CollisionMo
   return {};
 }
 
+// Bodies the robot holds: one body each (its name appended to linkNames), moving with its link.
+void addAttachedParts(const Scene& scene, const robot::RobotModel& robot, const CollisionModelOptions& options,
+                      Implementation& impl, std::vector<std::string>& linkNames) {
+  for (const auto& attached : scene.attachedObstacles) {
+    const int link = robot.linkIndex(attached.link);
+    const int body = static_cast<int>(linkNames.size());
+    linkNames.push_back(attached.body.name);
+    std::vector<detail::Capsule> partCapsules;
+    for (auto& part : obstacleShapeParts(attached.body, options)) {
+      part.body = body;
+      part.offset = attached.body.pose;
+      partCapsules.push_back({part.offset * part.capsule.start, part.offset * part.capsule.end, part.capsule.radius});
+      impl.robotParts.push_back(std::move(part));
+      impl.robotPartLink.push_back(link);
+    }
+    impl.linkCapsules.push_back(detail::enclosingCapsule(partCapsules));
+    impl.linkCapsuleLink.push_back(link);
+  }
+}
+
 // One body per obstacle (its name appended to obstacleNames), its parts placed in the world with the
 // capsules and inverse poses the distance bounds use.
 void addObstacleParts(const Scene& scene, const CollisionModelOptions& options, Implementation& impl,
@@ -256,8 +276,9 @@ void addObstacleParts(const Scene& scene, const CollisionModelOptions& options, 
 // A misspelled name in the allowed pairs would silently allow nothing: every name must be a link
 // (with or without geometry) or an obstacle.
 void checkAllowedNames(const AllowedCollisionMatrix& allowed, const robot::RobotModel& robot,
-                       const std::vector<std::string>& obstacleNames) {
+                       const std::vector<std::string>& obstacleNames, const std::vector<std::string>& bodyNames) {
   std::set<std::string> known(obstacleNames.begin(), obstacleNames.end());
+  known.insert(bodyNames.begin(), bodyNames.end());  // links with geometry and attached bodies
   for (const auto& link : robot.links()) known.insert(link.name);
   for (const auto& [first, second] : allowed.pairs()) {
     for (const auto& name : {first, second}) {
@@ -319,8 +340,9 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
   }
   Implementation& impl = *implementation_;
   addRobotParts(*robot_, options_, impl, linkNames_);
+  addAttachedParts(scene, *robot_, options_, impl, linkNames_);
   addObstacleParts(scene, options_, impl, obstacleNames_);
-  checkAllowedNames(allowed_, *robot_, obstacleNames_);
+  checkAllowedNames(allowed_, *robot_, obstacleNames_, linkNames_);
   addPairGroups(allowed_, linkNames_, obstacleNames_, impl);
   detail::computeMotionBounds(*robot_, impl);
   if (options_.spherePrefilter)

@@ -63,6 +63,10 @@ std::vector<std::string> seedsFor(const std::string& target) {
     if (target == file) return {readFile(kSeeds / (target + ".yaml"))};
   }
   if (target == "srdf") return {readFile(kSeeds / "robot.srdf")};
+  if (target == "moveit_scene") return {readFile(kSeeds / "moveit_scene.yaml")};
+  if (target == "moveit_request")
+    return {readFile(kSeeds / "moveit_request.yaml"), readFile(kSeeds / "moveit_pose_request.yaml")};
+  if (target == "moveit_text_scene") return {readFile(kSeeds / "moveit.scene")};
   if (target == "joint_path") return {"q0,q1,q2,q3,q4,q5\n# a comment\n0,0,0,0,0,0\n0.1,-0.2,0.3,-0.4,0.5,-0.6\n"};
   if (target == "rtde_log") return {rtdeLog(','), rtdeLog(' ')};
   if (target == "headerless_log") return {headerlessLog()};
@@ -196,7 +200,8 @@ TEST_P(ParserFuzz, MutatedInputsParseOrGiveAnArcplanError) {
     EXPECT_TRUE(arcplan::fuzz::runParserTarget(target, seed)) << target.name << " rejects its seed";
   }
   std::mt19937 random(20261122);
-  const int mutationsPerSeed = target.name == "urdf" ? 1000 : 2000;
+  // The MoveIt readers load the UR10e (meshes included) for every input: fewer mutations keep the test short.
+  const int mutationsPerSeed = target.name == "urdf" ? 1000 : target.name.rfind("moveit", 0) == 0 ? 300 : 2000;
   int rejected = 0, total = 0;
   for (const auto& seed : seeds) {
     for (int i = 0; i < mutationsPerSeed; ++i) {
@@ -219,7 +224,7 @@ INSTANTIATE_TEST_SUITE_P(Parsers, ParserFuzz,
                          ::testing::Values("urdf", "scene", "allowed_collisions", "joint_path", "rtde_log",
                                            "headerless_log", "log_folder", "column_map", "force_transfer", "model",
                                            "suite", "number_list", "ompl_log", "baseline", "ur_kinematics",
-                                           "ur_joint_limits", "ur_physical_parameters", "ur_visual_parameters",
-                                           "srdf"));
+                                           "ur_joint_limits", "ur_physical_parameters", "ur_visual_parameters", "srdf",
+                                           "moveit_scene", "moveit_request", "moveit_text_scene"));
 
 }  // namespace

@@ -28,6 +28,13 @@ struct Problem {
   std::string query;  // query name in `scene`
 };
 
+// A problem that was loaded but is not planned: its start or goal is invalid (moveit_problems.h).
+struct ExcludedProblem {
+  std::string name, family;
+  std::string start, goal;  // why that end is invalid; empty when it is valid
+  std::vector<std::string> contacts;  // "start: link–object" per pair in contact
+};
+
 // Seeded random problems around the UR10e on its table (generated_problems.h).
 struct GeneratorSettings {
   std::uint64_t seed = 1;
@@ -65,6 +72,7 @@ struct Suite {
   std::vector<Problem> problems;
   std::vector<PlannerConfiguration> planners;
   std::optional<GeneratorSettings> generator;  // set when some problems are generated
+  std::vector<ExcludedProblem> excludedProblems;  // loaded, start or goal invalid: reported, never planned
   std::vector<std::string> plotProblems;       // problems that get TCP speed-profile and 3D path plots
 
   const Problem& problem(const std::string& name) const;  // throws arcplan::Error listing the names

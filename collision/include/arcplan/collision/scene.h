@@ -36,6 +36,13 @@ struct Obstacle {
   double boundingRadius() const;
 };
 
+// A body the robot holds (MoveIt's attached collision object, a gripped part): it moves with `link`
+// (body.pose is in that link's frame) and is checked like a link against obstacles and other links.
+struct AttachedObstacle {
+  Obstacle body;
+  std::string link;
+};
+
 // One end of a query: a tool0 pose (optionally with a seed choosing the IK branch) or joints.
 struct QueryEndpoint {
   std::optional<std::array<double, 6>> pose;  // x, y, z, roll, pitch, yaw
@@ -54,6 +61,7 @@ struct Scene {
   std::filesystem::path sourceFile;
   robot::RobotSource robot;  // nothing given: arcplan's built-in UR10e
   std::vector<Obstacle> obstacles;
+  std::vector<AttachedObstacle> attachedObstacles;  // MoveIt scenes; their touch links are allowed pairs
   std::vector<std::pair<std::string, std::string>> allowedCollisions;  // link/obstacle name pairs
   std::vector<Query> queries;
 
