@@ -16,6 +16,7 @@
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/robot/kinematics.h"
+#include "arcplan/trajectory/time_scaling.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -43,6 +44,7 @@ const std::vector<RealParameter>& realParameters() {
       {"max_joint_step", 0.001, 0.5, "0.001:0.001:0.5", &P::setMaxJointStep, &P::getMaxJointStep},
       {"clearance", 0.0, 0.2, "0.:0.005:0.2", &P::setClearance, &P::getClearance},
       {"deadline", 0.0, 60.0, "0.:0.01:60.", &P::setDeadline, &P::getDeadline},
+      {"speed_limit", 0.01, 2.0, "0.01:0.01:2.", &P::setSpeedLimit, &P::getSpeedLimit},
   };
   return table;
 }
@@ -108,6 +110,7 @@ void ArcPlanner::setResolution(double resolution) {
 void ArcPlanner::setMaxJointStep(double step) { conversion_.maxJointStep = checkedParameter("max_joint_step", step); }
 void ArcPlanner::setClearance(double clearance) { clearance_ = checkedParameter("clearance", clearance); }
 void ArcPlanner::setDeadline(double seconds) { deadline_ = checkedParameter("deadline", seconds); }
+void ArcPlanner::setSpeedLimit(double speed) { speedLimit_ = checkedParameter("speed_limit", speed); }
 
 void ArcPlanner::clear() {
   Planner::clear();
@@ -179,13 +182,18 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
   // Its own SpaceInformation, whose states and motions keep this planner's margin (the problem's may
   // be smaller).
   detail::ArcOutcome fallback = withQuery(ptc, margin, start, goal, [&](const detail::ArcQuery& query) {
-    return detail::planInJointSpace(query, collision::makeSpaceInformation(collisionModel_, motionCheck, margin),
-                                    seed_);
+    trajectory::TimeScalingOptions timing;
+    timing.maxTcpSpeed = speedLimit_;
+    return detail::planInJointSpace(
+        query, collision::makeSpaceInformation(collisionModel_, motionCheck, margin), seed_,
+        [&](const std::vector<robot::Vector6>& joints) {
+          return trajectory::scaleToTcpSpeed(collisionModel_->robot(), joints, timing).duration();
+        });
   });
   // What the search met stays part of the answer; its reason leads a failure's.
   fallback.obstacles = std::move(outcome.obstacles);
   fallback.routesTried = outcome.routesTried;
-  fallback.reason = outcome.reason + (fallback.solved() ? "" : "; " + fallback.reason);
+  fallback.reason = outcome.reason + "; " + fallback.reason;
   return fallback;
 }
 
@@ -241,6 +249,7 @@ ob::PlannerStatus ArcPlanner::finish(detail::ArcOutcome outcome, ob::PlannerStat
   result_.tcpPathLength = outcome.tcpPathLength;
   result_.cartesianFraction = outcome.cartesianFraction;
   result_.routesTried = outcome.routesTried;
+  result_.fallbackTimes = outcome.fallbackTimes;
   if (outcome.solved()) {
     setSolution(outcome.path);
   } else {

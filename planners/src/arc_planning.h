@@ -7,6 +7,7 @@
 #include <ompl/base/SpaceInformation.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,7 @@ struct ArcOutcome {
   double tcpPathLength = 0.0;
   double cartesianFraction = 0.0;
   int routesTried = 0;
+  ArcPlannerResult::FallbackTimes fallbackTimes;
 
   bool solved() const { return kind != ArcPlannerResult::Kind::Failed; }
 };
@@ -54,8 +56,16 @@ ArcOutcome planThesisDetours(const ArcQuery& query, const ArcParameters& shape, 
 // Auto mode: the shortest valid route through via points, corners blended.
 ArcOutcome planViaPoints(const ArcQuery& query);
 
-// RRTConnect on `si` (whose validity keeps the margin), simplified, its segments turned into TCP lines where they
-// validate; every random draw from generators seeded with `seed`. Its reason on failure says only that it failed.
-ArcOutcome planInJointSpace(const ArcQuery& query, const ompl::base::SpaceInformationPtr& si, std::uint_fast32_t seed);
+// Execution time (s) of a joint path at the planner's speed limit. A function rather than a call into
+// trajectory's time scaling, so that the strategies stay free of how a path is timed (ArcPlanner
+// supplies trajectory::scaleToTcpSpeed).
+using ExecutionTimeOf = std::function<double(const std::vector<robot::Vector6>&)>;
+
+// RRTConnect on `si` (whose validity keeps the margin), simplified (up to 4 draws, the fastest kept); then
+// of that joint path, its segments as TCP lines where they validate, and mixes of the two, the one of the shortest
+// `executionTime` (its reason says which, with the times). Every random draw from generators seeded with `seed`. Its
+// reason on failure says only that it failed.
+ArcOutcome planInJointSpace(const ArcQuery& query, const ompl::base::SpaceInformationPtr& si, std::uint_fast32_t seed,
+                            const ExecutionTimeOf& executionTime);
 
 }  // namespace arcplan::planners::detail

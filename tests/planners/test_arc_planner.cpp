@@ -1,6 +1,6 @@
-// ArcPlanner as an OMPL planner: straight line when free, the thesis detour around the particle,
-// chained detours, solid obstacles, the auto search, reasons for failure, the termination
-// condition, planner data and ompl::tools::Benchmark.
+// ArcPlanner as an OMPL planner: straight line when free, the thesis detour around the particle, chained
+// detours, solid obstacles, the auto search, reasons for failure, the termination condition, planner data and
+// ompl::tools::Benchmark (the fallback: test_arc_planner_fallback.cpp; the deadline: ..._limits.cpp).
 #include <gtest/gtest.h>
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/PlannerTerminationCondition.h>
@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <optional>
-#include <stdexcept>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/motion_check.h"
@@ -20,7 +19,6 @@
 
 namespace {
 
-using arcplan::planners::ArcPlanner;
 using arcplan::planners::ArcPlannerResult;
 using namespace arcplan::testing;
 namespace ob = ompl::base;
@@ -350,7 +348,7 @@ TEST(ArcPlanner, ParameterSettersRejectOutOfRangeValues) {
   EXPECT_THROW(arcplan::planners::setPlannerParameters(*planner, {{"resolution", "0"}}), arcplan::Error);
   EXPECT_THROW(arcplan::planners::setPlannerParameters(*planner, {{"half_chord", "-0.1"}}), arcplan::Error);
   EXPECT_THROW(arcplan::planners::setPlannerParameters(*planner, {{"plane_angle", "nan"}}), arcplan::Error);
-  auto& arc = dynamic_cast<ArcPlanner&>(*planner);
+  auto& arc = dynamic_cast<arcplan::planners::ArcPlanner&>(*planner);
   EXPECT_THROW(arcplan::planners::setPlannerParameters(*planner, {{"sagitta", "0"}}), arcplan::Error);
   EXPECT_TRUE(arc.getAuto());  // no detour shape given yet
   arc.setSagitta(0.1);
@@ -369,75 +367,6 @@ TEST(ArcPlanner, AutoPathKeepsTheRequestedClearance) {
     // The shortest route keeping it: not far more (a larger clearance costs path length).
     EXPECT_LT(closest, clearance + 0.05) << "clearance " << clearance;
   }
-}
-
-// The goal pose of thesis_free on another IK branch (the first in-limit solution of another branch
-// that keeps 2 cm from the table): no TCP path keeps one branch between start and goal, so the
-// answer is the joint-space fallback.
-arcplan::planners::PlanningProblem goalOnAnotherBranchProblem() {
-  auto scene = std::make_shared<arcplan::collision::Scene>(*loadTestScene("thesis_free"));
-  auto problem = arcplan::planners::makePlanningProblem(scene);
-  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
-  arcplan::collision::CollisionData data(*problem.collisionModel);
-  std::optional<arcplan::robot::Vector6> other;
-  for (const auto& candidate : ik.solveAll(tcpPoses({problem.goal})[0])) {
-    if (!other && ik.branchOf(candidate) != ik.branchOf(problem.goal) &&
-        arcplan::collision::distance(*problem.collisionModel, data, candidate).minimum() > 0.02) {
-      other = candidate;
-    }
-  }
-  if (!other) throw std::runtime_error("thesis_free's goal pose has no clear solution on another IK branch");
-  scene->queries[0].goal = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, *other};
-  return arcplan::planners::makePlanningProblem(scene);
-}
-
-std::vector<arcplan::robot::Vector6> solutionJoints(const arcplan::planners::PlanningProblem& problem) {
-  return arcplan::collision::waypointsOf(
-      *problem.setup->getProblemDefinition()->getSolutionPath()->as<ompl::geometric::PathGeometric>());
-}
-
-TEST(ArcPlanner, FallbackJoinsTwoIkBranchesWithAValidPath) {
-  auto problem = goalOnAnotherBranchProblem();
-  const auto [planner, status] = solve(problem, "arc");
-  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
-  const ArcPlannerResult& result = arcOf(planner).lastResult();
-  EXPECT_EQ(result.mode(), "fallback");
-  EXPECT_EQ(result.kind, ArcPlannerResult::Kind::Fallback);
-  EXPECT_GE(result.cartesianFraction, 0.0);
-  EXPECT_LE(result.cartesianFraction, 1.0);
-  const auto joints = solutionJoints(problem);
-  ASSERT_GE(joints.size(), 2u);
-  EXPECT_LT((joints.front() - problem.start).norm(), 1e-12);
-  EXPECT_LT((joints.back() - problem.goal).norm(), 1e-12);
-  // Valid for the SpaceInformation (every state and every motion, certified), and it keeps the
-  // planner's 1 cm clearance, measured independently at 0.01 rad along every motion.
-  const auto si = problem.setup->getSpaceInformation();
-  const auto path = problem.setup->getProblemDefinition()->getSolutionPath()->as<ompl::geometric::PathGeometric>();
-  EXPECT_TRUE(path->check());
-  for (std::size_t i = 1; i < path->getStateCount(); ++i) {
-    EXPECT_TRUE(si->checkMotion(path->getState(i - 1), path->getState(i))) << "motion " << i;
-  }
-  EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);
-}
-
-TEST(ArcPlanner, FallbackGivesTheSamePathWhateverRanBefore) {
-  auto problem = goalOnAnotherBranchProblem();
-  const auto [first, firstStatus] = solve(problem, "arc");
-  ASSERT_EQ(firstStatus, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(first).lastResult().reason;
-  ASSERT_EQ(arcOf(first).lastResult().mode(), "fallback");
-  const auto firstJoints = solutionJoints(problem);
-  // Another planner draws from OMPL's process-wide generator in between.
-  const auto [other, otherStatus] = solve(problem, "RRTConnect");
-  ASSERT_EQ(otherStatus, ob::PlannerStatus::EXACT_SOLUTION);
-  const auto [second, secondStatus] = solve(problem, "arc");
-  ASSERT_EQ(secondStatus, ob::PlannerStatus::EXACT_SOLUTION);
-  const auto secondJoints = solutionJoints(problem);
-  ASSERT_EQ(secondJoints.size(), firstJoints.size());
-  for (std::size_t i = 0; i < firstJoints.size(); ++i) EXPECT_EQ(secondJoints[i], firstJoints[i]) << "waypoint " << i;
-  // The seed is what fixes it: another seed draws other samples.
-  const auto [reseeded, reseededStatus] = solve(problem, "arc", {{"seed", "7"}});
-  ASSERT_EQ(reseededStatus, ob::PlannerStatus::EXACT_SOLUTION);
-  EXPECT_NE(solutionJoints(problem), firstJoints);
 }
 
 // The shelf of planner_test_support.h: the tool must go round its side, and dozens of candidate

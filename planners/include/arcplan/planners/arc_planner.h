@@ -12,9 +12,11 @@
 //   - auto (default): lines through via points with blended corners (blended_path.h), the via points
 //     from the obstacles' geometry (via_points.h), the fastest route found by a lazy search
 //     (route_search.h); where no such route exists, the joint-space fallback: RRTConnect on a
-//     SpaceInformation keeping the planner's margin, its random draws seeded by `seed`, simplified,
-//     each of its segments replaced by a straight TCP line where that validates. lastResult().mode says which ("arc" or
-//     "fallback"), cartesianFraction how much of the TCP path is lines and arcs.
+//     SpaceInformation keeping the planner's margin, its random draws seeded by `seed`, simplified
+//     (up to 4 plans, the fastest kept); then of that path, its segments as straight TCP lines where
+//     they validate, and mixes of the two, the one that executes fastest at `speed_limit` (reason
+//     says which). lastResult().mode says which
+//     ("arc" or "fallback"), cartesianFraction how much of the TCP path is lines and arcs.
 // A path keeps `clearance` (or the motion validator's margin if larger) everywhere, except that a
 // start or goal closer than that to an obstacle lowers it to its own clearance.
 // The line-and-arc search has its own `deadline` (default 50 ms of wall-clock time): past it, it gives
@@ -64,6 +66,12 @@ struct ArcPlannerResult {
   double tcpPathLength = 0.0;              // m, analytic length of the line-and-arc part
   double cartesianFraction = 0.0;          // share of the TCP path's length that is lines and arcs
   int routesTried = 0;                     // auto: routes walked
+  // Fallback: execution times (s) at speed_limit of RRTConnect's simplified joint path, of its segments
+  // as TCP lines where they validate (the fallback before it compared), and of the path kept — the
+  // fastest of those two and their mixes; reason says which was kept.
+  struct FallbackTimes {
+    double jointPath = 0.0, linePath = 0.0, kept = 0.0;
+  } fallbackTimes;
   std::vector<double> waypointArcLengths;  // TCP arc length of each state of the solution path
 
   // "arc" for a line-and-arc path, "fallback" for the joint-space fallback, "" without a path.
@@ -112,6 +120,9 @@ public:
   // fallback (if enabled) gets the rest of the termination condition's time. Wall-clock time: a run
   // that reaches it depends on the machine's speed, so runs that must repeat exactly set 0.
   void setDeadline(double seconds);
+  // TCP speed limit (m/s) at which the fallback compares execution times (trajectory::scaleToTcpSpeed).
+  void setSpeedLimit(double speed);
+  double getSpeedLimit() const { return speedLimit_; }
   double getDeadline() const { return deadline_; }
   // Giving a detour shape (sagitta) asks for the thesis mode unless auto is set explicitly.
   void setAuto(bool enabled) { autoMode_ = enabled; }
@@ -157,6 +168,7 @@ private:
   // 50 ms: the search answers most queries in about 1 ms; one that has not found a route by then
   // rarely finds one later (issue 22: a fence kept it busy for 5 s).
   double deadline_ = 0.05;
+  double speedLimit_ = 0.25;  // m/s: the collaborative limit of the thesis and the benchmark suites
   ArcPlannerResult result_;
   std::vector<robot::Vector6> solutionJoints_;                        // the last solution's waypoints
   mutable std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
