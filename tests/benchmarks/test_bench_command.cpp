@@ -373,7 +373,7 @@ TEST(BenchCommand, BadInputIsRefusedBeforeAnythingIsWritten) {
   const auto dir = freshTempDirectory("bench_bad");
   const auto out = (dir / "out").string();
   const std::vector<BadInput> cases{
-      {{"bench", "--suite", "nowhere", "--out", out}, "built-in: generated, thesis", 1},
+      {{"bench", "--suite", "nowhere", "--out", out}, "built-in: generated, mbm-ur5, thesis", 1},
       {{"bench", "--shard", "3/2", "--out", out}, "--shard: '3/2'", 2},
       {{"bench", "--runs", "0", "--out", out}, "--runs must be at least 1", 2},
       {{"bench", "--time", "0", "--out", out}, "--time must be a positive", 2},

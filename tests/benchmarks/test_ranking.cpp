@@ -124,7 +124,8 @@ TEST(Ranking, ASuccessIsSolvedWithAnExecutionTime) {
   EXPECT_FALSE(infinite.succeeded());
   Runs data;
   data["p"]["x"] = {success(2.0), unscaled, tooClose, infinite};
-  const auto& x = rankRuns(data).problems[0].planners[0];
+  const auto ranking = rankRuns(data);
+  const auto& x = ranking.problems[0].planners[0];
   EXPECT_EQ(x.successes, 1);
   EXPECT_EQ(x.metrics.at("tcp_path_length_m").count, 1);  // metrics of successful runs only
 }
