@@ -86,8 +86,7 @@ TEST(CampaignDeterminism, BudgetOptionAndSuiteFieldAreChecked) {
          "planners: [RRT]\n";
   const auto bad = runArcplan(benchArguments(dir / "bad.yaml", dir / "out"));
   EXPECT_EQ(bad.exitCode, 1);
-  EXPECT_NE(bad.err.find("bad.yaml:2: suite: field 'budget' must be between 1 and 1000000000"), std::string::npos)
-      << bad.err;
+  EXPECT_NE(bad.err.find("bad.yaml:2:9: suite.budget: must be between 1 and 1000000000"), std::string::npos) << bad.err;
 }
 
 }  // namespace
