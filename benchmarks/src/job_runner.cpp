@@ -278,6 +278,12 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   ob::PlannerPtr planner = planners::makePlanner(plannerName, setup.getSpaceInformation(), planning.plannerContext(),
                                                  parameterList(configuration));
   planner->setName(configuration.label);
+  // A budgeted campaign is meant to repeat exactly (docs/reproducibility.md); a wall-clock search
+  // deadline (the arc planner's `deadline`) would make its answers depend on the machine's load, so
+  // under a budget it is off unless the suite sets it. The logs record the value used.
+  if (suite.iterationBudget && !configuration.parameters.count("deadline") && planner->params().hasParam("deadline")) {
+    planner->params().setParam("deadline", "0");
+  }
   std::shared_ptr<IterationBudgetPlanner> budgeted;
   if (suite.iterationBudget) {
     budgeted = std::make_shared<IterationBudgetPlanner>(planner, *suite.iterationBudget);

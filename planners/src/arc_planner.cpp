@@ -16,6 +16,7 @@
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/robot/kinematics.h"
+#include "arcplan/trajectory/metric_descriptors.h"
 #include "arcplan/trajectory/time_scaling.h"
 
 namespace ob = ompl::base;
@@ -277,7 +278,7 @@ void ArcPlanner::setSolution(const JointConversionResult& waypoints) {
 void ArcPlanner::getPlannerData(ob::PlannerData& data) const {
   Planner::getPlannerData(data);
   const std::string mode = result_.mode();
-  data.properties["solve time REAL"] = number(result_.solveTime);
+  data.properties[trajectory::solveTimeDescriptor().omplProperty] = number(result_.solveTime);
   data.properties["arc mode ENUM"] = mode == "arc" ? "1" : mode == "fallback" ? "2" : "0";
   data.properties["cartesian fraction REAL"] = number(result_.cartesianFraction);
   data.properties["arc via points INTEGER"] = std::to_string(result_.viaPoints.size());
