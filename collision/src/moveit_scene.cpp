@@ -199,13 +199,18 @@ private:
     const bool complete = std::all_of(
         builder_.frames().collisionLinks().begin(), builder_.frames().collisionLinks().end(),
         [&](const std::string& link) { return std::find(names.begin(), names.end(), link) != names.end(); });
-    for (const std::size_t i : unknown) {
-      if (!complete) {
-        message_.yaml.fail(matrix["entry_names"][i], "allowed_collision_matrix.entry_names[" + std::to_string(i) + "]",
-                           "'" + names[i] + "' is no link of the URDF and no collision object");
+    if (!unknown.empty() && !complete) {
+      std::string list, missing;
+      for (const std::size_t i : unknown) list += (list.empty() ? "'" : ", '") + names[i] + "'";
+      for (const auto& link : builder_.frames().collisionLinks()) {
+        if (std::find(names.begin(), names.end(), link) == names.end()) missing += (missing.empty() ? "" : ", ") + link;
       }
-      builder_.ignoreMatrixName(names[i]);
+      message_.yaml.fail(matrix["entry_names"][unknown.front()],
+                         "allowed_collision_matrix.entry_names[" + std::to_string(unknown.front()) + "]",
+                         list + (unknown.size() == 1 ? " is" : " are") +
+                             " no link of the URDF and no collision object (links not named: " + missing + ")");
     }
+    for (const std::size_t i : unknown) builder_.ignoreMatrixName(names[i]);
     for (std::size_t i = 0; i < names.size(); ++i) {
       const std::string field = "allowed_collision_matrix.entry_values[" + std::to_string(i) + "]";
       YAML::Node row = rows[i];

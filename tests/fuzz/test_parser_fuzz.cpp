@@ -200,8 +200,7 @@ TEST_P(ParserFuzz, MutatedInputsParseOrGiveAnArcplanError) {
     EXPECT_TRUE(arcplan::fuzz::runParserTarget(target, seed)) << target.name << " rejects its seed";
   }
   std::mt19937 random(20261122);
-  // The MoveIt readers load the UR10e (meshes included) for every input: fewer mutations keep the test short.
-  const int mutationsPerSeed = target.name == "urdf" ? 1000 : target.name.rfind("moveit", 0) == 0 ? 300 : 2000;
+  const int mutationsPerSeed = target.name == "urdf" ? 1000 : 2000;
   int rejected = 0, total = 0;
   for (const auto& seed : seeds) {
     for (int i = 0; i < mutationsPerSeed; ++i) {
