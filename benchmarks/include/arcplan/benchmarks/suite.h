@@ -31,7 +31,7 @@ struct Problem {
 // A problem that was loaded but is not planned: its start or goal is invalid (moveit_problems.h).
 struct ExcludedProblem {
   std::string name, family;
-  std::string start, goal;  // why that end is invalid; empty when it is valid
+  std::string start, goal;            // why that end is invalid; empty when it is valid
   std::vector<std::string> contacts;  // "start: link–object" per pair in contact
 };
 
@@ -71,9 +71,9 @@ struct Suite {
   double clearance = 0.01;
   std::vector<Problem> problems;
   std::vector<PlannerConfiguration> planners;
-  std::optional<GeneratorSettings> generator;  // set when some problems are generated
+  std::optional<GeneratorSettings> generator;     // set when some problems are generated
   std::vector<ExcludedProblem> excludedProblems;  // loaded, start or goal invalid: reported, never planned
-  std::vector<std::string> plotProblems;       // problems that get TCP speed-profile and 3D path plots
+  std::vector<std::string> plotProblems;          // problems that get TCP speed-profile and 3D path plots
 
   const Problem& problem(const std::string& name) const;  // throws arcplan::Error listing the names
 };
