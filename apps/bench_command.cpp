@@ -209,13 +209,7 @@ void registerBenchCommand(CLI::App& app) {
   command
       ->add_option("-j,--workers", options->workers, "worker processes running jobs in parallel (default: all cores)")
       ->capture_default_str();
-  // Applied when parsed, before the command runs and builds any collision model.
-  command
-      ->add_option_function<std::string>(
-          "--collision", [](const std::string& mode) { collision::setSpherePrefilterDefault(mode == "prefilter"); },
-          "collision checking: prefilter (SIMD spheres in front of FCL, default) or exact-only (FCL for every "
-          "query); both give the same answers")
-      ->check(CLI::IsMember({"prefilter", "exact-only"}));
+  addCollisionModeOption(*command);
   command->add_flag("--no-plots", options->noPlots, "do not draw the PNG plots");
   command->add_flag("--quiet", options->quiet, "no progress output");
   command->add_option("--json", options->json, "write the campaign summary and ranking as JSON ('-' for stdout)");

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "arcplan/collision/collision_model.h"
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/common/text_formatting.h"
 #include "arcplan/common/text_parsing.h"
@@ -31,6 +32,15 @@ void requirePositive(double value, const std::string& option, const std::string&
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw UsageError(option + " must be a positive number (" + unit + "), got " + formatNumber(value, 6));
   }
+}
+
+void addCollisionModeOption(CLI::App& command) {
+  command
+      .add_option_function<std::string>(
+          "--collision", [](const std::string& mode) { collision::setSpherePrefilterDefault(mode == "prefilter"); },
+          "collision checking: prefilter (SIMD spheres in front of FCL, default) or exact-only (FCL for every "
+          "query); both give the same answers")
+      ->check(CLI::IsMember({"prefilter", "exact-only"}));
 }
 
 void addRobotSourceOptions(CLI::App& command, RobotSourceOptions& options, const std::string& urdfHelp) {

@@ -42,6 +42,9 @@ struct RobotSourceOptions {
 };
 void addRobotSourceOptions(CLI::App& command, RobotSourceOptions& options, const std::string& urdfHelp);
 
+// `--collision prefilter|exact-only`, applied when parsed, before the command builds any collision model.
+void addCollisionModeOption(CLI::App& command);
+
 // What those options name; nothing given: arcplan's built-in UR10e. UsageError for --description or
 // --kinematics without --ur-type or a malformed --tcp-offset; Error for a file or folder that does not exist.
 robot::RobotSource robotSourceFrom(const RobotSourceOptions& options);

@@ -333,13 +333,7 @@ void registerPlanCommand(CLI::App& app) {
   command->add_option("--path-csv", options->pathCsv, "write the joint path (q0..q5 per waypoint) as CSV");
   command->add_flag("--allow-approximate", options->allowApproximate,
                     "accept an approximate path (one that ends away from the goal): exit 0 and write its CSV");
-  // Applied when parsed, before the command runs and builds any collision model.
-  command
-      ->add_option_function<std::string>(
-          "--collision", [](const std::string& mode) { collision::setSpherePrefilterDefault(mode == "prefilter"); },
-          "collision checking: prefilter (SIMD spheres in front of FCL, default) or exact-only (FCL for every "
-          "query); both give the same answers")
-      ->check(CLI::IsMember({"prefilter", "exact-only"}));
+  addCollisionModeOption(*command);
   command->add_flag("--verbose", options->verbose, "show OMPL's informational messages");
   command->callback([options] { runPlan(*options); });
 }

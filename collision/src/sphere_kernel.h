@@ -99,15 +99,21 @@ void place(const Pose<V>& pose, float x, float y, float z, V* out) {
   }
 }
 
-// Distance of the world point p from the obstacle's volume (<= 0 inside a sphere, 0 inside a box or cylinder).
+// The world point p in the obstacle's frame (the same operation order in every lane type).
 template <class V>
-V obstacleDistance(const ObstacleRow& o, const V* p) {
-  V l[3];
+void toObstacleFrame(const ObstacleRow& o, const V* p, V* l) {
   for (int i = 0; i < 3; ++i) {
     l[i] = ((broadcast<V>(o.rotation[3 * i]) * p[0] + broadcast<V>(o.rotation[3 * i + 1]) * p[1]) +
             broadcast<V>(o.rotation[3 * i + 2]) * p[2]) +
            broadcast<V>(o.translation[i]);
   }
+}
+
+// Distance of the world point p from the obstacle's volume (<= 0 inside a sphere, 0 inside a box or cylinder).
+template <class V>
+V obstacleDistance(const ObstacleRow& o, const V* p) {
+  V l[3];
+  toObstacleFrame(o, p, l);
   const V zero = broadcast<V>(0.0f);
   if (o.kind == 0) return squareRoot((l[0] * l[0] + l[1] * l[1]) + l[2] * l[2]) - broadcast<V>(o.size[0]);
   if (o.kind == 1) {
@@ -125,11 +131,7 @@ V obstacleDistance(const ObstacleRow& o, const V* p) {
 template <class V>
 typename V::Mask obstacleClear(const ObstacleRow& o, const V* p, float reach) {
   V l[3];
-  for (int i = 0; i < 3; ++i) {
-    l[i] = ((broadcast<V>(o.rotation[3 * i]) * p[0] + broadcast<V>(o.rotation[3 * i + 1]) * p[1]) +
-            broadcast<V>(o.rotation[3 * i + 2]) * p[2]) +
-           broadcast<V>(o.translation[i]);
-  }
+  toObstacleFrame(o, p, l);
   const V zero = broadcast<V>(0.0f);
   if (o.kind == 0) {
     const float total = o.size[0] + reach;
