@@ -137,6 +137,14 @@ robot::TriangleMesh coneMesh(double height, double radius, int segments) {
   return mesh;
 }
 
+YAML::Node MessageReader::message(const std::string& what, const std::string& field, const std::string& type,
+                                  const std::vector<std::string>& keys) const {
+  const YAML::Node root = yaml.load(what);
+  if (!root.IsMap()) yaml.fail(root, field, "expected a " + type + " mapping");
+  yaml.checkKeys(root, field, keys);
+  return root;
+}
+
 Eigen::Vector3d MessageReader::vector3(const YAML::Node& node, const std::string& field) const {
   if (node.IsMap()) {
     yaml.checkKeys(node, field, {"x", "y", "z"});

@@ -63,6 +63,9 @@ public:
   explicit MessageReader(const std::filesystem::path& file) : yaml(file) {}
   YamlReader yaml;
 
+  // The file's top-level mapping, a message of `type` (as errors name it) with only the fields `keys`.
+  YAML::Node message(const std::string& what, const std::string& field, const std::string& type,
+                     const std::vector<std::string>& keys) const;
   Eigen::Vector3d vector3(const YAML::Node& node, const std::string& field) const;
   // Normalised; a zero-norm or non-finite quaternion is an error.
   Eigen::Quaterniond quaternion(const YAML::Node& node, const std::string& field) const;

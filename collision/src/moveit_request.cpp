@@ -17,10 +17,8 @@ public:
       : message_(file), model_(model), frames_(frames), problem_(problem) {}
 
   void read() {
-    const YAML::Node root = message_.yaml.load("MoveIt motion plan request");
-    if (!root.IsMap()) message_.yaml.fail(root, "request", "expected a moveit_msgs/MotionPlanRequest mapping");
-    message_.yaml.checkKeys(
-        root, "request",
+    const YAML::Node root = message_.message(
+        "MoveIt motion plan request", "request", "moveit_msgs/MotionPlanRequest",
         {"workspace_parameters", "start_state", "goal_constraints", "path_constraints", "trajectory_constraints",
          "reference_trajectories", "pipeline_id", "planner_id", "group_name", "num_planning_attempts",
          "allowed_planning_time", "max_velocity_scaling_factor", "max_acceleration_scaling_factor",

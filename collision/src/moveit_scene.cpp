@@ -20,10 +20,8 @@ public:
       : message_(file), builder_(robot, file) {}
 
   MoveItProblem read() {
-    const YAML::Node root = message_.yaml.load("MoveIt planning scene");
-    if (!root.IsMap()) message_.yaml.fail(root, "planning scene", "expected a moveit_msgs/PlanningScene mapping");
-    message_.yaml.checkKeys(
-        root, "planning scene",
+    const YAML::Node root = message_.message(
+        "MoveIt planning scene", "planning scene", "moveit_msgs/PlanningScene",
         {"name", "robot_state", "robot_model_name", "fixed_frame_transforms", "allowed_collision_matrix",
          "link_padding", "link_scale", "object_colors", "world", "is_diff"});
     if (const auto name = root["name"]; name && name.IsScalar() && !name.Scalar().empty())
