@@ -1,3 +1,5 @@
+// Collision geometry to FCL parts: meshes split into components, solids and their bounding capsules,
+// and the primitive shapes — one concept, a little over 400 lines because the capsule fits belong to it.
 #include "parts.h"
 
 #include <algorithm>
