@@ -1,5 +1,6 @@
 // `arcplan bench` end to end: a small thesis campaign through the real OMPL Benchmark, Debian's
 // ompl_benchmark_statistics and SQLite; resume, shards merged after GNU parallel, Ctrl-C, bad input.
+// Over 400 lines: one campaign fixture serves every end-to-end case, and each case needs its real run.
 #include <chrono>
 #include <cmath>
 #include <csignal>

@@ -4,6 +4,8 @@
 // old 0.01 rad discrete check tunnels through), acceptance of motions with clearance, the last valid
 // state, the motion bounds against measured mesh-vertex displacements, OMPL planning with the
 // certified validator, and bad options.
+// Over 400 lines because every test here shares the one independent reference above (fine discrete
+// check, sampled clearance, mesh vertices per link); splitting would mean a header of test internals.
 #include <algorithm>
 #include <cmath>
 #include <optional>
