@@ -82,7 +82,7 @@ struct Workspace {
     double measuredFromStart = 0.0, measuredFromEnd = 1.0;
   };
   std::vector<MotionPair> motionPairs;
-  robot::JointVector motionJoints;  // the configuration on the motion being checked
+  robot::JointVector motionJoints;           // the configuration on the motion being checked
   std::shared_ptr<SphereWorkspace> spheres;  // the prefilter's scratch (null without a prefilter)
 };
 
