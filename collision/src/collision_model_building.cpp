@@ -9,6 +9,7 @@
 
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_formatting.h"
+#include "mesh_part_cache.h"
 #include "model_implementation.h"
 #include "sphere_prefilter.h"
 
@@ -43,7 +44,7 @@ std::vector<Part> geometryParts(const robot::CollisionGeometry& geometry, const 
   switch (geometry.shape) {
     case robot::CollisionGeometry::Shape::Mesh:
       try {
-        return detail::meshParts(robot::loadMesh(geometry.meshFile, geometry.meshScale), options);
+        return detail::cachedMeshParts(geometry.meshFile, geometry.meshScale, options);  // once per process
       } catch (const Error& e) {
         throw Error("link " + linkName + ": " + e.what());
       }
