@@ -1,0 +1,12 @@
+// The `arcplan` Python module: thin bindings over the C++ library (docs/python.md). Each part is
+// bound in its own file (bindings.h); the package's __init__.py re-exports everything.
+#include <pybind11/pybind11.h>
+
+#include "bindings.h"
+#include "errors.h"
+
+PYBIND11_MODULE(_arcplan, module) {
+  module.doc() = "arcplan: arc planning, collision checking, PCHIP time scaling and robot models for UR arms";
+  arcplan::python::bindErrors(module);
+  arcplan::python::bindRobot(module);
+}
