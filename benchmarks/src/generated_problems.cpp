@@ -171,6 +171,9 @@ std::vector<Problem> generateProblems(const GeneratorSettings& settings) {
       {settings.nearEndpoint, nearEndpointProblem},
       {settings.tallPillars, furniture(pillarProblem, kTallPillars)},
       {settings.deepShelves, furniture(shelfProblem, kDeepShelves)},
+      {settings.forearmBeams, forearmBeamProblem},
+      {settings.lintelGates, lintelGateProblem},
+      {settings.tiltedTools, tiltedToolProblem},
   };
   for (const auto& [count, make] : families) {
     if (count < 0) throw Error("problem generator: problem counts must be >= 0");

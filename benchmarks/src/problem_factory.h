@@ -1,17 +1,22 @@
 #pragma once
 // Internal to the problem generator (generated_problems.h): the seeded random numbers and the scene,
 // line and naming helpers every family of generated problems shares. The line and furniture families
-// are in generated_problems.cpp, the workcell families (clutter, arm-blocked, wall, near-end) in
+// are in generated_problems.cpp, the workcell families (clutter, arm-blocked, wall, near-end, and
+// where the arm and not the tool meets a body: forearm-beam, lintel-gate, tilted-tool) in
 // workcell_problems.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <random>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "arcplan/benchmarks/suite.h"
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/common/error.h"
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/robot_model.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
@@ -67,9 +72,9 @@ inline Vector6 thesisStyleSeed(double azimuth) {
   return seed;
 }
 
-inline Eigen::Isometry3d toolPose(const Vector3d& position) {
+inline Eigen::Isometry3d toolPose(const Vector3d& position, const Eigen::Matrix3d& orientation = toolDown()) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = toolDown();
+  pose.linear() = orientation;
   pose.translation() = position;
   return pose;
 }
@@ -94,30 +99,35 @@ inline collision::Scene tableScene(const std::string& name) {
   return scene;
 }
 
-// Checks and solves what every generated problem needs: start and goal tool-down poses joined by a
-// straight TCP line along which IK stays on one branch without jumps. Returns the joint vectors at
-// A and B (the goal is where the continuation from the start arrives, so it lies on that branch).
+// Checks and solves what every generated problem needs: start and goal poses (the tool held at one
+// orientation) joined by a straight TCP line along which IK stays on one branch without jumps. The
+// goal is where the continuation from the start arrives, so it lies on that branch; `path` is every
+// configuration of that continuation, kLineStep of TCP travel apart, start and goal included.
 struct LineEnds {
   Vector6 start;
   Vector6 goal;
+  std::vector<Vector6> path;
 };
 
 class ProblemFactory {
 public:
   ProblemFactory() : model_(robot::ur10e()), ik_(model_) {}
 
-  std::optional<LineEnds> straightLineEnds(const Vector3d& a, const Vector3d& b) const {
-    const auto start = ik_.solveNearest(toolPose(a), thesisStyleSeed(std::atan2(a.y(), a.x())));
+  const robot::RobotModel& model() const { return model_; }
+
+  std::optional<LineEnds> straightLineEnds(const Vector3d& a, const Vector3d& b,
+                                           const Eigen::Matrix3d& orientation = toolDown()) const {
+    const auto start = ik_.solveNearest(toolPose(a, orientation), thesisStyleSeed(std::atan2(a.y(), a.x())));
     if (!start) return std::nullopt;
     const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kLineStep)));
-    Vector6 q = *start;
+    std::vector<Vector6> path{*start};
     for (int k = 1; k <= steps; ++k) {
       const Vector3d point = a + (b - a) * (static_cast<double>(k) / steps);
-      const auto next = ik_.solveNearest(toolPose(point), q);
-      if (!next || (*next - q).cwiseAbs().maxCoeff() > kMaxJointJumpPerStep) return std::nullopt;
-      q = *next;
+      const auto next = ik_.solveNearest(toolPose(point, orientation), path.back());
+      if (!next || (*next - path.back()).cwiseAbs().maxCoeff() > kMaxJointJumpPerStep) return std::nullopt;
+      path.push_back(*next);
     }
-    return LineEnds{*start, q};
+    return LineEnds{*start, path.back(), std::move(path)};
   }
 
   static bool collisionFree(const collision::Scene& scene, const LineEnds& ends) {
@@ -128,22 +138,57 @@ public:
   }
 
   // Whether the robot, following the straight TCP line from ends.start, touches a body of `scene` anywhere.
-  bool lineCollides(const collision::Scene& scene, const Vector3d& a, const Vector3d& b, const LineEnds& ends) const {
+  static bool lineCollides(const collision::Scene& scene, const LineEnds& ends) {
     const auto model = collision::makeCollisionModel(scene);
     collision::CollisionData data(*model);
-    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kLineStep)));
-    Vector6 q = ends.start;
-    for (int k = 1; k <= steps; ++k) {
-      q = *ik_.solveNearest(toolPose(a + (b - a) * (static_cast<double>(k) / steps)), q);
-      if (!collision::isCollisionFree(*model, data, q)) return true;
-    }
-    return false;
+    return std::any_of(ends.path.begin() + 1, ends.path.end(),
+                       [&](const Vector6& q) { return !collision::isCollisionFree(*model, data, q); });
   }
 
 private:
   const robot::RobotModel& model_;
   robot::UrInverseKinematics ik_;
 };
+
+// The straight TCP line of the arm-contact families keeps this much room from every body (m): the
+// built-in suites' clearance, so the tool itself could follow the line.
+inline constexpr double kLineClearance = 0.01;
+
+// Distance (m) from `point` to a sphere, box or cylinder (0 inside it).
+inline double pointDistance(const collision::Obstacle& body, const Vector3d& point) {
+  const Vector3d p = body.pose.inverse() * point;
+  switch (body.shape) {
+    case collision::Obstacle::Shape::Sphere:
+      return std::max(p.norm() - body.radius, 0.0);
+    case collision::Obstacle::Shape::Box:
+      return (p.cwiseAbs() - 0.5 * body.size).cwiseMax(0.0).norm();
+    case collision::Obstacle::Shape::Cylinder:
+      return std::hypot(std::max(p.head<2>().norm() - body.radius, 0.0),
+                        std::max(std::abs(p.z()) - 0.5 * body.length, 0.0));
+    default:
+      throw Error("problem generator: no point distance for the mesh obstacle '" + body.name + "'");
+  }
+}
+
+// A lower bound of the distance (m) from the segment a-b to `body`: the smallest distance of points 1 mm
+// apart, less half their spacing (a point's distance to a body changes no faster than the point moves).
+inline double segmentDistance(const collision::Obstacle& body, const Vector3d& a, const Vector3d& b) {
+  const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / 0.001)));
+  double nearest = pointDistance(body, a);
+  for (int k = 1; k <= steps; ++k) nearest = std::min(nearest, pointDistance(body, a + (b - a) * (double(k) / steps)));
+  return nearest - 0.5 * (b - a).norm() / steps;
+}
+
+// Per obstacle name, the robot links that touch it at some configuration of ends.path.
+inline std::map<std::string, std::set<std::string>> contactsAlong(const collision::Scene& scene, const LineEnds& ends) {
+  const auto model = collision::makeCollisionModel(scene);
+  collision::CollisionData data(*model);
+  std::map<std::string, std::set<std::string>> contacts;
+  for (const auto& q : ends.path) {
+    for (const auto& [link, body] : collision::collide(*model, data, q).collisions) contacts[body].insert(link);
+  }
+  return contacts;
+}
 
 // A random TCP point in front of and beside the robot, within comfortable reach.
 inline Vector3d workspacePoint(Random& random, double zLow, double zHigh) {
@@ -194,10 +239,14 @@ inline Problem makeProblem(const std::string& name, const std::string& kind, std
   return problem;
 }
 
-// The workcell families (workcell_problems.cpp): problem `index` of each for `seed`.
+// The workcell families (workcell_problems.cpp): problem `index` of each for `seed`. In the last three
+// the straight TCP line keeps the clearance from every body while the arm following it does not.
 Problem clutterProblem(const ProblemFactory& factory, std::uint64_t seed, int index);
 Problem armBlockedProblem(const ProblemFactory& factory, std::uint64_t seed, int index);
 Problem wallProblem(const ProblemFactory& factory, std::uint64_t seed, int index);
 Problem nearEndpointProblem(const ProblemFactory& factory, std::uint64_t seed, int index);
+Problem forearmBeamProblem(const ProblemFactory& factory, std::uint64_t seed, int index);
+Problem lintelGateProblem(const ProblemFactory& factory, std::uint64_t seed, int index);
+Problem tiltedToolProblem(const ProblemFactory& factory, std::uint64_t seed, int index);
 
 }  // namespace arcplan::benchmarks::detail

@@ -128,6 +128,9 @@ struct SuiteReader {
         {"near_endpoint", &settings.nearEndpoint},
         {"tall_pillars", &settings.tallPillars},
         {"deep_shelves", &settings.deepShelves},
+        {"forearm_beams", &settings.forearmBeams},
+        {"lintel_gates", &settings.lintelGates},
+        {"tilted_tools", &settings.tiltedTools},
     };
     std::vector<std::string> keys{"seed"};
     for (const auto& [key, field] : counts) keys.emplace_back(key);

@@ -47,6 +47,10 @@ struct GeneratorSettings {
   int nearEndpoint = 0;    // a small body 8-15 cm from the tool at the start or goal
   int tallPillars = 0;     // 2 m pillars, 8-14 cm in radius
   int deepShelves = 0;     // shelves 0.38-0.45 m deep (the usual ones: 0.25-0.35)
+  // The straight TCP line keeps 1 cm from every body, the arm following it does not:
+  int forearmBeams = 0;  // a beam across the elbow/forearm's sweep
+  int lintelGates = 0;   // a gate whose lintel the forearm or wrist meets
+  int tiltedTools = 0;   // the tool 30-70 degrees off vertical, a body where the wrist passes
 };
 
 // Largest iteration budget of a suite or --budget (OMPL's IterationTerminationCondition counts in
