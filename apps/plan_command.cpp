@@ -1,8 +1,6 @@
 // arcplan plan — solve one scene query with the arc planner or an OMPL planner (docs/cli.md): status,
 // reason, the metrics of docs/metrics.md of the path, and the joint path as CSV.
-#include <ompl/geometric/PathGeometric.h>
 #include <ompl/util/Console.h>
-#include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,9 +12,8 @@
 #include <sstream>
 
 #include "arcplan/benchmarks/moveit_problems.h"
-#include "arcplan/benchmarks/solution_policy.h"
+#include "arcplan/benchmarks/plan_query.h"
 #include "arcplan/collision/collision_model.h"
-#include "arcplan/collision/joint_states.h"
 #include "arcplan/collision/moveit_scene.h"
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
@@ -26,7 +23,6 @@
 #include "arcplan/planners/planning_problem.h"
 #include "arcplan/trajectory/joint_path.h"
 #include "arcplan/trajectory/metric_descriptors.h"
-#include "arcplan/trajectory/path_measurement.h"
 #include "cli_support.h"
 #include "commands.h"
 
@@ -47,57 +43,6 @@ struct PlanOptions {
   bool allowApproximate = false;
   bool verbose = false;
 };
-
-std::string statusName(const ompl::base::PlannerStatus& status, bool haveExact) {
-  if (haveExact) return "exact";
-  return status == ompl::base::PlannerStatus::APPROXIMATE_SOLUTION ? "approximate" : "failed";
-}
-
-// Why an OMPL planner ended without an exact path.
-std::string omplReason(const ompl::base::PlannerStatus& status, const ompl::geometric::SimpleSetup& setup,
-                       double time) {
-  std::ostringstream reason;
-  switch (ompl::base::PlannerStatus::StatusType(status)) {
-    case ompl::base::PlannerStatus::APPROXIMATE_SOLUTION:
-      reason << "no exact path within " << time << " s; the best path ends "
-             << setup.getProblemDefinition()->getSolutionDifference() << " (joint-space distance) from the goal";
-      break;
-    case ompl::base::PlannerStatus::TIMEOUT:
-      reason << "no path within the time limit of " << time << " s";
-      break;
-    case ompl::base::PlannerStatus::INVALID_START:
-      reason << "invalid start state";
-      break;
-    case ompl::base::PlannerStatus::INVALID_GOAL:
-      reason << "invalid goal state";
-      break;
-    default:
-      reason << "planner status: " << status.asString();
-  }
-  return reason.str();
-}
-
-nlohmann::json arcDetails(const planners::ArcPlannerResult& result) {
-  nlohmann::json detours = nlohmann::json::array();
-  for (const planners::Detour& detour : result.detours) {
-    detours.push_back({{"position_m", detour.position},
-                       {"sagitta_m", detour.shape.sagitta},
-                       {"half_chord_m", detour.shape.halfChord},
-                       {"entry_radius_m", detour.shape.entryRadius},
-                       {"exit_radius_m", detour.shape.exitRadius},
-                       {"plane_angle_rad", detour.planeAngle}});
-  }
-  nlohmann::json vias = nlohmann::json::array();
-  for (std::size_t i = 0; i < result.viaPoints.size(); ++i) {
-    const Eigen::Vector3d& point = result.viaPoints[i];
-    vias.push_back({{"position_m", {point.x(), point.y(), point.z()}}, {"blend_m", result.blends[i]}});
-  }
-  return {{"detours", detours},
-          {"via_points", vias},
-          {"obstacles", result.obstacles},
-          {"analytic_tcp_path_length_m", result.tcpPathLength},
-          {"routes_tried", result.routesTried}};
-}
 
 // The planner parameters for --help, read from the planners themselves (the arc planner on the
 // robot with no obstacles).
@@ -123,8 +68,10 @@ const nlohmann::json& metricOf(const nlohmann::json& document, double trajectory
   return document[trajectory::metricDescriptor(member).key];
 }
 
-void printSummary(const nlohmann::json& document, const std::string& reason, const planners::ArcPlanner* arc,
-                  const PlanOptions& options, std::size_t waypoints) {
+void printSummary(const nlohmann::json& document, const benchmarks::PlannedQuery& planned) {
+  const std::string& reason = planned.reason;
+  const std::optional<planners::ArcPlannerResult>& arc = planned.arc;
+  const std::size_t waypoints = planned.path.size();
   using M = trajectory::TrajectoryMetrics;
   std::cout << "plan: scene " << document["scene"].get<std::string>() << ", query "
             << document["query"].get<std::string>() << ", planner " << document["planner"].get<std::string>() << "\n"
@@ -132,17 +79,16 @@ void printSummary(const nlohmann::json& document, const std::string& reason, con
   if (!reason.empty()) std::cout << "reason              " << reason << "\n";
   std::cout << std::setprecision(6) << "solve time          "
             << document[trajectory::solveTimeDescriptor().key].get<double>() << " s\n";
-  if (arc && !arc->lastResult().mode().empty()) {
-    std::cout << "mode                " << arc->lastResult().mode() << " (cartesian fraction "
-              << arc->lastResult().cartesianFraction << ")\n";
-    for (std::size_t i = 0; i < arc->lastResult().viaPoints.size(); ++i) {
-      const Eigen::Vector3d& point = arc->lastResult().viaPoints[i];
+  if (arc && !arc->mode().empty()) {
+    std::cout << "mode                " << arc->mode() << " (cartesian fraction " << arc->cartesianFraction << ")\n";
+    for (std::size_t i = 0; i < arc->viaPoints.size(); ++i) {
+      const Eigen::Vector3d& point = arc->viaPoints[i];
       std::cout << "via point           (" << point.x() << ", " << point.y() << ", " << point.z() << ") m, blend "
-                << arc->lastResult().blends[i] << " m\n";
+                << arc->blends[i] << " m\n";
     }
   }
   if (arc) {
-    for (const planners::Detour& detour : arc->lastResult().detours) {
+    for (const planners::Detour& detour : arc->detours) {
       std::cout << "arc detour          O at " << detour.position << " m: h " << detour.shape.sagitta << ", r "
                 << detour.shape.halfChord << ", R2 " << detour.shape.entryRadius << ", R3 " << detour.shape.exitRadius
                 << " m, plane " << detour.planeAngle << " rad\n";
@@ -155,10 +101,10 @@ void printSummary(const nlohmann::json& document, const std::string& reason, con
     if (!metricOf(document, &M::minClearance).is_null()) {
       std::cout << "min clearance       " << metricOf(document, &M::minClearance).get<double>() << " m\n";
     }
-    if (options.maxTcpSpeed) {
+    if (planned.options.maxTcpSpeed) {
       std::cout << "execution time      " << metricOf(document, &M::executionTime).get<double>() << " s at vmax "
-                << *options.maxTcpSpeed << " m/s (peak TCP speed " << metricOf(document, &M::peakTcpSpeed).get<double>()
-                << " m/s)\n";
+                << *planned.options.maxTcpSpeed << " m/s (peak TCP speed "
+                << metricOf(document, &M::peakTcpSpeed).get<double>() << " m/s)\n";
     }
   }
 }
@@ -209,82 +155,37 @@ void checkMoveItEndpoints(const collision::Scene& scene, const PlanOptions& opti
 }
 
 void runPlan(const PlanOptions& options) {
-  // OMPL's seed is process-global and must be set before anything random exists.
-  if (options.seed) ompl::RNG::setSeed(*options.seed);
   ompl::msg::setLogLevel(options.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
   if (!(options.time > 0.0) || !std::isfinite(options.time))
     throw UsageError("--time must be a positive number of seconds");
   if (options.maxTcpSpeed && (!(*options.maxTcpSpeed > 0.0) || !std::isfinite(*options.maxTcpSpeed))) {
     throw UsageError("--vmax must be a positive TCP speed in m/s");
   }
-  std::vector<std::pair<std::string, std::string>> parameters;
-  for (const std::string& text : options.parameters) parameters.push_back(planners::parseParameterAssignment(text));
-  const std::string plannerName = planners::canonicalPlannerName(options.planner);
+  benchmarks::PlanQueryOptions request;
+  for (const std::string& text : options.parameters)
+    request.parameters.push_back(planners::parseParameterAssignment(text));
+  request.planner = planners::canonicalPlannerName(options.planner);
+  request.timeLimit = options.time;
+  request.seed = options.seed;
+  request.maxTcpSpeed = options.maxTcpSpeed;
 
   const auto scene = loadPlanScene(options);
   nlohmann::json validity;
   checkMoveItEndpoints(*scene, options, validity);
-  planners::PlanningProblem problem = planners::makePlanningProblem(scene, options.query);
-  ompl::geometric::SimpleSetup& setup = *problem.setup;
-  const ompl::base::PlannerPtr planner =
-      planners::makePlanner(plannerName, setup.getSpaceInformation(), problem.plannerContext(), parameters);
-  setup.setPlanner(planner);
-  setup.setup();
-  const ompl::base::PlannerStatus status = setup.solve(options.time);
-  const bool haveExact = setup.haveExactSolutionPath();
-  const bool havePath = setup.haveSolutionPath();
-  const auto* arc = dynamic_cast<const planners::ArcPlanner*>(planner.get());
-
-  // The arc path is already the TCP path; sampling planners' paths get OMPL's shortcutting.
-  if (havePath && benchmarks::simplifiesSolution(plannerName)) setup.simplifySolution();
-
-  nlohmann::json document = {
-      {"scene", scene->name},
-      {"query", problem.queryName},
-      {"planner", plannerName},
-      {"status", statusName(status, haveExact)},
-      {trajectory::solveTimeDescriptor().key, arc ? arc->lastResult().solveTime : setup.getLastPlanComputationTime()},
-      {"time_limit_s", options.time}};
-  std::map<std::string, std::string> parameterValues;
-  planner->params().getParams(parameterValues);
-  document["parameters"] = parameterValues;
-  if (options.seed) document["seed"] = *options.seed;
+  const benchmarks::PlannedQuery planned = benchmarks::planQuery(scene, options.query, request);
+  nlohmann::json document = benchmarks::toJson(planned);
   if (!validity.is_null()) document.update(validity);
-  std::string reason;
-  if (!haveExact) reason = arc ? arc->lastResult().reason : omplReason(status, setup, options.time);
-  if (!reason.empty()) document["reason"] = reason;
-  if (arc) {
-    document["arc"] = arcDetails(arc->lastResult());
-    if (havePath) {
-      document["mode"] = arc->lastResult().mode();
-      document["cartesian_fraction"] = arc->lastResult().cartesianFraction;
-    }
-  }
-
-  trajectory::JointPath path;
-  if (havePath) {
-    path = collision::waypointsOf(setup.getSolutionPath());
-    const collision::CollisionModel& model = *problem.collisionModel;
-    collision::CollisionData data(model);
-    const trajectory::ClearanceFunction clearance = [&](const robot::Vector6& q) {
-      return collision::distance(model, data, q).obstacleDistance;
-    };
-    document["waypoints"] = path.size();
-    std::optional<trajectory::TimeScalingOptions> scaling;
-    if (options.maxTcpSpeed) {
-      scaling.emplace();
-      scaling->maxTcpSpeed = *options.maxTcpSpeed;
-      document["vmax_mps"] = *options.maxTcpSpeed;
-    }
-    document.update(trajectory::toJson(trajectory::measurePath(model.robot(), path, scaling, clearance)));
-  }
+  const std::string& plannerName = planned.options.planner;
+  const std::string& reason = planned.reason;
+  const bool haveExact = planned.status == benchmarks::PlanStatus::Exact;
+  const bool havePath = !planned.path.empty();
 
   // With the JSON on stdout, the summary would corrupt it.
-  if (options.json != "-") printSummary(document, reason, arc, options, path.size());
+  if (options.json != "-") printSummary(document, planned);
   if (!options.json.empty()) writeJson(options.json, document);
   // An approximate path ends away from the goal: only written when asked for.
   const bool acceptedPath = haveExact || (havePath && options.allowApproximate);
-  if (!options.pathCsv.empty() && acceptedPath) trajectory::writeJointPathCsv(options.pathCsv, path);
+  if (!options.pathCsv.empty() && acceptedPath) trajectory::writeJointPathCsv(options.pathCsv, planned.path);
   if (!haveExact) {
     if (havePath && options.allowApproximate) {
       std::cerr << "arcplan: warning: " << plannerName << " returned an approximate path: " << reason << "\n";

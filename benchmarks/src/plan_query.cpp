@@ -1,0 +1,167 @@
+#include "arcplan/benchmarks/plan_query.h"
+
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "arcplan/benchmarks/solution_policy.h"
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/joint_states.h"
+#include "arcplan/common/error.h"
+#include "arcplan/planners/planner_registry.h"
+#include "arcplan/planners/planning_problem.h"
+#include "arcplan/trajectory/metric_descriptors.h"
+
+namespace arcplan::benchmarks {
+namespace {
+
+// Why an OMPL planner ended without an exact path.
+std::string omplReason(const ompl::base::PlannerStatus& status, const ompl::geometric::SimpleSetup& setup,
+                       double time) {
+  std::ostringstream reason;
+  switch (ompl::base::PlannerStatus::StatusType(status)) {
+    case ompl::base::PlannerStatus::APPROXIMATE_SOLUTION:
+      reason << "no exact path within " << time << " s; the best path ends "
+             << setup.getProblemDefinition()->getSolutionDifference() << " (joint-space distance) from the goal";
+      break;
+    case ompl::base::PlannerStatus::TIMEOUT:
+      reason << "no path within the time limit of " << time << " s";
+      break;
+    case ompl::base::PlannerStatus::INVALID_START:
+      reason << "invalid start state";
+      break;
+    case ompl::base::PlannerStatus::INVALID_GOAL:
+      reason << "invalid goal state";
+      break;
+    default:
+      reason << "planner status: " << status.asString();
+  }
+  return reason.str();
+}
+
+nlohmann::json arcDetails(const planners::ArcPlannerResult& result) {
+  nlohmann::json detours = nlohmann::json::array();
+  for (const planners::Detour& detour : result.detours) {
+    detours.push_back({{"position_m", detour.position},
+                       {"sagitta_m", detour.shape.sagitta},
+                       {"half_chord_m", detour.shape.halfChord},
+                       {"entry_radius_m", detour.shape.entryRadius},
+                       {"exit_radius_m", detour.shape.exitRadius},
+                       {"plane_angle_rad", detour.planeAngle}});
+  }
+  nlohmann::json vias = nlohmann::json::array();
+  for (std::size_t i = 0; i < result.viaPoints.size(); ++i) {
+    const Eigen::Vector3d& point = result.viaPoints[i];
+    vias.push_back({{"position_m", {point.x(), point.y(), point.z()}}, {"blend_m", result.blends[i]}});
+  }
+  return {{"detours", detours},
+          {"via_points", vias},
+          {"obstacles", result.obstacles},
+          {"analytic_tcp_path_length_m", result.tcpPathLength},
+          {"routes_tried", result.routesTried}};
+}
+
+void checkOptions(const PlanQueryOptions& options) {
+  if (!(options.timeLimit > 0.0) || !std::isfinite(options.timeLimit))
+    throw Error("plan: the time limit must be a positive number of seconds");
+  if (options.maxTcpSpeed && (!(*options.maxTcpSpeed > 0.0) || !std::isfinite(*options.maxTcpSpeed)))
+    throw Error("plan: vmax must be a positive TCP speed in m/s");
+}
+
+// The solution path measured as `bench` measures its runs; clearance from the scene's obstacles.
+trajectory::PathMeasurement measure(const collision::CollisionModel& model, const trajectory::JointPath& path,
+                                    const std::optional<double>& maxTcpSpeed) {
+  collision::CollisionData data(model);
+  const trajectory::ClearanceFunction clearance = [&](const robot::Vector6& q) {
+    return collision::distance(model, data, q).obstacleDistance;
+  };
+  std::optional<trajectory::TimeScalingOptions> scaling;
+  if (maxTcpSpeed) {
+    scaling.emplace();
+    scaling->maxTcpSpeed = *maxTcpSpeed;
+  }
+  return trajectory::measurePath(model.robot(), path, scaling, clearance);
+}
+
+}  // namespace
+
+const char* toString(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::Exact:
+      return "exact";
+    case PlanStatus::Approximate:
+      return "approximate";
+    case PlanStatus::Failed:
+      break;
+  }
+  return "failed";
+}
+
+PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std::string& queryName,
+                       const PlanQueryOptions& options) {
+  checkOptions(options);
+  // OMPL's seed must be set before anything random exists.
+  if (options.seed) ompl::RNG::setSeed(*options.seed);
+  PlannedQuery planned;
+  planned.options = options;
+  planned.options.planner = planners::canonicalPlannerName(options.planner);
+  const std::string& plannerName = planned.options.planner;
+  planned.sceneName = scene->name;
+
+  planners::PlanningProblem problem = planners::makePlanningProblem(std::move(scene), queryName);
+  planned.queryName = problem.queryName;
+  ompl::geometric::SimpleSetup& setup = *problem.setup;
+  const ompl::base::PlannerPtr planner =
+      planners::makePlanner(plannerName, setup.getSpaceInformation(), problem.plannerContext(), options.parameters);
+  setup.setPlanner(planner);
+  setup.setup();
+  const ompl::base::PlannerStatus status = setup.solve(options.timeLimit);
+  const bool haveExact = setup.haveExactSolutionPath();
+  const bool havePath = setup.haveSolutionPath();
+  const auto* arc = dynamic_cast<const planners::ArcPlanner*>(planner.get());
+
+  // The arc path is already the TCP path; sampling planners' paths get OMPL's shortcutting.
+  if (havePath && simplifiesSolution(plannerName)) setup.simplifySolution();
+
+  planned.status = haveExact                                                   ? PlanStatus::Exact
+                   : status == ompl::base::PlannerStatus::APPROXIMATE_SOLUTION ? PlanStatus::Approximate
+                                                                               : PlanStatus::Failed;
+  planned.solveTime = arc ? arc->lastResult().solveTime : setup.getLastPlanComputationTime();
+  planner->params().getParams(planned.parameterValues);
+  if (!haveExact) planned.reason = arc ? arc->lastResult().reason : omplReason(status, setup, options.timeLimit);
+  if (arc) planned.arc = arc->lastResult();
+  if (havePath) {
+    planned.path = collision::waypointsOf(setup.getSolutionPath());
+    planned.measurement = measure(*problem.collisionModel, planned.path, options.maxTcpSpeed);
+  }
+  return planned;
+}
+
+nlohmann::json toJson(const PlannedQuery& planned) {
+  nlohmann::json document = {{"scene", planned.sceneName},
+                             {"query", planned.queryName},
+                             {"planner", planned.options.planner},
+                             {"status", toString(planned.status)},
+                             {trajectory::solveTimeDescriptor().key, planned.solveTime},
+                             {"time_limit_s", planned.options.timeLimit},
+                             {"parameters", planned.parameterValues}};
+  if (planned.options.seed) document["seed"] = *planned.options.seed;
+  if (!planned.reason.empty()) document["reason"] = planned.reason;
+  if (planned.arc) {
+    document["arc"] = arcDetails(*planned.arc);
+    if (!planned.path.empty()) {
+      document["mode"] = planned.arc->mode();
+      document["cartesian_fraction"] = planned.arc->cartesianFraction;
+    }
+  }
+  if (planned.measurement) {
+    document["waypoints"] = planned.path.size();
+    if (planned.options.maxTcpSpeed) document["vmax_mps"] = *planned.options.maxTcpSpeed;
+    document.update(trajectory::toJson(*planned.measurement));
+  }
+  return document;
+}
+
+}  // namespace arcplan::benchmarks
