@@ -28,10 +28,13 @@ ob::StateSpacePtr makeJointStateSpace(const robot::RobotModel& model) {
 CollisionStateValidityChecker::CollisionStateValidityChecker(ob::SpaceInformation* si,
                                                              std::shared_ptr<const CollisionModel> model,
                                                              double clearance)
-    : ob::StateValidityChecker(si), pool_(std::move(model)), clearance_(clearance) {
-  if (!std::isfinite(clearance) || clearance < 0.0) {
-    throw Error("state validity: clearance must be a finite distance >= 0 m, got " + std::to_string(clearance));
-  }
+    : CollisionStateValidityChecker(si, std::move(model), std::make_shared<const EndpointClearance>(clearance)) {}
+
+CollisionStateValidityChecker::CollisionStateValidityChecker(ob::SpaceInformation* si,
+                                                             std::shared_ptr<const CollisionModel> model,
+                                                             std::shared_ptr<const EndpointClearance> required)
+    : ob::StateValidityChecker(si), pool_(std::move(model)), required_(std::move(required)) {
+  if (!required_) throw Error("state validity: no required clearance");
   specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::APPROXIMATE;  // workspace distance, not C-space
 }
 
@@ -39,13 +42,15 @@ bool CollisionStateValidityChecker::isValid(const ob::State* state) const {
   if (!si_->satisfiesBounds(state)) return false;
   const auto lease = pool_.lease();
   const auto q = jointsOf(state, model().robot().dof());
-  if (clearance_ > 0.0) return distance(model(), *lease, q).minimum() >= clearance_;
+  const double required = required_->stateClearanceAt(q);
+  if (required > 0.0) return distance(model(), *lease, q).minimum() >= required;
   return isCollisionFree(model(), *lease, q);
 }
 
 bool CollisionStateValidityChecker::isValid(const ob::State* state, double& clearance) const {
   clearance = this->clearance(state);
-  return clearance > 0.0 && clearance >= clearance_ && si_->satisfiesBounds(state);
+  return clearance > 0.0 && si_->satisfiesBounds(state) &&
+         clearance >= required_->stateClearanceAt(jointsOf(state, model().robot().dof()));
 }
 
 double CollisionStateValidityChecker::clearance(const ob::State* state) const {
@@ -54,9 +59,16 @@ double CollisionStateValidityChecker::clearance(const ob::State* state) const {
 }
 
 JointMotionValidator::JointMotionValidator(ob::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
-                                           MotionCheckOptions options)
-    : ob::MotionValidator(si), pool_(std::move(model)), options_(options) {
+                                           MotionCheckOptions options,
+                                           std::shared_ptr<const EndpointClearance> required)
+    : ob::MotionValidator(si), pool_(std::move(model)), options_(options), required_(std::move(required)) {
   validate(options_);
+}
+
+MotionCheckOptions JointMotionValidator::optionsFor(const robot::JointRef& q1, const robot::JointRef& q2) const {
+  MotionCheckOptions options = options_;
+  if (required_) options.minimumClearance = required_->motionClearanceAlong(q1, q2);
+  return options;
 }
 
 int JointMotionValidator::segmentCount(const ob::State* s1, const ob::State* s2) const {
@@ -69,7 +81,8 @@ bool JointMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2)
   bool valid = si_->isValid(s2);
   if (valid) {
     const auto lease = pool_.lease();
-    valid = isMotionCollisionFree(pool_.model(), *lease, jointsOf(s1, dof), jointsOf(s2, dof), nullptr, options_);
+    const auto q1 = jointsOf(s1, dof), q2 = jointsOf(s2, dof);
+    valid = isMotionCollisionFree(pool_.model(), *lease, q1, q2, nullptr, optionsFor(q1, q2));
   }
   valid ? ++valid_ : ++invalid_;
   return valid;
@@ -84,7 +97,8 @@ bool JointMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
   bool valid = si_->satisfiesBounds(s2);
   if (valid) {
     const auto lease = pool_.lease();
-    valid = isMotionCollisionFree(pool_.model(), *lease, jointsOf(s1, dof), jointsOf(s2, dof), &fraction, options_);
+    const auto q1 = jointsOf(s1, dof), q2 = jointsOf(s2, dof);
+    valid = isMotionCollisionFree(pool_.model(), *lease, q1, q2, &fraction, optionsFor(q1, q2));
   }
   if (valid) {
     ++valid_;
@@ -97,14 +111,18 @@ bool JointMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
 }
 
 ob::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model,
-                                             const MotionCheckOptions& motionCheck, double clearance) {
+                                             const MotionCheckOptions& motionCheck, double clearance,
+                                             const std::vector<robot::JointVector>& endpoints) {
   if (!model) throw Error("makeSpaceInformation: no collision model");
+  validate(motionCheck);
   auto space = makeJointStateSpace(model->robot());
   auto si = std::make_shared<ob::SpaceInformation>(space);
-  si->setStateValidityChecker(std::make_shared<CollisionStateValidityChecker>(si.get(), model, clearance));
+  const auto required =
+      std::make_shared<const EndpointClearance>(*model, clearance, motionCheck.minimumClearance, endpoints);
+  si->setStateValidityChecker(std::make_shared<CollisionStateValidityChecker>(si.get(), model, required));
   MotionCheckOptions motions = motionCheck;
-  motions.minimumClearance = std::max(motions.minimumClearance, clearance);
-  si->setMotionValidator(std::make_shared<JointMotionValidator>(si.get(), std::move(model), motions));
+  motions.minimumClearance = required->motionClearance();
+  si->setMotionValidator(std::make_shared<JointMotionValidator>(si.get(), std::move(model), motions, required));
   // The resolution is what OMPL planners take as the longest motion worth checking in one piece
   // (BiTRRT, for one, connects its trees only within 10 of them). Only the discrete validator checks
   // at its step; with certified motions OMPL's default (1 % of the space's extent) stands.

@@ -85,7 +85,8 @@ PlanningProblem makePlanningProblem(std::shared_ptr<const collision::Scene> scen
   problem.goal = resolveEndpoint(query.goal, *problem.collisionModel, ik, where + ", goal");
 
   problem.setup = std::make_shared<ompl::geometric::SimpleSetup>(
-      collision::makeSpaceInformation(problem.collisionModel, options.motionCheck, options.clearance));
+      collision::makeSpaceInformation(problem.collisionModel, options.motionCheck, options.clearance,
+                                      {problem.start, problem.goal}));  // approach zones (endpoint_clearance.h)
   const ompl::base::StateSpacePtr& space = problem.setup->getStateSpace();
   ompl::base::ScopedState<> start(space), goal(space);
   collision::setJoints(start.get(), problem.start);

@@ -7,8 +7,11 @@
 // A clearance c > 0 (a benchmark suite's `clearance`, docs/benchmarks.md) makes every planner keep
 // the same distance: a state is valid only if every non-allowed pair is at least c apart (one
 // distance query instead of a boolean one), and certified motions reject pairs measured closer than c.
+// Given the problem's endpoints, a start or goal closer than c itself relaxes c in its approach zone
+// (endpoint_clearance.h): the one rule every planner of a problem sees.
 #include <memory>
 #include <utility>
+#include <vector>
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
@@ -16,6 +19,7 @@
 
 #include "arcplan/collision/collision_data_pool.h"
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/endpoint_clearance.h"
 #include "arcplan/collision/motion_check.h"
 
 namespace arcplan::collision {
@@ -28,8 +32,12 @@ public:
   // Throws arcplan::Error for a negative or non-finite clearance.
   CollisionStateValidityChecker(ompl::base::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
                                 double clearance = 0.0);
+  // The clearance each state keeps from `required` (stateClearanceAt); throws arcplan::Error when null.
+  CollisionStateValidityChecker(ompl::base::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
+                                std::shared_ptr<const EndpointClearance> required);
 
-  // Inside the joint bounds, collision-free and (clearance > 0) every pair at least clearance apart.
+  // Inside the joint bounds, collision-free and (required clearance r > 0 at the state) every pair at
+  // least r apart.
   bool isValid(const ompl::base::State* state) const override;
   // Same, and `clearance` = the state's clearance().
   bool isValid(const ompl::base::State* state, double& clearance) const override;
@@ -37,19 +45,20 @@ public:
   double clearance(const ompl::base::State* state) const override;
 
   const CollisionModel& model() const { return pool_.model(); }
-  double requiredClearance() const { return clearance_; }
+  const EndpointClearance& requiredClearance() const { return *required_; }
 
 private:
   CollisionDataPool pool_;
-  double clearance_;
+  std::shared_ptr<const EndpointClearance> required_;
 };
 
 class JointMotionValidator : public ompl::base::MotionValidator {
 public:
   // Checks motions with isMotionCollisionFree(model, ..., options); throws arcplan::Error for
-  // options out of range.
+  // options out of range. With `required`, a motion's minimumClearance is required->motionClearanceAlong
+  // (the motion) instead of options.minimumClearance.
   JointMotionValidator(ompl::base::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
-                       MotionCheckOptions options = {});
+                       MotionCheckOptions options = {}, std::shared_ptr<const EndpointClearance> required = nullptr);
 
   // s1 is taken as valid (OMPL's convention, though the certified check measures it as well); s2
   // must be valid (si->isValid, exact) and the motion collision-free.
@@ -65,17 +74,21 @@ public:
   int segmentCount(const ompl::base::State* s1, const ompl::base::State* s2) const;
 
 private:
+  MotionCheckOptions optionsFor(const robot::JointRef& q1, const robot::JointRef& q2) const;
+
   CollisionDataPool pool_;
   MotionCheckOptions options_;
+  std::shared_ptr<const EndpointClearance> required_;
 };
 
 // Joint state space + CollisionStateValidityChecker + JointMotionValidator, set up. The
 // SpaceInformation's state validity checking resolution (what OMPL planners treat as the longest
 // motion checked in one piece) is OMPL's default for certified motions and maxJointStep for discrete ones.
 // With clearance > 0 the state validity checker keeps it and the certified motion check rejects pairs
-// closer than max(clearance, motionCheck.minimumClearance).
+// closer than max(clearance, motionCheck.minimumClearance); `endpoints` (the problem's start and goal)
+// get approach zones where they are closer than that themselves (EndpointClearance, shared by both).
 ompl::base::SpaceInformationPtr makeSpaceInformation(std::shared_ptr<const CollisionModel> model,
-                                                     const MotionCheckOptions& motionCheck = {},
-                                                     double clearance = 0.0);
+                                                     const MotionCheckOptions& motionCheck = {}, double clearance = 0.0,
+                                                     const std::vector<robot::JointVector>& endpoints = {});
 
 }  // namespace arcplan::collision

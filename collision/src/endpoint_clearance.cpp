@@ -1,0 +1,131 @@
+#include "arcplan/collision/endpoint_clearance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "arcplan/common/error.h"
+#include "motion_bounds.h"
+
+namespace arcplan::collision {
+namespace {
+
+// The motion check's own floor (motion_check.h: minimumClearance >= 1e-5 m).
+constexpr double kMotionClearanceFloor = 1e-5;
+
+void checkDistance(double value, const char* what) {
+  if (!std::isfinite(value) || value < 0.0) {
+    throw Error(std::string("endpoint clearance: ") + what + " must be a finite distance >= 0 m, got " +
+                std::to_string(value));
+  }
+}
+
+}  // namespace
+
+EndpointClearance::EndpointClearance(double clearance, double motionClearance)
+    : clearance_(clearance), motionClearance_(std::max(clearance, motionClearance)) {
+  checkDistance(clearance, "clearance");
+  checkDistance(motionClearance, "motion clearance");
+}
+
+EndpointClearance::EndpointClearance(const CollisionModel& model, double clearance, double motionClearance,
+                                     const std::vector<robot::JointVector>& endpoints)
+    : EndpointClearance(clearance, motionClearance) {
+  const int dof = model.robot().dof();
+  const auto bodies = static_cast<Eigen::Index>(model.linkNames().size());
+  // Σ_j |Δq_j|·D_jL is linear in |Δq|: a unit step of joint j gives row L, column j.
+  reach_.setZero(bodies, dof);
+  const robot::JointVector zero = robot::JointVector::Zero(dof);
+  for (int j = 0; j < dof; ++j) {
+    const robot::JointVector step = robot::JointVector::Unit(dof, j);
+    for (Eigen::Index b = 0; b < bodies; ++b) reach_(b, j) = motionBound(model, static_cast<int>(b), zero, step);
+  }
+  CollisionData data(model);
+  for (const robot::JointVector& endpoint : endpoints) {
+    if (endpoint.size() != dof) {
+      throw Error("endpoint clearance: an endpoint has " + std::to_string(endpoint.size()) + " joints, the robot " +
+                  std::to_string(dof));
+    }
+    const double e = distance(model, data, endpoint).minimum();
+    if (!(e > 0.0) || !(e < motionClearance_)) continue;  // in contact (stays invalid), or clear enough
+    const double relaxed = kApproachZoneFraction * e;
+    zones_.push_back({endpoint, e, std::min(clearance_, relaxed),
+                      std::max(kMotionClearanceFloor, std::min(motionClearance_, relaxed))});
+  }
+}
+
+double EndpointClearance::smallestStateClearance() const {
+  double smallest = clearance_;
+  for (const ApproachZone& zone : zones_) smallest = std::min(smallest, zone.stateClearance);
+  return smallest;
+}
+
+double EndpointClearance::displacement(const robot::JointRef& endpoint, const robot::JointRef& q) const {
+  if (reach_.size() == 0) return 0.0;
+  return (reach_ * (q - endpoint).cwiseAbs()).maxCoeff();
+}
+
+double EndpointClearance::closestApproach(const robot::JointRef& endpoint, const robot::JointRef& qa,
+                                          const robot::JointRef& qb) const {
+  // f(s) = max over bodies of Σ_j D_jL·|qa_j + s·Δ_j − endpoint_j| is convex in s (a maximum of sums
+  // of absolute values of affine functions), so a ternary search finds its minimum on [0, 1]. After
+  // 80 steps the interval is (2/3)^80 < 1e-14 wide; f changes by at most max_L Σ_j D_jL·|Δ_j| per
+  // unit of s (a few metres), so the result is within 1e-13 m of the true minimum, from above.
+  const robot::JointVector delta = qb - qa;
+  const auto f = [&](double s) { return displacement(endpoint, qa + s * delta); };
+  double low = 0.0, high = 1.0;
+  for (int step = 0; step < 80; ++step) {
+    const double a = low + (high - low) / 3.0, b = high - (high - low) / 3.0;
+    if (f(a) <= f(b)) {
+      high = b;
+    } else {
+      low = a;
+    }
+  }
+  return std::min({f(0.0), f(1.0), f(0.5 * (low + high))});
+}
+
+double EndpointClearance::stateClearanceAt(const robot::JointRef& q) const {
+  double required = clearance_;
+  for (const ApproachZone& zone : zones_) {
+    if (displacement(zone.endpoint, q) <= kApproachZoneLength) required = std::min(required, zone.stateClearance);
+  }
+  return required;
+}
+
+double EndpointClearance::motionClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const {
+  double required = motionClearance_;
+  for (const ApproachZone& zone : zones_) {
+    if (zone.motionClearance < required && closestApproach(zone.endpoint, qa, qb) <= kApproachZoneLength)
+      required = zone.motionClearance;
+  }
+  return required;
+}
+
+double EndpointClearance::stateClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const {
+  double required = clearance_;
+  for (const ApproachZone& zone : zones_) {
+    if (zone.stateClearance < required && closestApproach(zone.endpoint, qa, qb) <= kApproachZoneLength)
+      required = zone.stateClearance;
+  }
+  return required;
+}
+
+PathClearance::PathClearance(const EndpointClearance& rule, std::vector<robot::Vector6> path)
+    : rule_(rule), path_(std::move(path)) {
+  for (std::size_t k = 0; k + 1 < path_.size(); ++k)
+    motions_.push_back(rule_.stateClearanceAlong(path_[k], path_[k + 1]));
+}
+
+double PathClearance::next(const robot::Vector6& denseWaypoint) {
+  if (motions_.empty()) return rule_.stateClearanceAt(denseWaypoint);
+  double required = motions_[motion_];
+  // A waypoint of the path ends one motion and starts the next (repeated waypoints: several).
+  while (motion_ + 1 < motions_.size() && denseWaypoint == path_[motion_ + 1]) {
+    ++motion_;
+    required = std::min(required, motions_[motion_]);
+  }
+  return required;
+}
+
+}  // namespace arcplan::collision

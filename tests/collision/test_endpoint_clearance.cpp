@@ -1,0 +1,177 @@
+// Clearance near the endpoints (collision/endpoint_clearance.h, docs/collision.md): a goal 3 mm below a
+// box on a two-joint robot whose motion bounds follow by hand from its geometry.
+//
+// The robot: joint A about z at the origin, joint B about z at (0.3, 0, 0) in A's link, four more
+// joints about the same axis as B at B's origin (six joints, as trajectory paths have), a sphere of
+// radius 0.05 at (0.2, 0, 0) in the last link. The certified motion check's bounds (docs/collision.md,
+// "Motion bounds") for the sphere's link: about the last joint, its farthest point from the axis,
+// 0.2 + 0.05 = 0.25 m per rad; about B to the fifth joint, no offset between them + the farthest point
+// from the last origin (0.25) = 0.25; about A, the offset perpendicular to A's axis (0.3) + 0.25 =
+// 0.55 m per rad. So a state (a, b, 0, 0, 0, 0) is displaced from 0 by at most 0.55·|a| + 0.25·|b|,
+// and the goal's approach zone (L = 0.1 m) is 0.55·|a| + 0.25·|b| <= 0.1.
+// The sphere's centre stays at z = 0 for every (a, b); the box's underside is at z = 0.053 over
+// x in [0.3, 0.8], y in [-0.2, 0.2]: 3 mm above the sphere wherever the sphere is under it.
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <ompl/base/ScopedState.h>
+
+#include "arcplan/collision/endpoint_clearance.h"
+#include "arcplan/collision/ompl_validity.h"
+#include "arcplan/common/error.h"
+#include "support/command.h"
+
+namespace {
+
+using namespace arcplan::collision;
+namespace ob = ompl::base;
+
+constexpr double kGap = 0.003, kClearance = 0.01;
+constexpr double kReachA = 0.55, kReachB = 0.25;  // m per rad, by hand (above)
+
+std::shared_ptr<const CollisionModel> sweeperUnderBox(bool touching = false) {
+  const auto dir = arcplan::testing::freshTempDirectory("endpoint_clearance");
+  const auto urdf = dir / "sweeper.urdf";
+  std::string links = "<link name=\"base_link\"/><link name=\"arm\"/>", chain;
+  const char* names[] = {"a", "b", "c", "d", "e", "f"};
+  for (int j = 1; j < 6; ++j)
+    links += std::string("<link name=\"l") + names[j] + "\"" +
+             (j < 5 ? "/>"
+                    : ">" + std::string("<collision><origin xyz=\"0.2 0 0\"/><geometry><sphere "
+                                        "radius=\"0.05\"/></geometry></collision></link>"));
+  for (int j = 0; j < 6; ++j) {
+    const std::string parent = j == 0 ? "base_link" : j == 1 ? "arm" : std::string("l") + names[j - 1];
+    const std::string child = j == 0 ? "arm" : std::string("l") + names[j];
+    chain += std::string("<joint name=\"") + names[j] + "\" type=\"revolute\"><parent link=\"" + parent +
+             "\"/><child link=\"" + child + "\"/><origin xyz=\"" + (j == 1 ? "0.3" : "0") +
+             " 0 0\"/><axis xyz=\"0 0 1\"/><limit lower=\"-3\" upper=\"3\" velocity=\"1\" effort=\"1\"/></joint>";
+  }
+  std::ofstream(urdf) << "<robot name=\"sweeper\">" << links << "<link name=\"tip\"/>" << chain
+                      << "<joint name=\"tip_joint\" type=\"fixed\"><parent link=\"lf\"/><child link=\"tip\"/>"
+                         "<origin xyz=\"0.2 0 0\"/></joint></robot>";
+  auto robot =
+      std::make_shared<const arcplan::robot::RobotModel>(arcplan::robot::loadRobotModel(urdf, {"base_link", "tip"}));
+  Scene scene;
+  Obstacle box;
+  box.name = "lid";
+  box.shape = Obstacle::Shape::Box;
+  box.size = Eigen::Vector3d(0.5, 0.4, 0.1);
+  const double underside = touching ? 0.04 : 0.05 + kGap;
+  box.pose = Eigen::Translation3d(0.55, 0.0, underside + 0.05) * Eigen::Isometry3d::Identity();
+  scene.obstacles.push_back(box);
+  return std::make_shared<const CollisionModel>(robot, scene, AllowedCollisionMatrix{});
+}
+
+arcplan::robot::Vector6 joints(double a, double b) {
+  return (arcplan::robot::Vector6() << a, b, 0, 0, 0, 0).finished();
+}
+
+bool valid(const ob::SpaceInformationPtr& si, double a, double b) {
+  ob::ScopedState<> state(si);
+  for (int j = 0; j < 6; ++j) state[j] = joints(a, b)[j];
+  return si->isValid(state.get());
+}
+
+bool motionValid(const ob::SpaceInformationPtr& si, const arcplan::robot::Vector6& from,
+                 const arcplan::robot::Vector6& to) {
+  ob::ScopedState<> s1(si), s2(si);
+  for (int j = 0; j < 6; ++j) {
+    s1[j] = from[j];
+    s2[j] = to[j];
+  }
+  return si->checkMotion(s1.get(), s2.get());
+}
+
+TEST(EndpointClearance, ZoneOfAGoalThreeMillimetresBelowABox) {
+  const auto model = sweeperUnderBox();
+  const arcplan::robot::Vector6 goal = joints(0, 0), start = joints(0.9, 0);
+  const EndpointClearance rule(*model, kClearance, 0.001, {start, goal});
+  // The start (sphere at (0.3 cos 0.9 + 0.2 cos 0.9, ...) = (0.311, 0.392), beside the box) needs no zone.
+  ASSERT_EQ(rule.zones().size(), 1u);
+  const ApproachZone& zone = rule.zones()[0];
+  EXPECT_NEAR(zone.endpointClearance, kGap, 1e-6);
+  EXPECT_NEAR(zone.stateClearance, kApproachZoneFraction * kGap, 1e-6);
+  EXPECT_NEAR(zone.motionClearance, kApproachZoneFraction * kGap, 1e-6);
+  EXPECT_NEAR(rule.smallestStateClearance(), kApproachZoneFraction * kGap, 1e-6);
+  // The displacement bound is the hand-computed one (the sphere's part is padded by 1e-6 m for rounding).
+  EXPECT_NEAR(rule.displacement(goal, joints(0.1, -0.2)), kReachA * 0.1 + kReachB * 0.2, 1e-6);
+  EXPECT_NEAR(rule.displacement(goal, joints(-0.3, 0)), kReachA * 0.3, 1e-6);
+
+  const auto si = makeSpaceInformation(model, {}, kClearance, {start, goal});
+  EXPECT_TRUE(valid(si, 0.9, 0)) << "the start keeps 1 cm";
+  EXPECT_TRUE(valid(si, 0, 0)) << "the goal is valid in its own zone";
+  // Along joint A the zone ends at |a| = 0.1 / 0.55 = 0.1818 rad, along B at |b| = 0.1 / 0.25 = 0.4 rad;
+  // the sphere stays 3 mm under the box on both sides of those borders.
+  const double edgeA = kApproachZoneLength / kReachA, edgeB = kApproachZoneLength / kReachB;
+  for (const double side : {-1.0, 1.0}) {
+    EXPECT_TRUE(valid(si, side * (edgeA - 0.002), 0)) << side;
+    EXPECT_FALSE(valid(si, side * (edgeA + 0.002), 0)) << side;
+    EXPECT_TRUE(valid(si, 0, side * (edgeB - 0.004))) << side;
+    EXPECT_FALSE(valid(si, 0, side * (edgeB + 0.004))) << side;
+  }
+  // Both joints: 0.55·0.1 + 0.25·0.17 = 0.0975 inside, 0.55·0.1 + 0.25·0.19 = 0.1025 outside.
+  EXPECT_TRUE(valid(si, 0.1, 0.17));
+  EXPECT_FALSE(valid(si, 0.1, 0.19));
+  // Without endpoints the goal itself is invalid at 1 cm (what every planner saw before the rule).
+  EXPECT_FALSE(valid(makeSpaceInformation(model, {}, kClearance), 0, 0));
+}
+
+TEST(EndpointClearance, MotionsKeepTheSmallestRequirementAlongThem) {
+  const auto model = sweeperUnderBox();
+  const arcplan::robot::Vector6 goal = joints(0, 0), start = joints(0.9, 0);
+  const EndpointClearance rule(*model, kClearance, 0.001, {start, goal});
+  const double inZone = kApproachZoneFraction * kGap;
+  // b = 0.3 at a = 0 is 0.075 from the goal (inside); b = 0.5 is 0.125 (outside); a straight motion
+  // in a at fixed b comes closest at a = 0.
+  EXPECT_NEAR(rule.closestApproach(goal, joints(-0.3, 0.3), joints(0.3, 0.3)), kReachB * 0.3, 1e-6);
+  EXPECT_NEAR(rule.closestApproach(goal, joints(-0.3, 0.5), joints(0.3, 0.5)), kReachB * 0.5, 1e-6);
+  EXPECT_NEAR(rule.motionClearanceAlong(joints(-0.3, 0.3), joints(0.3, 0.3)), inZone, 1e-9);
+  EXPECT_DOUBLE_EQ(rule.motionClearanceAlong(joints(-0.3, 0.5), joints(0.3, 0.5)), kClearance);
+  EXPECT_NEAR(rule.stateClearanceAlong(joints(-0.3, 0.3), joints(0.3, 0.3)), inZone, 1e-9);
+  EXPECT_DOUBLE_EQ(rule.stateClearanceAlong(joints(-0.3, 0.5), joints(0.3, 0.5)), kClearance);
+  // From the start (beside the box) into the goal: the motion passes 3 mm under the box, which the
+  // goal's zone allows; to a state outside the zone under the box it does not (that state is invalid).
+  const auto si = makeSpaceInformation(model, {}, kClearance, {start, goal});
+  EXPECT_TRUE(motionValid(si, start, goal));
+  EXPECT_FALSE(motionValid(si, start, joints(0.3, 0)));
+  // Without the zone the same motion is rejected (the goal keeps 3 mm, not 1 cm).
+  const auto strict = makeSpaceInformation(model, {}, kClearance, {start});
+  EXPECT_FALSE(motionValid(strict, start, goal));
+}
+
+TEST(EndpointClearance, PathWaypointsAreJudgedByTheirMotions) {
+  const auto model = sweeperUnderBox();
+  const EndpointClearance rule(*model, kClearance, 0.001, {joints(0.9, 0), joints(0, 0)});
+  const double inZone = kApproachZoneFraction * kGap;
+  // start -> (0.5, 0): closest to the goal 0.55·0.5 = 0.275 m, outside the zone; (0.5, 0) -> goal enters it.
+  // The waypoint (0.5, 0) is repeated, as a planner's path may have it; the dense path holds it once.
+  PathClearance judge(rule, {joints(0.9, 0), joints(0.5, 0), joints(0.5, 0), joints(0, 0)});
+  EXPECT_DOUBLE_EQ(judge.next(joints(0.9, 0)), kClearance);
+  EXPECT_DOUBLE_EQ(judge.next(joints(0.7, 0)), kClearance);
+  EXPECT_NEAR(judge.next(joints(0.5, 0)), inZone, 1e-9) << "ends one motion, starts one that enters the zone";
+  EXPECT_NEAR(judge.next(joints(0.4, 0)), inZone, 1e-9) << "outside the zone, on a motion that enters it";
+  EXPECT_NEAR(judge.next(joints(0, 0)), inZone, 1e-9);
+  EXPECT_DOUBLE_EQ(rule.stateClearanceAt(joints(0.4, 0)), kClearance) << "the state alone";
+}
+
+TEST(EndpointClearance, AnEndpointInContactGetsNoZoneAndStaysInvalid) {
+  const auto model = sweeperUnderBox(/*touching=*/true);
+  const EndpointClearance rule(*model, kClearance, 0.001, {joints(0, 0)});
+  EXPECT_TRUE(rule.zones().empty());
+  const auto si = makeSpaceInformation(model, {}, kClearance, {joints(0, 0)});
+  EXPECT_FALSE(valid(si, 0, 0));
+  EXPECT_THROW(EndpointClearance(*model, -0.01, 0.001, {}), arcplan::Error);
+  EXPECT_THROW(EndpointClearance(*model, kClearance, 0.001, {arcplan::robot::JointVector::Zero(3)}), arcplan::Error);
+}
+
+TEST(EndpointClearance, AClearEndpointChangesNothing) {
+  const auto model = sweeperUnderBox();
+  // Below 3 mm asked: the goal is clear enough, no zone; the motion clearance is raised to the state one.
+  const EndpointClearance rule(*model, 0.002, 0.001, {joints(0, 0)});
+  EXPECT_TRUE(rule.zones().empty());
+  EXPECT_DOUBLE_EQ(rule.motionClearance(), 0.002);
+  EXPECT_DOUBLE_EQ(rule.stateClearanceAt(joints(0, 0)), 0.002);
+}
+
+}  // namespace
