@@ -1,5 +1,4 @@
 // arcplan bench: benchmark campaigns (OMPL logs, database, ranking, plots) and `bench rank`.
-#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -61,27 +60,10 @@ void printOutputs(const std::filesystem::path& directory, const std::filesystem:
 void runBench(const BenchOptions& options) {
   auto suite = benchmarks::loadSuite(benchmarks::findSuite(options.suite));
   if (!options.planners.empty()) benchmarks::selectPlanners(suite, options.planners);
-  if (options.runs) {
-    if (*options.runs < 1) throw UsageError("--runs must be at least 1");
-    suite.runs = *options.runs;
-  }
-  if (options.time) {
-    if (!(*options.time > 0.0) || !std::isfinite(*options.time)) {
-      throw UsageError("--time must be a positive number of seconds");
-    }
-    suite.timeLimit = *options.time;
-  }
-  if (options.budget) {
-    if (*options.budget < 1 || *options.budget > benchmarks::kMaximumIterationBudget) {
-      throw UsageError("--budget must be a whole number of iterations from 1 to " +
-                       std::to_string(benchmarks::kMaximumIterationBudget));
-    }
-    suite.iterationBudget = static_cast<unsigned>(*options.budget);
-  }
-  if (options.vMax) {
-    if (!(*options.vMax > 0.0) || !std::isfinite(*options.vMax))
-      throw UsageError("--vmax must be a positive TCP speed in m/s");
-    suite.vMax = *options.vMax;
+  try {
+    benchmarks::applyOverrides(suite, {options.runs, options.time, options.budget, options.vMax});
+  } catch (const Error& e) {
+    throw UsageError(e.what());
   }
   if (options.workers < 1) throw UsageError("--workers must be at least 1");
 
@@ -117,17 +99,7 @@ void runBench(const BenchOptions& options) {
             << campaign.workers << " worker process(es)\n";
   printNotes(result.notes);
 
-  nlohmann::json document{{"suite", suite.name},
-                          {"out", campaign.outDirectory.string()},
-                          {"shard", options.shard},
-                          {"jobs_in_shard", result.jobsInShard},
-                          {"jobs_run", result.jobsRun},
-                          {"jobs_skipped", result.jobsSkipped},
-                          {"jobs_in_campaign", result.jobsInCampaign},
-                          {"jobs_done_in_campaign", result.jobsDoneInCampaign},
-                          {"interrupted", result.interrupted},
-                          {"wall_time_s", result.wallTime}};
-  if (result.ranking) document["ranking"] = benchmarks::rankingJson(*result.ranking);
+  const auto document = benchmarks::campaignSummaryJson(suite, campaign, result);
   if (!options.json.empty()) writeJson(options.json, document);
 
   if (result.interrupted) {

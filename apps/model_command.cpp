@@ -97,12 +97,6 @@ void printQuality(const model::LoadedData& loaded) {
   std::cout << "\n";
 }
 
-std::vector<std::string> effectNames(const model::ModelSpec& spec) {
-  std::vector<std::string> names;
-  for (const auto& e : spec.effects) names.push_back(model::describeEffect(e));
-  return names;
-}
-
 void reportPlot(const PlotOutcome& outcome, const std::filesystem::path& directory) {
   if (outcome.ok) {
     std::cout << "plots written to " << directory.string() << "\n";
@@ -115,8 +109,7 @@ void runCompare(const ModelOptions& o) {
   const auto spec = model::loadModelFile(o.model);
   const auto loaded = model::loadData(spec, dataFiles(o));
   printQuality(loaded);
-  const auto fitted =
-      o.keepParameters ? model::modelFromParameters(spec, loaded.data, false) : model::fitModel(spec, loaded.data);
+  const auto fitted = model::comparedModel(spec, loaded.data, o.keepParameters);
   const auto comparison = model::compareModel(fitted, loaded.data, loaded.validationOrNull());
   std::cout << model::formatComparison(comparison) << "\n" << model::formatParameters(fitted);
   if (!o.json.empty()) writeJson(o.json, model::toJson(comparison, fitted, loaded.data));
@@ -127,8 +120,7 @@ void runCompare(const ModelOptions& o) {
       outcome = model::plotComparison(fitted, *loaded.validation, directory, "compare_validation");
     }
     reportPlot(outcome, directory);
-    model::appendSessionStep(directory / "session.json",
-                             {"compare", effectNames(spec), comparison.data, comparison.validation});
+    model::appendSessionStep(directory / "session.json", model::comparisonStep(spec, comparison));
     writeJson(directory / "compare.json",
               model::toJson(comparison, fitted, loaded.data));  // worst windows for the report
   }
@@ -172,10 +164,7 @@ void runFit(const ModelOptions& o) {
     if (outcome.ok && loaded.validation)
       outcome = model::plotComparison(step.after, *loaded.validation, directory, "fit_validation");
     reportPlot(outcome, directory);
-    std::string command = "fit";
-    for (const auto& a : step.added) command += " +" + a;
-    model::appendSessionStep(directory / "session.json",
-                             {command, effectNames(step.after.spec), step.afterData, step.afterValidation});
+    model::appendSessionStep(directory / "session.json", model::fitSessionStep(step));
   }
   writeSessionReport(o);
 }

@@ -237,6 +237,17 @@ nlohmann::json experimentRows(const ReadOnlyDatabase& db) {
 
 }  // namespace
 
+std::filesystem::path campaignDatabase(const std::filesystem::path& folderOrDatabase) {
+  if (!std::filesystem::is_directory(folderOrDatabase)) return folderOrDatabase;
+  const auto database = folderOrDatabase / "benchmark.db";
+  if (!std::filesystem::is_regular_file(database)) {
+    throw Error(folderOrDatabase.string() +
+                ": not a finished campaign folder (no benchmark.db; `arcplan bench` writes it once every job of the "
+                "campaign is done)");
+  }
+  return database;
+}
+
 BenchmarkDatabase readBenchmarkDatabase(const std::filesystem::path& file) {
   const ReadOnlyDatabase db(file);
   BenchmarkDatabase database;

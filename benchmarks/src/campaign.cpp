@@ -179,6 +179,21 @@ CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options) {
   return result;
 }
 
+nlohmann::json campaignSummaryJson(const Suite& suite, const CampaignOptions& options, const CampaignResult& result) {
+  nlohmann::json document{{"suite", suite.name},
+                          {"out", options.outDirectory.string()},
+                          {"shard", std::to_string(options.shard.index) + "/" + std::to_string(options.shard.count)},
+                          {"jobs_in_shard", result.jobsInShard},
+                          {"jobs_run", result.jobsRun},
+                          {"jobs_skipped", result.jobsSkipped},
+                          {"jobs_in_campaign", result.jobsInCampaign},
+                          {"jobs_done_in_campaign", result.jobsDoneInCampaign},
+                          {"interrupted", result.interrupted},
+                          {"wall_time_s", result.wallTime}};
+  if (result.ranking) document["ranking"] = rankingJson(*result.ranking);
+  return document;
+}
+
 Ranking reportFromDatabase(const std::filesystem::path& database, const ReportOptions& options,
                            std::vector<std::string>& notes) {
   auto ranking = rankDatabase(database);

@@ -33,13 +33,7 @@ CampaignResults campaignResultsFromRuns(const std::string& source, const Campaig
 
 CampaignResults loadCampaignResults(const std::filesystem::path& input) {
   if (std::filesystem::is_directory(input)) {
-    const auto database = input / "benchmark.db";
-    if (!std::filesystem::is_regular_file(database)) {
-      throw Error(input.string() +
-                  ": not a finished campaign folder (no benchmark.db; `arcplan bench` writes it once "
-                  "every job of the campaign is done)");
-    }
-    const auto recorded = readBenchmarkDatabase(database);
+    const auto recorded = readBenchmarkDatabase(campaignDatabase(input));
     auto results = campaignResultsFromRuns(input.string(), recorded.runs, recorded.settings);
     for (auto& [problem, planners] : results.problems) {
       for (auto& [planner, entry] : planners) {

@@ -282,4 +282,22 @@ void selectPlanners(Suite& suite, const std::vector<std::string>& labels) {
   suite.planners = std::move(selected);
 }
 
+void applyOverrides(Suite& suite, const SuiteOverrides& overrides) {
+  const auto& o = overrides;
+  if (o.runs && *o.runs < 1) throw Error("--runs must be at least 1");
+  if (o.runs && *o.runs > kMaximumRuns) throw Error("--runs must be at most " + std::to_string(kMaximumRuns));
+  if (o.timeLimit && (!(*o.timeLimit > 0.0) || !std::isfinite(*o.timeLimit))) {
+    throw Error("--time must be a positive number of seconds");
+  }
+  if (o.budget && (*o.budget < 1 || *o.budget > kMaximumIterationBudget)) {
+    throw Error("--budget must be a whole number of iterations from 1 to " + std::to_string(kMaximumIterationBudget));
+  }
+  if (o.vMax && (!(*o.vMax > 0.0) || !std::isfinite(*o.vMax)))
+    throw Error("--vmax must be a positive TCP speed in m/s");
+  if (o.runs) suite.runs = static_cast<unsigned>(*o.runs);
+  if (o.timeLimit) suite.timeLimit = *o.timeLimit;
+  if (o.budget) suite.iterationBudget = static_cast<unsigned>(*o.budget);
+  if (o.vMax) suite.vMax = *o.vMax;
+}
+
 }  // namespace arcplan::benchmarks

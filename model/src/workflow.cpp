@@ -20,19 +20,62 @@ Dataset loadRuns(const std::filesystem::path& first, const std::vector<std::file
   return joinRuns(runs);
 }
 
+void checkChannelCounts(const LoadedData& loaded, const std::string& data, const std::string& validation) {
+  if (loaded.validation && loaded.validation->channelCount() != loaded.data.channelCount()) {
+    throw Error(validation + ": mismatched joint count: " + std::to_string(loaded.validation->channelCount()) +
+                " channels, but " + data + " has " + std::to_string(loaded.data.channelCount()));
+  }
+}
+
+Dataset joinLogs(const std::vector<Log>& logs, const ModelSpec& spec) {
+  std::vector<Dataset> runs;
+  for (const auto& log : logs) runs.push_back(makeJointDataset(log, spec));
+  return joinRuns(runs);
+}
+
+std::vector<std::string> effectNames(const ModelSpec& spec) {
+  std::vector<std::string> names;
+  for (const auto& e : spec.effects) names.push_back(describeEffect(e));
+  return names;
+}
+
 }  // namespace
 
 LoadedData loadData(const ModelSpec& spec, const DataFiles& files) {
   LoadedData loaded{loadRuns(files.data, files.moreData, spec, files.dataOptions), std::nullopt};
   if (!files.validation.empty()) {
     loaded.validation = loadRuns(files.validation, files.moreValidation, spec, files.validationOptions);
-    if (loaded.validation->channelCount() != loaded.data.channelCount()) {
-      throw Error(files.validation.string() +
-                  ": mismatched joint count: " + std::to_string(loaded.validation->channelCount()) + " channels, but " +
-                  files.data.string() + " has " + std::to_string(loaded.data.channelCount()));
-    }
+    checkChannelCounts(loaded, files.data.string(), files.validation.string());
   }
   return loaded;
+}
+
+LoadedData prepareData(const ModelSpec& spec, const std::vector<Log>& data, const std::vector<Log>& validation) {
+  if (data.empty()) throw Error("no data: give at least one log");
+  LoadedData loaded{joinLogs(data, spec), std::nullopt};
+  if (!validation.empty()) {
+    loaded.validation = joinLogs(validation, spec);
+    checkChannelCounts(loaded, data.front().source.string(), validation.front().source.string());
+  }
+  return loaded;
+}
+
+void checkPreparedFor(const LoadedData& loaded, const ModelSpec& spec) {
+  const auto settings = [](ModelSpec s) {
+    s.name.clear();
+    s.source.clear();
+    s.effects.clear();
+    return toYaml(s);
+  };
+  if (settings(loaded.data.settings()) != settings(spec)) {
+    throw Error(spec.source.string() + ": the data was prepared for a model with other settings (" +
+                loaded.data.settings().source.string() +
+                "); load it again with this model: only the effects may differ");
+  }
+}
+
+FittedModel comparedModel(const ModelSpec& spec, const Dataset& data, bool keepParameters) {
+  return keepParameters ? modelFromParameters(spec, data, false) : fitModel(spec, data);
 }
 
 std::string describeEffect(const EffectSpec& effect) {
@@ -71,6 +114,16 @@ FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& a
     step.afterValidation = errorSummary(*validation, predictAll(step.after, *validation));
   }
   return step;
+}
+
+SessionStep comparisonStep(const ModelSpec& spec, const Comparison& comparison) {
+  return {"compare", effectNames(spec), comparison.data, comparison.validation};
+}
+
+SessionStep fitSessionStep(const FitStep& step) {
+  std::string command = "fit";
+  for (const auto& added : step.added) command += " +" + added;
+  return {command, effectNames(step.after.spec), step.afterData, step.afterValidation};
 }
 
 std::vector<SessionStep> readSession(const std::filesystem::path& file) {

@@ -33,6 +33,10 @@ struct BenchmarkDatabase {
   nlohmann::json experiments = nlohmann::json::array();  // every experiments row, column -> value
 };
 
+// A campaign folder's benchmark.db, or `folderOrDatabase` itself when it is not a folder. Throws arcplan::Error
+// naming the folder when it has no benchmark.db (`bench` writes it once every job of the campaign is done).
+std::filesystem::path campaignDatabase(const std::filesystem::path& folderOrDatabase);
+
 // Throws arcplan::Error if the file is missing, is not an OMPL benchmark database (no
 // runs/experiments/plannerConfigs tables) or holds no runs.
 BenchmarkDatabase readBenchmarkDatabase(const std::filesystem::path& file);

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "arcplan/benchmarks/ranking.h"
 #include "arcplan/benchmarks/suite.h"
 
@@ -72,6 +74,10 @@ struct CampaignResult {
 // with other settings or is locked by a campaign sharing jobs with this shard, or when an output file
 // cannot be written (the campaign stops, completed logs stay).
 CampaignResult runCampaign(const Suite& suite, const CampaignOptions& options);
+
+// The summary `bench --json` writes (docs/cli.md): suite, out, shard, jobs_in_shard, jobs_run, jobs_skipped,
+// jobs_in_campaign, jobs_done_in_campaign, interrupted, wall_time_s, and the ranking once the campaign is done.
+nlohmann::json campaignSummaryJson(const Suite& suite, const CampaignOptions& options, const CampaignResult& result);
 
 struct ReportOptions {
   std::filesystem::path outDirectory;                  // ranking files and plots/

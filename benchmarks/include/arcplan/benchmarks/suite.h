@@ -98,6 +98,17 @@ std::filesystem::path suiteDirectory();
 // configure is taken as a registry planner with its default parameters (checked when the campaign starts).
 void selectPlanners(Suite& suite, const std::vector<std::string>& labels);
 
+// Settings put over a suite's own by the command line or a Python call; unset ones keep the suite's.
+struct SuiteOverrides {
+  std::optional<long long> runs;
+  std::optional<double> timeLimit;  // s per run
+  std::optional<long long> budget;  // iterations per run
+  std::optional<double> vMax;       // m/s
+};
+// Throws arcplan::Error naming the option (--runs, --time, --budget, --vmax) and the range it expects for a
+// value out of range, before anything changes.
+void applyOverrides(Suite& suite, const SuiteOverrides& overrides);
+
 // True for names usable in file names, OMPL experiment names and SQL values: [A-Za-z0-9_.+-]+.
 bool isPlainName(const std::string& name);
 

@@ -90,6 +90,14 @@ struct LogReadOptions {
 // exist, when vector signals disagree on the joint count, or when no valid row is left.
 Log readLog(const std::filesystem::path& file, const LogReadOptions& options = {});
 
+// A log from values already in memory (NumPy arrays from Python, another program's buffers): `time` in s,
+// strictly increasing; every signal one row per time, under its RTDE name (knownVectorSignals: rows x joints, one
+// joint count for all; knownScalarSignals: one column). Nothing is dropped, unlike in a file: a signal arcplan does
+// not know, a row count or joint count that does not match, a NaN/inf or a corrupted magnitude, or a time that does
+// not increase throws arcplan::Error naming `source`, the signal and the row (0-based). `Log::lines` stays empty.
+Log makeLog(const std::string& source, Eigen::VectorXd time, std::map<std::string, Eigen::MatrixXd> signals,
+            double corruptMagnitude = 1e12);
+
 // "355-5090" -> lines 355..5090; "355-" open end. Throws arcplan::Error naming `what`.
 std::pair<std::size_t, std::size_t> parseLineRange(const std::string& text, const std::string& what);
 

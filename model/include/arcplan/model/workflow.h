@@ -33,6 +33,17 @@ struct LoadedData {
 // data's channel count.
 LoadedData loadData(const ModelSpec& spec, const DataFiles& files);
 
+// The same from logs already read or built in memory (makeLog): several logs of `data` (and of
+// `validation`) are runs of one robot, joined end to end. Joint kinds only.
+LoadedData prepareData(const ModelSpec& spec, const std::vector<Log>& data, const std::vector<Log>& validation);
+
+// Throws arcplan::Error naming the model file when `loaded` was prepared for other settings than the model's (kind,
+// load torque, robot, derivative filter, ...: everything but the effects), so data and model go together.
+void checkPreparedFor(const LoadedData& loaded, const ModelSpec& spec);
+
+// The model `compare` judges: fitted to `data`, or with `keepParameters` the parameters stored in the spec.
+FittedModel comparedModel(const ModelSpec& spec, const Dataset& data, bool keepParameters);
+
 struct FitStep {
   std::vector<std::string> added;  // "load_friction:1,2"
   FittedModel before, after;
@@ -55,6 +66,10 @@ struct SessionStep {
   ErrorSummary data;
   std::optional<ErrorSummary> validation;
 };
+
+// The session step of a comparison ("compare") and of a fit ("fit +load_friction:1,2").
+SessionStep comparisonStep(const ModelSpec& spec, const Comparison& comparison);
+SessionStep fitSessionStep(const FitStep& step);
 
 // The history kept in a session file (JSON); a missing file is an empty history. Appending
 // rewrites the file atomically.
