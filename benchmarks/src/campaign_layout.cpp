@@ -13,6 +13,7 @@
 #include "arcplan/common/text_parsing.h"
 #include "arcplan/planners/planning_problem.h"
 #include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/mesh.h"
 
 namespace arcplan::benchmarks {
 namespace detail {
@@ -100,6 +101,57 @@ JobFiles jobFiles(const std::filesystem::path& out, const Suite& suite, const Jo
   return files;
 }
 
+namespace {
+
+// The obstacle as the plots draw it: shape, sizes, pose; a mesh's triangles (obstacle frame, scaled)
+// too, since a MoveIt mesh exists only in its scene message and the report must not need the inputs.
+nlohmann::json plotObstacle(const collision::Obstacle& obstacle) {
+  static const std::map<collision::Obstacle::Shape, const char*> shapes{
+      {collision::Obstacle::Shape::Sphere, "sphere"},
+      {collision::Obstacle::Shape::Box, "box"},
+      {collision::Obstacle::Shape::Cylinder, "cylinder"},
+      {collision::Obstacle::Shape::Mesh, "mesh"}};
+  const Eigen::Matrix3d r = obstacle.pose.linear();
+  const Eigen::Vector3d t = obstacle.pose.translation();
+  nlohmann::json json{
+      {"name", obstacle.name},
+      {"shape", shapes.at(obstacle.shape)},
+      {"radius", obstacle.radius},
+      {"length", obstacle.length},
+      {"size", {obstacle.size.x(), obstacle.size.y(), obstacle.size.z()}},
+      {"position", {t.x(), t.y(), t.z()}},
+      {"rotation", {{r(0, 0), r(0, 1), r(0, 2)}, {r(1, 0), r(1, 1), r(1, 2)}, {r(2, 0), r(2, 1), r(2, 2)}}}};
+  if (obstacle.shape == collision::Obstacle::Shape::Mesh) {
+    const auto mesh = obstacle.meshData ? *obstacle.meshData : robot::loadMesh(obstacle.meshFile, obstacle.meshScale);
+    std::vector<float> vertices;  // float: the drawing needs no more, and the file stays half the size
+    for (const auto& v : mesh.vertices) vertices.insert(vertices.end(), {float(v.x()), float(v.y()), float(v.z())});
+    std::vector<int> triangles;
+    for (const auto& f : mesh.triangles) triangles.insert(triangles.end(), {f.x(), f.y(), f.z()});
+    json["vertices"] = vertices;
+    json["triangles"] = triangles;
+  }
+  return json;
+}
+
+// Enough to load the same robot again (robot::loadRobot); empty paths and type: the built-in UR10e.
+nlohmann::json plotRobot(const robot::RobotSource& source) {
+  nlohmann::json json{{"urdf", source.urdf.string()},
+                      {"ur_type", source.urType},
+                      {"description", source.description.string()},
+                      {"kinematics", source.kinematics.string()},
+                      {"base_link", source.chain.baseLink},
+                      {"tip_link", source.chain.tipLink},
+                      {"tcp_offset", nullptr}};
+  if (source.chain.tcpOffset) {
+    const Eigen::Vector3d t = source.chain.tcpOffset->translation();
+    const Eigen::Quaterniond q(source.chain.tcpOffset->linear());
+    json["tcp_offset"] = {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
+  }
+  return json;
+}
+
+}  // namespace
+
 void writePlotScene(const std::filesystem::path& file, const Problem& problem, double vMax) {
   const auto planning =
       planners::makePlanningProblem(std::make_shared<const collision::Scene>(problem.scene), problem.query);
@@ -109,27 +161,16 @@ void writePlotScene(const std::filesystem::path& file, const Problem& problem, d
     return nlohmann::json{p.x(), p.y(), p.z()};
   };
   nlohmann::json obstacles = nlohmann::json::array();
-  for (const auto& obstacle : problem.scene.obstacles) {
-    static const std::map<collision::Obstacle::Shape, const char*> shapes{
-        {collision::Obstacle::Shape::Sphere, "sphere"},
-        {collision::Obstacle::Shape::Box, "box"},
-        {collision::Obstacle::Shape::Cylinder, "cylinder"},
-        {collision::Obstacle::Shape::Mesh, "mesh"}};
-    const Eigen::Matrix3d r = obstacle.pose.linear();
-    const Eigen::Vector3d t = obstacle.pose.translation();
-    obstacles.push_back(
-        {{"name", obstacle.name},
-         {"shape", shapes.at(obstacle.shape)},
-         {"radius", obstacle.radius},
-         {"length", obstacle.length},
-         {"size", {obstacle.size.x(), obstacle.size.y(), obstacle.size.z()}},
-         {"position", {t.x(), t.y(), t.z()}},
-         {"rotation", {{r(0, 0), r(0, 1), r(0, 2)}, {r(1, 0), r(1, 1), r(1, 2)}, {r(2, 0), r(2, 1), r(2, 2)}}}});
-  }
+  for (const auto& obstacle : problem.scene.obstacles) obstacles.push_back(plotObstacle(obstacle));
+  // Joints too, so that a report can draw the robot where no planner found a path.
+  const auto joints = [](const robot::Vector6& q) { return std::vector<double>(q.data(), q.data() + q.size()); };
   const nlohmann::json scene{{"problem", problem.name},
+                             {"robot", plotRobot(problem.scene.robot)},
                              {"obstacles", obstacles},
                              {"start", position(planning.start)},
                              {"goal", position(planning.goal)},
+                             {"start_joints", joints(planning.start)},
+                             {"goal_joints", joints(planning.goal)},
                              {"vmax_mps", vMax}};
   writeFileAtomically(file, scene.dump(1) + "\n");
 }

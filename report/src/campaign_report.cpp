@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <optional>
 
 #include "arcplan/benchmarks/benchmark_database.h"
 #include "arcplan/benchmarks/median_run.h"
@@ -9,6 +11,8 @@
 #include "arcplan/common/error.h"
 #include "arcplan/report/robot_animation.h"
 #include "arcplan/robot/robot_model.h"
+#include "arcplan/robot/robot_source.h"
+#include "drawn_meshes.h"
 #include "compact_number.h"
 #include "json_file.h"
 
@@ -43,7 +47,8 @@ nlohmann::json runsJson(const benchmarks::BenchmarkDatabase& runs) {
   return problems;
 }
 
-nlohmann::json medianRunJson(const benchmarks::MedianRun& run, const robot::RobotModel& robot,
+// Frames of the arm when `robot` is given (null: the run has no joints or the robot did not load).
+nlohmann::json medianRunJson(const benchmarks::MedianRun& run, const robot::RobotModel* robot,
                              const CampaignReportOptions& options) {
   nlohmann::json t = nlohmann::json::array(), speed = nlohmann::json::array(), tcp = nlohmann::json::array();
   const auto keep = [&](std::size_t i) {
@@ -57,31 +62,137 @@ nlohmann::json medianRunJson(const benchmarks::MedianRun& run, const robot::Robo
   if ((n - 1) % stride != 0) keep(n - 1);
   nlohmann::json entry{{"name", run.planner}, {"t", t}, {"speed", speed}, {"tcp", tcp}, {"notes", run.notes}};
   entry["frames"] =
-      run.joints.empty() ? nlohmann::json(nullptr) : linkPoseFrames(robot, run.time, run.joints, options.animationRate);
+      robot ? linkPoseFrames(*robot, run.time, run.joints, options.animationRate) : nlohmann::json(nullptr);
   return entry;
 }
 
-// Speed profiles, TCP paths and arm frames of every problem with a paths/ folder.
+// The robot a plot scene names (scene.json "robot"; campaigns written before it was there: the UR10e).
+robot::RobotSource robotSourceOf(const nlohmann::json& scene) {
+  robot::RobotSource source;
+  if (!scene.contains("robot")) return source;
+  const auto& json = scene.at("robot");
+  source.urdf = json.value("urdf", "");
+  source.urType = json.value("ur_type", "");
+  source.description = json.value("description", "");
+  source.kinematics = json.value("kinematics", "");
+  source.chain.baseLink = json.value("base_link", source.chain.baseLink);
+  source.chain.tipLink = json.value("tip_link", source.chain.tipLink);
+  if (json.contains("tcp_offset") && json["tcp_offset"].is_array()) {
+    const auto& v = json["tcp_offset"];
+    Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
+    offset.translation() = Eigen::Vector3d(v.at(0), v.at(1), v.at(2));
+    offset.linear() = Eigen::Quaterniond(v.at(6), v.at(3), v.at(4), v.at(5)).normalized().toRotationMatrix();
+    source.chain.tcpOffset = offset;
+  }
+  return source;
+}
+
+robot::Vector6 jointsOf(const nlohmann::json& scene, const char* key) {
+  const auto values = scene.at(key).get<std::vector<double>>();
+  if (values.size() != 6)
+    throw Error(std::string("scene.json: ") + key + " has " + std::to_string(values.size()) + " values, expected 6");
+  return Eigen::Map<const robot::Vector6>(values.data());
+}
+
+// Mesh obstacles carry their triangles in scene.json as plain lists: on the page they travel like the
+// link meshes (base64, thinned when large).
+nlohmann::json drawnScene(nlohmann::json scene) {
+  for (auto& obstacle : scene["obstacles"]) {
+    if (obstacle.value("shape", "") != "mesh" || !obstacle.contains("vertices")) continue;
+    const auto vertices = obstacle["vertices"].get<std::vector<double>>();
+    const auto corners = obstacle["triangles"].get<std::vector<int>>();
+    robot::TriangleMesh mesh;
+    for (std::size_t i = 0; i + 2 < vertices.size(); i += 3)
+      mesh.vertices.emplace_back(vertices[i], vertices[i + 1], vertices[i + 2]);
+    for (std::size_t i = 0; i + 2 < corners.size(); i += 3) {
+      const Eigen::Vector3i triangle(corners[i], corners[i + 1], corners[i + 2]);
+      if (triangle.minCoeff() < 0 || triangle.maxCoeff() >= static_cast<int>(mesh.vertices.size()))
+        throw Error("scene.json: obstacle '" + obstacle.value("name", "") + "': triangle " + std::to_string(i / 3) +
+                    " names a vertex that is not there");
+      mesh.triangles.push_back(triangle);
+    }
+    obstacle.erase("vertices");
+    obstacle.erase("triangles");
+    obstacle["source_triangles"] = mesh.triangles.size();
+    obstacle.update(detail::meshJson(detail::withAtMostTriangles(mesh, kMaxTrianglesPerMesh)));
+  }
+  return scene;
+}
+
+// The robots of the plot problems, each loaded and drawn once (a campaign usually has one). A robot
+// that no longer loads (its URDF moved) costs the pages their arm, not the report.
+class PlotRobots {
+public:
+  // Index of the scene's robot; nullopt, with a note in `missing`, when it cannot be loaded.
+  std::optional<std::size_t> indexOf(const nlohmann::json& scene, nlohmann::json& missing) {
+    const auto key = scene.contains("robot") ? scene["robot"].dump() : std::string("ur10e");
+    const auto found = std::find(keys_.begin(), keys_.end(), key);
+    const auto index = static_cast<std::size_t>(found - keys_.begin());
+    if (found == keys_.end()) {
+      keys_.push_back(key);
+      used_.push_back(false);
+      try {
+        models_.emplace_back(robot::loadRobot(robotSourceOf(scene)));
+      } catch (const Error& error) {
+        models_.emplace_back(std::nullopt);
+        missing.push_back("The robot of " + scene.value("problem", std::string("a plot problem")) +
+                          " cannot be loaded (" + error.what() + "): its 3D views show no arm.");
+      }
+    }
+    return models_[index] ? std::optional<std::size_t>(index) : std::nullopt;
+  }
+  const robot::RobotModel& use(std::size_t index) {
+    used_[index] = true;
+    return *models_[index];
+  }
+  // [{name, meshes}] per robot some page moves an arm of (null for the others).
+  nlohmann::json json() const {
+    nlohmann::json robots = nlohmann::json::array();
+    for (std::size_t i = 0; i < models_.size(); ++i) {
+      robots.push_back(used_[i] ? nlohmann::json{{"name", models_[i]->name()}, {"meshes", robotMeshesJson(*models_[i])}}
+                                : nlohmann::json(nullptr));
+    }
+    return robots;
+  }
+
+private:
+  std::vector<std::string> keys_;
+  std::vector<bool> used_;
+  std::deque<std::optional<robot::RobotModel>> models_;
+};
+
+// Speed profiles, TCP paths, obstacles and arm frames of every problem with a paths/ folder; the
+// robots they use in data["robots"].
 nlohmann::json pathsJson(const std::filesystem::path& campaign, const benchmarks::BenchmarkDatabase& runs,
-                         const CampaignReportOptions& options, nlohmann::json& missing, bool& anyFrames) {
+                         const CampaignReportOptions& options, nlohmann::json& data) {
   nlohmann::json paths = nlohmann::json::object();
-  const auto& robot = robot::ur10e();
+  auto& missing = data["missing"];
+  PlotRobots robots;
   std::vector<std::string> withoutJoints;
   for (const auto& [problem, planners] : runs.runs) {
     const auto folder = campaign / "paths" / problem;
     if (!std::filesystem::exists(folder / "scene.json")) continue;
-    nlohmann::json entry{{"scene", detail::readJsonFile(folder / "scene.json")}, {"planners", nlohmann::json::array()}};
+    const auto scene = detail::readJsonFile(folder / "scene.json");
+    const auto robot = robots.indexOf(scene, missing);
+    nlohmann::json entry{{"scene", drawnScene(scene)},
+                         {"robot", robot ? nlohmann::json(*robot) : nlohmann::json(nullptr)},
+                         {"planners", nlohmann::json::array()}};
+    if (robot && scene.contains("start_joints") && scene.contains("goal_joints")) {
+      // Frame 0 the start, frame 1 the goal: the arm is drawn even where no planner found a path.
+      entry["endpoints"] = linkPoseFrames(robots.use(*robot), {0.0, 1.0},
+                                          {jointsOf(scene, "start_joints"), jointsOf(scene, "goal_joints")}, 1.0);
+    }
     for (const auto& [planner, plannerRuns] : planners) {
       const auto file = folder / (planner + ".csv");
       if (!std::filesystem::exists(file)) continue;  // no successful run: nothing to draw
       const auto run = benchmarks::readMedianRun(file);
       if (run.joints.empty()) withoutJoints.push_back(file.string());
-      auto runJson = medianRunJson(run, robot, options);
-      anyFrames = anyFrames || !runJson["frames"].is_null();
-      entry["planners"].push_back(std::move(runJson));
+      entry["planners"].push_back(
+          medianRunJson(run, robot && !run.joints.empty() ? &robots.use(*robot) : nullptr, options));
     }
     paths[problem] = std::move(entry);
   }
+  data["robots"] = robots.json();
   if (paths.empty()) {
     missing.push_back("No path data: " + (campaign / "paths").string() +
                       " has no scene.json for any problem, so there are no speed profiles and no 3D views "
@@ -150,11 +261,7 @@ nlohmann::json campaignReportData(const std::filesystem::path& input, const std:
         "no ranking by execution time — the tables count successes and the box plots show OMPL's own run "
         "attributes.");
   }
-  bool anyFrames = false;
-  data["paths"] = pathsJson(campaign, runs, options, missing, anyFrames);
-  data["robot"] = anyFrames
-                      ? nlohmann::json{{"name", robot::ur10e().name()}, {"meshes", robotMeshesJson(robot::ur10e())}}
-                      : nlohmann::json(nullptr);
+  data["paths"] = pathsJson(campaign, runs, options, data);
   return data;
 }
 

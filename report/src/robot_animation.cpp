@@ -9,50 +9,52 @@
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/mesh.h"
 #include "base64.h"
+#include "drawn_meshes.h"
 
 namespace arcplan::report {
 namespace {
 
-std::vector<int> meshedLinks(const robot::RobotModel& model) {
+// Links with any collision geometry: the arm's links, and the tool, sensor and gripper beyond the flange.
+std::vector<int> drawnLinks(const robot::RobotModel& model) {
   std::vector<int> links;
   for (std::size_t i = 0; i < model.links().size(); ++i) {
-    const auto& collisions = model.links()[i].collisions;
-    if (std::any_of(collisions.begin(), collisions.end(), [](const robot::CollisionGeometry& g) {
-          return g.shape == robot::CollisionGeometry::Shape::Mesh;
-        })) {
-      links.push_back(static_cast<int>(i));
-    }
+    if (!model.links()[i].collisions.empty()) links.push_back(static_cast<int>(i));
   }
   return links;
 }
 
+robot::TriangleMesh geometryMesh(const robot::CollisionGeometry& geometry) {
+  switch (geometry.shape) {
+    case robot::CollisionGeometry::Shape::Box:
+      return detail::boxMesh(geometry.boxSize);
+    case robot::CollisionGeometry::Shape::Sphere:
+      return detail::sphereMesh(geometry.radius);
+    case robot::CollisionGeometry::Shape::Cylinder:
+      return detail::cylinderMesh(geometry.radius, geometry.length);
+    case robot::CollisionGeometry::Shape::Mesh:
+      break;
+  }
+  return robot::loadMesh(geometry.meshFile, geometry.meshScale);
+}
+
 }  // namespace
 
-nlohmann::json robotMeshesJson(const robot::RobotModel& model) {
+nlohmann::json robotMeshesJson(const robot::RobotModel& model, std::size_t maxTrianglesPerLink) {
   nlohmann::json meshes = nlohmann::json::array();
-  for (const int index : meshedLinks(model)) {
+  for (const int index : drawnLinks(model)) {
     const auto& link = model.links()[static_cast<std::size_t>(index)];
-    std::vector<float> positions;
-    std::vector<std::uint32_t> indices;
+    robot::TriangleMesh merged;  // every geometry of the link, in the link frame
     for (const auto& geometry : link.collisions) {
-      if (geometry.shape != robot::CollisionGeometry::Shape::Mesh) continue;
-      const auto mesh = robot::loadMesh(geometry.meshFile, geometry.meshScale);
-      const auto offset = static_cast<std::uint32_t>(positions.size() / 3);
-      for (const auto& vertex : mesh.vertices) {
-        const Eigen::Vector3d p = geometry.origin * vertex;
-        positions.insert(positions.end(),
-                         {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
-      }
-      for (const auto& triangle : mesh.triangles) {
-        for (int corner = 0; corner < 3; ++corner)
-          indices.push_back(offset + static_cast<std::uint32_t>(triangle[corner]));
-      }
+      const auto mesh = geometryMesh(geometry);
+      const auto offset = static_cast<int>(merged.vertices.size());
+      for (const auto& vertex : mesh.vertices) merged.vertices.push_back(geometry.origin * vertex);
+      for (const auto& triangle : mesh.triangles) merged.triangles.push_back(triangle.array() + offset);
     }
-    meshes.push_back({{"link", link.name},
-                      {"vertices", positions.size() / 3},
-                      {"triangles", indices.size() / 3},
-                      {"positions", detail::base64Of(positions)},
-                      {"indices", detail::base64Of(indices)}});
+    const auto drawn = detail::withAtMostTriangles(merged, maxTrianglesPerLink);
+    auto json = detail::meshJson(drawn);
+    json["link"] = link.name;
+    json["source_triangles"] = merged.triangles.size();
+    meshes.push_back(std::move(json));
   }
   return meshes;
 }
@@ -66,7 +68,7 @@ nlohmann::json linkPoseFrames(const robot::RobotModel& model, const std::vector<
   if (!(rate > 0.0)) throw Error("link pose frames: rate must be positive");
   const double duration = times.back() - times.front();
   const auto frames = static_cast<std::size_t>(std::floor(duration * rate)) + 1;
-  const auto links = meshedLinks(model);
+  const auto links = drawnLinks(model);
   robot::KinematicsData data(model);
   std::vector<float> poses;
   poses.reserve(frames * links.size() * 7);

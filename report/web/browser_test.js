@@ -4,6 +4,7 @@
 // counts, a 3D view that draws something and an arm that moves with the time slider.
 //
 //   node browser_test.js --report R.html --kind campaign --planners 3 --speed-problems 2 [--arm]
+//        [--obstacles 5 --mesh-obstacles 2 --links 9 --link-names gripper,finger]
 //   node browser_test.js --report R.html --kind model --channels 6 --history-traces 2 --diagnosis-rows 12
 //   node browser_test.js --report R.html --kind comparison --rows 36 --worse 1 --metrics 5
 //   [--screenshot page.png] [--chromium /usr/bin/chromium]
@@ -114,6 +115,13 @@ async function checkCampaign(page, options) {
     }, index);
     check(views[index].problem + ": a planner toggle hides its path", toggled.after === toggled.before - 1, JSON.stringify(toggled));
 
+    if (options.links) {
+      const names = await page.evaluate(i => window.arcplanReport.views[i].linkNames(), index);
+      const wanted = (options["link-names"] || "").split(",").filter(Boolean);
+      check(views[index].problem + ": one mesh per robot link with geometry", names.length === Number(options.links) &&
+            wanted.every(name => names.includes(name)), names.length + " links: " + names.join(", "));
+    }
+
     if (options.arm) {
       const moved = await page.evaluate(i => {
         const view = window.arcplanReport.views[i];
@@ -132,6 +140,15 @@ async function checkCampaign(page, options) {
             moved.links + " links, largest move " + moved.largest.toFixed(3) + " m");
     }
   }
+}
+
+// Obstacle meshes over all 3D views, and how many of them are triangle meshes (not three.js primitives).
+async function checkObstacles(page, options) {
+  const shapes = await page.evaluate(() => window.arcplanReport.views.map(view => view.obstacleShapes()));
+  const all = shapes.flat();
+  check("every obstacle of the plot scenes is drawn", all.length === Number(options.obstacles), JSON.stringify(shapes));
+  const meshes = all.filter(type => type === "BufferGeometry").length;
+  check("mesh obstacles are drawn", meshes === Number(options["mesh-obstacles"] || 0), meshes + " mesh obstacles");
 }
 
 async function checkModel(page, options) {
@@ -199,6 +216,7 @@ async function main() {
     if (options.kind === "campaign") await checkCampaign(page, options);
     else if (options.kind === "comparison") await checkComparison(page, options);
     else await checkModel(page, options);
+    if (options.kind === "campaign" && options.obstacles) await checkObstacles(page, options);
     if (options.screenshot) await page.screenshot({path: options.screenshot, fullPage: false});
     check("no console errors", errors.length === 0, errors.slice(0, 3).join(" | "));
     check("no network requests", requests.length === 0, requests.slice(0, 3).join(" | "));

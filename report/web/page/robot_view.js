@@ -1,19 +1,36 @@
 // The 3D view of one plot problem (three.js): the scene's obstacles, every planner's TCP path in its
-// colour, the UR10e's link meshes placed at the link poses arcplan computed along the time-scaled
+// colour, the robot's link meshes (arm, tool, sensor, gripper) placed at the link poses arcplan computed along the time-scaled
 // trajectory, a time slider and play button, a choice of which planner's motion the arm shows, and
 // one toggle per planner. Renders on demand (a frame per change), not continuously.
 "use strict";
 
-function makeObstacle(obstacle) {
-  let geometry;
-  if (obstacle.shape === "sphere") geometry = new THREE.SphereBufferGeometry(obstacle.radius, 32, 16);
-  else if (obstacle.shape === "box") geometry = new THREE.BoxBufferGeometry(obstacle.size[0], obstacle.size[1], obstacle.size[2]);
-  else if (obstacle.shape === "cylinder") {
-    geometry = new THREE.CylinderBufferGeometry(obstacle.radius, obstacle.radius, obstacle.length, 32);
+// A triangle mesh sent as base64 (positions: Float32 x, y, z; indices: Uint32 corners).
+function meshGeometry(data) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(float32Array(data.positions), 3));
+  geometry.setIndex(new THREE.BufferAttribute(uint32Array(data.indices), 1));
+  geometry.computeVertexNormals();
+  return geometry;
+}
+
+function obstacleGeometry(obstacle) {
+  if (obstacle.shape === "sphere") return new THREE.SphereBufferGeometry(obstacle.radius, 32, 16);
+  if (obstacle.shape === "box") return new THREE.BoxBufferGeometry(obstacle.size[0], obstacle.size[1], obstacle.size[2]);
+  if (obstacle.shape === "cylinder") {
+    const geometry = new THREE.CylinderBufferGeometry(obstacle.radius, obstacle.radius, obstacle.length, 32);
     geometry.rotateX(Math.PI / 2);  // three.js cylinders run along y, arcplan's along z
-  } else return null;  // mesh obstacles: their vertices are not in scene.json
-  // Small obstacles (the ones a path goes around) in red, large ones (tables, walls) neutral.
-  const large = Math.max(...(obstacle.size || [0]), 2 * (obstacle.radius || 0), obstacle.length || 0) > 0.5;
+    return geometry;
+  }
+  if (obstacle.shape === "mesh" && obstacle.positions) return meshGeometry(obstacle);
+  return null;  // a mesh from a campaign written before scene.json carried its triangles
+}
+
+function makeObstacle(obstacle) {
+  const geometry = obstacleGeometry(obstacle);
+  if (!geometry) return null;
+  geometry.computeBoundingBox();
+  // Small obstacles (the ones a path goes around) in red, large ones (tables, walls, shelves) neutral.
+  const large = geometry.boundingBox.getSize(new THREE.Vector3()).toArray().some(extent => extent > 0.5);
   const material = new THREE.MeshLambertMaterial({color: large ? 0xc9bfb3 : 0xd9534f, transparent: true, opacity: large ? 0.45 : 0.7});
   const mesh = new THREE.Mesh(geometry, material);
   mesh.add(new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 30), new THREE.LineBasicMaterial({color: large ? 0x9c8f80 : 0xa02c2c})));
@@ -25,11 +42,7 @@ function makeObstacle(obstacle) {
 }
 
 function makeLinkMesh(link) {
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute("position", new THREE.BufferAttribute(float32Array(link.positions), 3));
-  geometry.setIndex(new THREE.BufferAttribute(uint32Array(link.indices), 1));
-  geometry.computeVertexNormals();
-  const mesh = new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({color: 0x8fa3b8}));
+  const mesh = new THREE.Mesh(meshGeometry(link), new THREE.MeshLambertMaterial({color: 0x8fa3b8}));
   mesh.name = link.link;
   return mesh;
 }
@@ -77,10 +90,8 @@ function createRobotView(container, problemName, problem, robotData, colours) {
   grid.rotateX(Math.PI / 2);  // three.js grids lie in x-z; the robot's floor is x-y
   scene.add(grid);
   scene.add(new THREE.AxesHelper(0.25));
-  for (const obstacle of problem.scene.obstacles || []) {
-    const mesh = makeObstacle(obstacle);
-    if (mesh) scene.add(mesh);
-  }
+  const obstacles = (problem.scene.obstacles || []).map(makeObstacle).filter(Boolean);
+  obstacles.forEach(mesh => scene.add(mesh));
   if (problem.scene.start) scene.add(marker(problem.scene.start, 0x2e7d32, 0.018));
   if (problem.scene.goal) scene.add(marker(problem.scene.goal, 0x222222, 0.018));
 
@@ -96,26 +107,40 @@ function createRobotView(container, problemName, problem, robotData, colours) {
     scene.add(line, tcpMarkers[planner.name]);
   }
 
-  // The arm: one mesh per link; pose frames per planner, decoded once.
+  // The arm: one mesh per link; pose frames per planner, decoded once, and the start and goal
+  // configurations (shown when chosen, and where no planner found a path).
   const animated = planners.filter(planner => planner.frames && robotData);
   const links = robotData ? robotData.meshes.map(makeLinkMesh) : [];
   links.forEach(link => scene.add(link));
   const poses = {};
-  for (const planner of animated) poses[planner.name] = float32Array(planner.frames.poses);
-  let armPlanner = animated.length ? animated[0].name : null;
+  for (const planner of animated) poses[planner.name] = {frames: planner.frames, values: float32Array(planner.frames.poses)};
+  const armChoices = animated.map(planner => ({value: planner.name, label: planner.name}));
+  if (robotData && problem.endpoints) {
+    const values = float32Array(problem.endpoints.poses);
+    poses["@start"] = {values, frame: 0};
+    poses["@goal"] = {values, frame: 1};
+    armChoices.push({value: "@start", label: "start configuration"}, {value: "@goal", label: "goal configuration"});
+  }
+  let armPlanner = armChoices.length ? armChoices[0].value : null;
   const duration = Math.max(0, ...planners.map(planner => planner.t[planner.t.length - 1]));
   let time = 0;
 
-  // Look at the middle of the robot base and the paths, from the front right, far enough to see all.
+  // Look at the middle of the robot base, the paths and the obstacles near them (not a room-sized
+  // wall or floor), from the front right, far enough to see all.
   const bounds = new THREE.Box3(new THREE.Vector3(-0.1, -0.1, 0), new THREE.Vector3(0.1, 0.1, 0.2));
   for (const planner of planners) {
     for (let i = 0; i < planner.tcp.length; i += 3) bounds.expandByPoint(new THREE.Vector3().fromArray(planner.tcp, i));
+  }
+  for (const mesh of obstacles) {
+    mesh.updateMatrixWorld(true);
+    const box = new THREE.Box3().setFromObject(mesh);
+    if (box.getSize(new THREE.Vector3()).length() < 2.5) bounds.union(box);
   }
   const centre = bounds.getCenter(new THREE.Vector3());
   const radius = Math.max(0.4, bounds.getSize(new THREE.Vector3()).length() / 2);
   const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 50);
   camera.up.set(0, 0, 1);
-  camera.position.copy(centre).add(new THREE.Vector3(1.1, -1.9, 1.0).multiplyScalar(radius * 1.25));
+  camera.position.copy(centre).add(new THREE.Vector3(1.1, -1.9, 1.0).multiplyScalar(radius * 0.95));
   const controls = new THREE.OrbitControls(camera, renderer.domElement);
   controls.target.copy(centre);
   controls.update();
@@ -133,15 +158,15 @@ function createRobotView(container, problemName, problem, robotData, colours) {
   window.addEventListener("resize", resize);
 
   function placeArm() {
-    const planner = animated.find(p => p.name === armPlanner);
-    links.forEach(link => { link.visible = Boolean(planner); });
-    if (!planner) return;
-    const frame = Math.min(planner.frames.frames - 1, Math.round(time * planner.frames.rate_hz));
-    const values = poses[planner.name];
+    const shown = poses[armPlanner];
+    links.forEach(link => { link.visible = Boolean(shown); });
+    if (!shown) return;
+    const frame = shown.frames ? Math.min(shown.frames.frames - 1, Math.round(time * shown.frames.rate_hz)) : shown.frame;
     links.forEach((link, index) => {
       const at = (frame * links.length + index) * 7;
-      link.position.set(values[at], values[at + 1], values[at + 2]);
-      link.quaternion.set(values[at + 3], values[at + 4], values[at + 5], values[at + 6]);
+      const v = shown.values;
+      link.position.set(v[at], v[at + 1], v[at + 2]);
+      link.quaternion.set(v[at + 3], v[at + 4], v[at + 5], v[at + 6]);
     });
   }
 
@@ -179,11 +204,12 @@ function createRobotView(container, problemName, problem, robotData, colours) {
   });
 
   controlsBar.append(playButton, slider, timeLabel);
-  if (animated.length) {
-    controlsBar.appendChild(selectControl("arm follows", animated.map(p => ({value: p.name, label: p.name})),
-                                          value => { armPlanner = value; setTime(time); }));
-  } else {
-    controlsBar.appendChild(el("span", {class: "missing", text: "no joint data: paths only, no arm"}));
+  if (armChoices.length) {
+    controlsBar.appendChild(selectControl("arm shows", armChoices, value => { armPlanner = value; setTime(time); }));
+  }
+  if (!animated.length) {
+    controlsBar.appendChild(el("span", {class: "missing", text: robotData && problem.endpoints
+      ? "no planner's motion with joints: the arm at start or goal only" : "no joint data: paths only, no arm"}));
   }
   const toggles = el("div", {class: "controls planner-toggles"}, planners.map(planner => {
     const box = el("input", {type: "checkbox", checked: true, "data-planner": planner.name,
@@ -199,6 +225,9 @@ function createRobotView(container, problemName, problem, robotData, colours) {
     problem: problemName, setTime, duration, render,
     canvas: renderer.domElement,
     linkPositions: () => links.map(link => link.position.toArray()),
+    linkNames: () => links.map(link => link.name),
+    obstacleCount: () => obstacles.length,
+    obstacleShapes: () => obstacles.map(mesh => mesh.geometry.type),
     pathCount: () => planners.length,
     visiblePaths: () => planners.filter(planner => paths[planner.name].visible).length,
   };

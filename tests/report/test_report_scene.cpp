@@ -1,0 +1,316 @@
+// What the campaign report's 3D view gets from a real campaign (`arcplan bench`): every obstacle of a
+// MoveIt scene (box, cylinder [height, radius], sphere, mesh; object pose · primitive pose with
+// quaternions [x, y, z, w]) and of a scene file (an STL mesh), and every link of a robot with a
+// gripper beyond the flange. Expected poses and sizes are worked out by hand from the input files.
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <regex>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "arcplan/report/campaign_report.h"
+#include "arcplan/report/robot_animation.h"
+#include "arcplan/robot/robot_model.h"
+#include "support/command.h"
+
+namespace {
+
+using Json = nlohmann::json;
+
+std::filesystem::path write(const std::filesystem::path& dir, const std::string& name, const std::string& text) {
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+// Base64 (RFC 4648) decoded by table lookup into little-endian values.
+template <typename T>
+std::vector<T> decoded(const std::string& text) {
+  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> bytes;
+  unsigned buffer = 0;
+  int bits = 0;
+  for (const char c : text) {
+    if (c == '=') break;
+    buffer = (buffer << 6) | static_cast<unsigned>(alphabet.find(c));
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      bytes.push_back(static_cast<unsigned char>((buffer >> bits) & 0xFF));
+    }
+  }
+  std::vector<T> values(bytes.size() / sizeof(T));
+  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
+  return values;
+}
+
+// arcplan's UR10e with a gripper beyond the flange: a box body on tool0 and a finger 0.1 m further.
+std::filesystem::path gripperUrdf(const std::filesystem::path& dir) {
+  std::ifstream in(arcplan::robot::ur10eUrdfPath());
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string meshes = (arcplan::robot::ur10eUrdfPath().parent_path() / "meshes/").string();
+  urdf = std::regex_replace(urdf, std::regex("filename=\"meshes/"), "filename=\"" + meshes);
+  const std::string gripper =
+      "<link name=\"gripper\"><collision><origin xyz=\"0 0 0.05\"/><geometry><box size=\"0.08 0.06 0.08\"/>"
+      "</geometry></collision></link>"
+      "<joint name=\"tool0-gripper\" type=\"fixed\"><parent link=\"tool0\"/><child link=\"gripper\"/></joint>"
+      "<link name=\"finger\"><collision><origin xyz=\"0 0 0.02\"/><geometry><cylinder radius=\"0.01\" "
+      "length=\"0.04\"/></geometry></collision></link>"
+      "<joint name=\"gripper-finger\" type=\"fixed\"><parent link=\"gripper\"/><child link=\"finger\"/>"
+      "<origin xyz=\"0 0 0.1\"/></joint>";
+  urdf.insert(urdf.rfind("</robot>"), gripper);
+  return write(dir, "gripper.urdf", urdf);
+}
+
+const std::string kJoints = "[0, -1.57, 1.57, -1.57, -1.57, 0]";
+
+// A MoveIt problem with one object per shape kind (all behind the robot, away from its motion).
+void writeMoveItProblem(const std::filesystem::path& folder) {
+  std::filesystem::create_directories(folder);
+  write(folder, "scene0001.yaml", R"(
+world:
+  collision_objects:
+    - id: crate
+      pose: {position: [-0.8, 0.2, 0.3], orientation: [0, 0, 0.7071067811865476, 0.7071067811865476]}
+      primitives: [{type: box, dimensions: [0.1, 0.2, 0.3]}]
+      primitive_poses: [{position: [0.1, 0, 0], orientation: [0, 0, 0, 1]}]
+    - id: can
+      pose: {position: [-0.8, -0.3, 0.2], orientation: [0, 0, 0, 1]}
+      primitives: [{type: cylinder, dimensions: [0.4, 0.05]}]
+      primitive_poses: [{position: [0, 0, 0], orientation: [0.7071067811865476, 0, 0, 0.7071067811865476]}]
+    - id: ball
+      pose: {position: [-0.6, -0.6, 0.5], orientation: [0, 0, 0, 1]}
+      primitives: [{type: sphere, dimensions: [0.07]}]
+      primitive_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]
+    - id: wedge
+      pose: {position: [0, 0, 0], orientation: [0, 0, 0, 1]}
+      meshes:
+        - vertices: [[0, 0, 0], [0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]
+          triangles: [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
+      mesh_poses: [{position: [-0.7, 0.6, 0.1], orientation: [0, 0, 0, 1]}]
+)");
+  write(folder, "request0001.yaml",
+        "start_state:\n  joint_state:\n    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, "
+        "wrist_1_joint, wrist_2_joint, wrist_3_joint]\n    position: " +
+            kJoints +
+            "\ngoal_constraints:\n  - joint_constraints:\n"
+            "      - {joint_name: shoulder_pan_joint, position: 0.5}\n"
+            "      - {joint_name: shoulder_lift_joint, position: -1.57}\n"
+            "      - {joint_name: elbow_joint, position: 1.57}\n"
+            "      - {joint_name: wrist_1_joint, position: -1.57}\n"
+            "      - {joint_name: wrist_2_joint, position: -1.57}\n"
+            "      - {joint_name: wrist_3_joint, position: 0}\n");
+}
+
+// A scene file with an STL obstacle: a tetrahedron of 0.1 m legs, scaled 2x, turned 90° about z.
+void writeStlScene(const std::filesystem::path& dir) {
+  write(dir, "part.stl", R"(solid part
+facet normal 0 0 -1
+outer loop
+vertex 0 0 0
+vertex 0 0.1 0
+vertex 0.1 0 0
+endloop
+endfacet
+facet normal 0 -1 0
+outer loop
+vertex 0 0 0
+vertex 0.1 0 0
+vertex 0 0 0.1
+endloop
+endfacet
+facet normal -1 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0 0.1
+vertex 0 0.1 0
+endloop
+endfacet
+facet normal 1 1 1
+outer loop
+vertex 0.1 0 0
+vertex 0 0.1 0
+vertex 0 0 0.1
+endloop
+endfacet
+endsolid part
+)");
+  write(dir, "stl_scene.yaml",
+        "name: stl_scene\nrobot: {urdf: gripper.urdf}\nobstacles:\n"
+        "  - {name: part, mesh: {file: part.stl, scale: [2, 2, 2]}, position: [-0.7, -0.5, 0.3], rpy: [0, 0, "
+        "1.5707963267948966]}\n"
+        "queries:\n  - {name: q, start: {joints: " +
+            kJoints + "}, goal: {joints: [0.5, -1.57, 1.57, -1.57, -1.57, 0]}}\n");
+}
+
+class ReportScene : public ::testing::Test {
+protected:
+  static void SetUpTestSuite() {
+    const auto dir = arcplan::testing::freshTempDirectory("report_scene");
+    gripperUrdf(dir);
+    writeMoveItProblem(dir / "moveit");
+    writeStlScene(dir);
+    write(dir, "suite.yaml",
+          "name: drawn\nruns: 1\ntime_limit: 0.3\nclearance: 0\n"
+          "problems: [{name: stl, scene: stl_scene.yaml, query: q}]\n"
+          "moveit_problems: {folder: moveit, urdf: gripper.urdf}\n"
+          "planners: [RRTConnect]\nplots: [stl, moveit-0001]\n");
+    const auto result = arcplan::testing::runArcplan({"bench", "--suite", (dir / "suite.yaml").string(), "--out",
+                                                      (dir / "campaign").string(), "--no-plots", "--quiet", "-j", "1"});
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    data_ = new Json(arcplan::report::campaignReportData(dir / "campaign", dir / "campaign" / "report.html"));
+  }
+  static void TearDownTestSuite() { delete data_; }
+
+  static const Json& problem(const std::string& name) {
+    for (const auto& [key, value] : data_->at("paths").items()) {
+      if (key.size() >= name.size() && key.compare(key.size() - name.size(), name.size(), name) == 0) return value;
+    }
+    throw std::runtime_error("no plot problem " + name + " in " + data_->at("paths").dump().substr(0, 200));
+  }
+  static const Json& obstacle(const std::string& problemName, const std::string& id) {
+    for (const auto& obstacle : problem(problemName)["scene"]["obstacles"]) {
+      if (obstacle["name"].get<std::string>().rfind(id, 0) == 0) return obstacle;
+    }
+    throw std::runtime_error("no obstacle " + id);
+  }
+  static void expectPose(const Json& obstacle, const Eigen::Vector3d& position, const Eigen::Matrix3d& rotation) {
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(obstacle["position"][i].get<double>(), position[i], 1e-9) << obstacle["name"];
+      for (int j = 0; j < 3; ++j) EXPECT_NEAR(obstacle["rotation"][i][j].get<double>(), rotation(i, j), 1e-9);
+    }
+  }
+  // One campaign (a few seconds) for all checks: ctest runs every test in its own process.
+  static void expectMoveItPrimitives();
+  static void expectSceneFileMesh();
+  static void expectGripper();
+  static Json* data_;
+};
+Json* ReportScene::data_ = nullptr;
+
+Eigen::Matrix3d rows(std::initializer_list<double> values) {
+  Eigen::Matrix3d m;
+  auto it = values.begin();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = *it++;
+  return m;
+}
+
+void ReportScene::expectMoveItPrimitives() {
+  const auto& obstacles = problem("moveit-0001")["scene"]["obstacles"];
+  EXPECT_EQ(obstacles.size(), 4u);
+  // The crate's object is turned 90° about z: its box 0.1 m along the object's x is at +0.1 m in y.
+  const auto& crate = obstacle("moveit-0001", "crate");
+  EXPECT_EQ(crate["shape"], "box");
+  EXPECT_EQ(crate["size"], Json({0.1, 0.2, 0.3}));
+  expectPose(crate, {-0.8, 0.3, 0.3}, rows({0, -1, 0, 1, 0, 0, 0, 0, 1}));
+  // MoveIt's cylinder is [height, radius]; the primitive turned 90° about x.
+  const auto& can = obstacle("moveit-0001", "can");
+  EXPECT_EQ(can["shape"], "cylinder");
+  EXPECT_DOUBLE_EQ(can["length"].get<double>(), 0.4);
+  EXPECT_DOUBLE_EQ(can["radius"].get<double>(), 0.05);
+  expectPose(can, {-0.8, -0.3, 0.2}, rows({1, 0, 0, 0, 0, -1, 0, 1, 0}));
+  const auto& ball = obstacle("moveit-0001", "ball");
+  EXPECT_EQ(ball["shape"], "sphere");
+  EXPECT_DOUBLE_EQ(ball["radius"].get<double>(), 0.07);
+  expectPose(ball, {-0.6, -0.6, 0.5}, Eigen::Matrix3d::Identity());
+  // The mesh: its four vertices in the obstacle frame, four triangles, placed by the mesh pose.
+  const auto& wedge = obstacle("moveit-0001", "wedge");
+  EXPECT_EQ(wedge["shape"], "mesh");
+  EXPECT_EQ(wedge["triangles"], 4);
+  EXPECT_EQ(decoded<float>(wedge["positions"]), std::vector<float>({0, 0, 0, 0.1f, 0, 0, 0, 0.1f, 0, 0, 0, 0.1f}));
+  EXPECT_EQ(decoded<std::uint32_t>(wedge["indices"]), std::vector<std::uint32_t>({0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}));
+  expectPose(wedge, {-0.7, 0.6, 0.1}, Eigen::Matrix3d::Identity());
+}
+
+void ReportScene::expectSceneFileMesh() {
+  const auto& part = obstacle("stl", "part");
+  EXPECT_EQ(part["shape"], "mesh");
+  EXPECT_EQ(part["triangles"], 4);
+  const auto positions = decoded<float>(part["positions"]);
+  ASSERT_EQ(positions.size() % 3, 0u);
+  // Every vertex is one of the tetrahedron's corners scaled 2x: (0,0,0), (0.2,0,0), (0,0.2,0), (0,0,0.2).
+  std::set<int> corners;
+  for (std::size_t i = 0; i < positions.size(); i += 3) {
+    const double x = positions[i], y = positions[i + 1], z = positions[i + 2];
+    const int corner = x > 0.1 ? 1 : y > 0.1 ? 2 : z > 0.1 ? 3 : 0;
+    EXPECT_NEAR(std::abs(x) + std::abs(y) + std::abs(z), corner == 0 ? 0.0 : 0.2, 1e-6);
+    corners.insert(corner);
+  }
+  EXPECT_EQ(corners.size(), 4u);
+  expectPose(part, {-0.7, -0.5, 0.3}, rows({0, -1, 0, 1, 0, 0, 0, 0, 1}));
+}
+
+void ReportScene::expectGripper() {
+  const auto& entry = problem("moveit-0001");
+  const auto& robot = data_->at("robots").at(entry["robot"].get<std::size_t>());
+  std::vector<std::string> names;
+  for (const auto& mesh : robot["meshes"]) names.push_back(mesh["link"]);
+  // The seven UR10e link meshes, then the two gripper links (links in parent-before-child order).
+  ASSERT_EQ(names.size(), 9u);
+  EXPECT_EQ(names[7], "gripper");
+  EXPECT_EQ(names[8], "finger");
+  const auto& gripper = robot["meshes"][7];
+  EXPECT_EQ(gripper["triangles"], 12);
+  // The box's corners in the gripper's frame: +-(0.04, 0.03, 0.04) about (0, 0, 0.05).
+  const auto corners = decoded<float>(gripper["positions"]);
+  for (std::size_t i = 0; i < corners.size(); i += 3) {
+    EXPECT_NEAR(std::abs(corners[i]), 0.04, 1e-6);
+    EXPECT_NEAR(std::abs(corners[i + 1]), 0.03, 1e-6);
+    EXPECT_NEAR(std::abs(corners[i + 2] - 0.05), 0.04, 1e-6);
+  }
+  // At the start configuration the finger's frame is 0.1 m along the gripper frame's z axis.
+  const auto poses = decoded<float>(entry["endpoints"]["poses"]);
+  ASSERT_EQ(poses.size(), 2u * 9u * 7u);  // start and goal, nine links, position + quaternion
+  const float* g = &poses[7 * 7];
+  const float* f = &poses[8 * 7];
+  const double x = g[3], y = g[4], z = g[5], w = g[6];
+  const Eigen::Vector3d zAxis(2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y));
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(f[k] - g[k], 0.1 * zAxis[k], 1e-5);
+  // The scene-file problem names the same robot: drawn once.
+  EXPECT_EQ(problem("stl")["robot"], entry["robot"]);
+}
+
+TEST_F(ReportScene, EveryObstacleKindAndTheGripperPosed) {
+  ASSERT_NE(data_, nullptr) << "the campaign failed";
+  expectMoveItPrimitives();
+  expectSceneFileMesh();
+  expectGripper();
+}
+
+TEST(RobotMeshes, MbmUr5EveryLinkWithGeometryIsDrawn) {
+  const auto shared = arcplan::testing::sharedDataDirectory();
+  ASSERT_FALSE(shared.empty()) << "ARCPLAN_SHARED_DATA (the MBM UR5) is needed";
+  const auto urdfFile = shared / "mbm_ur5" / "ur5.urdf";
+  // Links with a <collision> element, read from the URDF text.
+  std::ifstream in(urdfFile);
+  const std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::set<std::string> expected;
+  const std::regex link("<link name=\"([^\"]+)\">([\\s\\S]*?)</link>");
+  for (auto it = std::sregex_iterator(urdf.begin(), urdf.end(), link); it != std::sregex_iterator(); ++it) {
+    if ((*it)[2].str().find("<collision") != std::string::npos) expected.insert((*it)[1]);
+  }
+  ASSERT_EQ(expected.size(), 18u);  // base to wrist_3 and ee_link, the FTS300, the Robotiq base, 8 finger links
+  const auto meshes = arcplan::report::robotMeshesJson(arcplan::robot::loadRobotModel(urdfFile));
+  std::set<std::string> drawn;
+  for (const auto& mesh : meshes) {
+    drawn.insert(mesh["link"].get<std::string>());
+    EXPECT_LE(mesh["triangles"].get<std::size_t>(), arcplan::report::kMaxTrianglesPerMesh);
+    EXPECT_GT(mesh["triangles"].get<std::size_t>(), 0u);
+    if (mesh["link"] == "fts_robotside") {
+      // A binary STL counts its triangles in the 4 bytes after its 80-byte header.
+      std::ifstream stl(shared / "mbm_ur5" / "meshes" / "robotiq_fts300.stl", std::ios::binary);
+      std::uint32_t count = 0;
+      stl.seekg(80);
+      stl.read(reinterpret_cast<char*>(&count), 4);
+      EXPECT_EQ(mesh["source_triangles"], count);
+      EXPECT_GT(count, arcplan::report::kMaxTrianglesPerMesh);  // so this one was thinned
+    } else if (mesh["source_triangles"].get<std::size_t>() <= arcplan::report::kMaxTrianglesPerMesh) {
+      EXPECT_EQ(mesh["triangles"], mesh["source_triangles"]) << mesh["link"];  // small meshes stay whole
+    }
+  }
+  EXPECT_EQ(drawn, expected);
+}
+
+}  // namespace
