@@ -51,6 +51,7 @@ ErrorSummary summaryFromJson(const nlohmann::json& json) {
     error.rmse = values.at("rmse").get<double>();
     error.nrmse = values.value("nrmse", 0.0);
     error.r2 = values.value("r2", 0.0);
+    error.samples = values.value("samples", Eigen::Index{0});
     summary.channels.push_back(error);
   }
   return summary;

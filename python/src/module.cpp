@@ -9,4 +9,6 @@ PYBIND11_MODULE(_arcplan, module) {
   module.doc() = "arcplan: arc planning, collision checking, PCHIP time scaling and robot models for UR arms";
   arcplan::python::bindErrors(module);
   arcplan::python::bindRobot(module);
+  arcplan::python::bindModel(module);
+  arcplan::python::bindBenchmarks(module);
 }
