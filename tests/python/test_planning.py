@@ -1,0 +1,136 @@
+"""arcplan.plan against `arcplan plan --json` on the same inputs (the thesis scene), the result's
+arrays, and bad input raising arcplan.Error with arcplan's message."""
+import json
+import os
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+import yaml
+
+import arcplan
+from conftest import THESIS_SCENE
+
+CASES = {
+    "arc_auto": ("arc", {}, ()),
+    "arc_h050": ("arc", {"sagitta": 0.1}, ("--param", "sagitta=0.1")),
+    "rrtconnect": ("RRTConnect", {}, ()),
+}
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_plan_equals_cli_on_the_thesis_scene(cli, tmp_path, case):
+    planner, params, cli_params = CASES[case]
+    path_csv = tmp_path / "path.csv"
+    expected = cli("plan", "--scene", THESIS_SCENE, "--planner", planner, *cli_params, "--seed", 1, "--vmax", 0.25,
+                   "--time", 1, "--path-csv", path_csv)
+    result = arcplan.plan(str(THESIS_SCENE), planner=planner, params=params, seed=1, time_limit=1.0, vmax=0.25)
+    assert result.status == expected["status"] == "exact"
+    assert abs(result.tcp_path_length_m - expected["tcp_path_length_m"]) <= 1e-9
+    assert abs(result.execution_time_s - expected["execution_time_s"]) <= 1e-9
+    assert result.waypoints == expected["waypoints"] == len(result.path)
+    np.testing.assert_allclose(result.path, np.loadtxt(path_csv, delimiter=",", skiprows=1), rtol=0, atol=1e-12)
+    document = result.to_dict()
+    assert set(document) == set(expected)
+    for key, value in expected.items():
+        if key != "solve_time_s":  # the one measured time
+            assert document[key] == pytest.approx(value, abs=1e-9), key
+
+
+def test_thesis_arc_path_length_is_the_analytic_one():
+    # README / docs/planners.md: with sagitta h = 0.5 r = 0.1 m the TCP path is the three-arc detour of
+    # the thesis, 0.8825 m (its published measurement: 0.8816 m from sampled waypoints).
+    result = arcplan.plan("scenes/thesis_obstacle.yaml", params={"sagitta": 0.1})
+    assert result.tcp_path_length_m == pytest.approx(0.8825, abs=5e-5)
+    assert result.execution_time_s is None and result.trajectory is None  # no vmax: not time-scaled
+    assert result.mode == "arc" and result.planner == "arc" and result.query == "A_to_B"
+    assert result.parameters["sagitta"] == "0.1"
+
+
+def test_path_arrays_and_endpoints(scene_yaml=THESIS_SCENE):
+    result = arcplan.plan(arcplan.load_scene(scene_yaml), vmax=0.25)
+    path = result.path
+    assert path.dtype == np.float64 and path.ndim == 2 and path.shape[1] == 6 and path.flags.c_contiguous
+    # The path starts at pose A and ends at pose B of the scene file (read here with PyYAML).
+    query = yaml.safe_load(THESIS_SCENE.read_text().replace("-pi", str(-np.pi)).replace("pi/2", str(np.pi / 2)))
+    robot = arcplan.load_robot()
+    for q, end in ((path[0], "start"), (path[-1], "goal")):
+        expected = arcplan.pose_from_xyz_rpy(query["queries"][0][end]["pose"])
+        np.testing.assert_allclose(robot.fk(q), expected, atol=1e-9)
+    # Time-scaled under 0.25 m/s: the trajectory samples and its metrics.
+    trajectory = result.trajectory
+    assert trajectory.tcp_speed.max() <= 0.25 + 1e-9
+    assert trajectory.duration == pytest.approx(result.execution_time_s, abs=1e-12)
+    assert trajectory.metrics["tcp_path_length_m"] == result.tcp_path_length_m
+
+
+def test_a_planner_that_finds_nothing_is_a_result_with_the_clis_reason(tmp_path):
+    # A 1 mm detour passes the particle closer than the arc planner's 1 cm clearance.
+    result = arcplan.plan(THESIS_SCENE, params={"sagitta": 0.001})
+    assert result.status == "failed" and result.path.shape == (0, 6) and result.tcp_path_length_m is None
+    run = subprocess.run([os.environ["ARCPLAN_EXECUTABLE"], "plan", "--scene", str(THESIS_SCENE), "--param",
+                          "sagitta=0.001", "--json", str(tmp_path / "failed.json")], capture_output=True, text=True)
+    assert run.returncode == 1
+    assert run.stderr.strip() == "arcplan: error: planner arc found no path: " + result.reason
+    expected = json.loads((tmp_path / "failed.json").read_text())
+    document = result.to_dict()
+    del document["solve_time_s"], expected["solve_time_s"], expected["time_limit_s"], document["time_limit_s"]
+    assert document == expected
+    # A goal out of reach cannot even be set up: an error naming it.
+    unreachable = tmp_path / "unreachable.yaml"
+    unreachable.write_text(THESIS_SCENE.read_text().replace("[0.5, 0.4, 0.46", "[2.5, 0.4, 0.46"))
+    with pytest.raises(arcplan.Error, match="goal"):
+        arcplan.plan(unreachable)
+
+
+def test_planner_names_come_from_the_registry():
+    names = arcplan.planner_names()
+    assert names[0] == "arc" and "RRTConnect" in names and "PRMstar" in names
+    # Any spelling the registry accepts, as on the command line.
+    assert arcplan.plan(THESIS_SCENE, planner="rrtconnect", seed=1).planner == "RRTConnect"
+
+
+@pytest.mark.parametrize("arguments, message", [
+    ({"planner": "NoSuchPlanner"}, "NoSuchPlanner"),
+    ({"params": {"no_such_parameter": 1}}, "no_such_parameter"),
+    ({"params": {"sagitta": "abc"}}, "sagitta"),
+    ({"time_limit": 0.0}, "plan: the time limit must be a positive number of seconds"),
+    ({"time_limit": float("nan")}, "plan: the time limit must be a positive number of seconds"),
+    ({"vmax": -1.0}, "plan: vmax must be a positive TCP speed in m/s"),
+    ({"query": "no_such_query"}, "no_such_query"),
+])
+def test_bad_requests_raise_arcplan_error(arguments, message):
+    with pytest.raises(arcplan.Error) as raised:
+        arcplan.plan(THESIS_SCENE, **arguments)
+    assert message in str(raised.value)
+
+
+def test_cli_and_python_give_the_same_message():
+    with pytest.raises(arcplan.Error) as raised:
+        arcplan.plan(THESIS_SCENE, planner="NoSuchPlanner")
+    run = subprocess.run([os.environ["ARCPLAN_EXECUTABLE"], "plan", "--scene", str(THESIS_SCENE), "--planner",
+                          "NoSuchPlanner"], capture_output=True, text=True)
+    assert run.returncode != 0
+    assert run.stderr.strip() == "arcplan: error: " + str(raised.value)
+
+
+def test_missing_scene_file_raises(tmp_path):
+    with pytest.raises(arcplan.Error, match="missing.yaml"):
+        arcplan.plan(tmp_path / "missing.yaml")
+
+
+def test_planning_releases_the_gil():
+    # RRT* optimises for its whole time limit (README: 1.01 s at 1 s); while it runs in a thread, this
+    # thread keeps counting. With the GIL held the count would stay at (nearly) zero.
+    scene = arcplan.load_scene(THESIS_SCENE)
+    done = threading.Event()
+    worker = threading.Thread(target=lambda: (arcplan.plan(scene, planner="RRTstar", time_limit=0.3), done.set()))
+    count = 0
+    worker.start()
+    time.sleep(0.05)  # the plan call has begun
+    while not done.is_set():
+        count += 1
+    worker.join()
+    assert count > 10000
