@@ -15,4 +15,6 @@ PYBIND11_MODULE(_arcplan, module) {
   arcplan::python::bindCollision(module);
   arcplan::python::bindTrajectory(module);
   arcplan::python::bindPlanning(module);
+  arcplan::python::bindModel(module);
+  arcplan::python::bindBenchmarks(module);
 }
