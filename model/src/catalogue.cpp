@@ -291,6 +291,14 @@ double typicalViscous(int channel) { return typical(kViscous, channel); }
 double smoothedDirection(const Dataset& data, double velocity) {
   return smoothSign(velocity, data.settings().velocitySmoothing);
 }
+std::vector<bool> runBeginnings(const Dataset& data, Eigen::Index samples) {
+  std::vector<bool> begins(static_cast<std::size_t>(samples), false);
+  if (samples > 0) begins.front() = true;
+  for (Eigen::Index start : data.runStarts()) {
+    if (start < samples) begins[static_cast<std::size_t>(start)] = true;
+  }
+  return begins;
+}
 
 const std::vector<CatalogueEntry>& catalogueTable() {
   static const std::vector<CatalogueEntry> table{

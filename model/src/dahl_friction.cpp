@@ -34,12 +34,17 @@ public:
     return p;
   }
   // Exact integration over each sample step (the direction is constant within it):
-  // z ← s + (z - s)·exp(-ρ·|Δq|), s = sgn(Δq); z starts at 0 (the state before the log is unknown).
+  // z ← s + (z - s)·exp(-ρ·|Δq|), s = sgn(Δq); z starts at 0 at the start of every run (the state
+  // before a run is unknown; the step from one run's end to the next's start is no motion).
   void regressor(const Dataset& data, int c, double rate, Eigen::Ref<Eigen::MatrixXd> columns) const override {
     const auto& q = data.signal("q", c);
+    const std::vector<bool> begins = runBeginnings(data, q.size());
     double z = 0.0;
-    columns(0, 0) = z;
-    for (Eigen::Index k = 1; k < q.size(); ++k) {
+    for (Eigen::Index k = 0; k < q.size(); ++k) {
+      if (begins[static_cast<std::size_t>(k)]) {
+        columns(k, 0) = z = 0.0;
+        continue;
+      }
       const double step = q[k] - q[k - 1];
       if (step != 0.0) {
         const double direction = step > 0.0 ? 1.0 : -1.0;

@@ -263,6 +263,17 @@ Dataset selectSamples(const Dataset& data, const std::vector<bool>& keep) {
   result.notes_ = data.notes_;
   result.timeOrdered_ = data.timeOrdered_;
   result.robot_ = data.robot_;
+  result.runStarts_.clear();
+  const auto& starts = data.runStarts_;
+  Eigen::Index out = 0;
+  for (std::size_t k = 0, next = 0; k < keep.size(); ++k) {
+    const bool runBegins = next < starts.size() && starts[next] == static_cast<Eigen::Index>(k);
+    if (runBegins) ++next;
+    if (!keep[k]) continue;
+    if (out == 0 || runBegins || !keep[k - 1]) result.runStarts_.push_back(out);
+    ++out;
+  }
+  if (result.runStarts_.empty()) result.runStarts_.push_back(0);
   for (const auto& channel : data.channels_) {
     Dataset::Channel selected{channel.name, select(channel.measured), select(channel.base), {}};
     for (const auto& [name, values] : channel.signals) selected.signals[name] = select(values);
@@ -282,6 +293,7 @@ Dataset joinRuns(const std::vector<Dataset>& runs) {
   joined.timeOrdered_ = runs.front().timeOrdered_;
   joined.robot_ = runs.front().robot_;
   joined.channels_ = runs.front().channels_;
+  joined.runStarts_.clear();
   for (auto& channel : joined.channels_) {
     for (auto& [name, values] : channel.signals) values.resize(0);
     channel.measured.resize(0);
@@ -303,6 +315,8 @@ Dataset joinRuns(const std::vector<Dataset>& runs) {
       const double step = time.size() > 1 ? time[1] - time[0] : 0.0;
       shift = sofar[sofar.size() - 1] + step - time[0];
     }
+    const Eigen::Index offset = joined.channels_.front().measured.size();
+    for (Eigen::Index start : run.runStarts_) joined.runStarts_.push_back(offset + start);
     for (int c = 0; c < joined.channelCount(); ++c) {
       auto& to = joined.channels_[c];
       const auto& from = run.channels_[c];

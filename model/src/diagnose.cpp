@@ -172,13 +172,6 @@ FittedModel baseModel(const ModelSpec& spec, const Dataset& data, const Diagnose
   return options.keepParameters ? modelFromParameters(spec, data, false) : fitModel(spec, data);
 }
 
-std::vector<Event> eventsOf(const FittedModel& model, const Dataset& data) {
-  const auto predictions = predictAll(model, data);
-  std::vector<Eigen::VectorXd> residuals;
-  for (int c = 0; c < data.channelCount(); ++c) residuals.push_back(data.measured(c) - predictions[c]);
-  return findEvents(model, data, residuals);
-}
-
 // The diagnosis proper, on logs without events.
 Diagnosis diagnoseWithoutEvents(const ModelSpec& spec, const Dataset& data, const Dataset* validation,
                                 const DiagnoseOptions& options) {
@@ -190,7 +183,12 @@ Diagnosis diagnoseWithoutEvents(const ModelSpec& spec, const Dataset& data, cons
                                        (data.timeOrdered() ? "time-blocked" : "interleaved") + " cross-validation";
   if (options.keepParameters) diagnosis.heldout += ", parameters of " + spec.source.string() + " kept fixed";
   const Dataset& heldData = validation ? *validation : data;
-  const auto baseline = makeBaseline(base, options.keepParameters, data, validation, folds);
+  auto baseline = makeBaseline(base, options.keepParameters, data, validation, folds);
+  if (validation) {
+    baseline.checkStep = [&](EffectCandidate& candidate) {
+      detail::checkProposal(candidate, base, options.keepParameters, data, *validation, options.minimumReduction);
+    };
+  }
   diagnosis.heldoutBase = summaryFromSquares(heldData, baseline.squares);
 
   const std::vector<std::string> ids = options.candidates.empty() ? registeredEffects() : options.candidates;
@@ -209,16 +207,11 @@ Diagnosis diagnoseWithoutEvents(const ModelSpec& spec, const Dataset& data, cons
       continue;
     }
     auto candidate = scoreCatalogueEffect(*effect, data, validation, baseline, options.minimumReduction);
+    if (baseline.checkStep) baseline.checkStep(candidate);
     // One physical payload for the arm: fitted jointly on the channels it helps, reported in kg.
     if (candidate.suggested && effect->sharedAcrossChannels() && spec.hasEffect("drive_gain")) {
       const FittedModel with = options.keepParameters ? fitAdditions(base, {candidate.entry}, data)
-                                                      : fitModel(
-                                                            [&] {
-                                                              ModelSpec extended = spec;
-                                                              extended.effects.push_back(candidate.entry);
-                                                              return extended;
-                                                            }(),
-                                                            data);
+                                                      : extendModel(base, {candidate.entry}, data);
       const auto& fit = with.effects.back();
       candidate.quantities = fit.effect->physicalQuantities(fit.shared, fit.sharedCovariance);
     }
@@ -269,14 +262,11 @@ Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* va
                 " channels, the data has " + std::to_string(data.channelCount()));
   }
   if (!options.leaveOutEvents || !data.timeOrdered()) return diagnoseWithoutEvents(spec, data, validation, options);
-  const FittedModel base = baseModel(spec, data, options);
-  const auto dataEvents = eventsOf(base, data);
-  const auto validationEvents = validation ? eventsOf(base, *validation) : std::vector<Event>{};
+  const EventFreeData clean = leaveOutEvents(baseModel(spec, data, options), data, validation);
+  const auto& dataEvents = clean.dataEvents;
+  const auto& validationEvents = clean.validationEvents;
   if (dataEvents.empty() && validationEvents.empty()) return diagnoseWithoutEvents(spec, data, validation, options);
-  const Dataset cleanData = withoutEvents(data, dataEvents);
-  const std::optional<Dataset> cleanValidation =
-      validation ? std::optional<Dataset>(withoutEvents(*validation, validationEvents)) : std::nullopt;
-  Diagnosis diagnosis = diagnoseWithoutEvents(spec, cleanData, cleanValidation ? &*cleanValidation : nullptr, options);
+  Diagnosis diagnosis = diagnoseWithoutEvents(spec, clean.data(), clean.validation(), options);
   std::string leftOut;
   if (!dataEvents.empty()) leftOut += "data: " + describeEvents(dataEvents, data);
   if (!validationEvents.empty()) {

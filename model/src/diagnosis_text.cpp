@@ -1,5 +1,6 @@
 // The diagnosis in words: what each suggestion means, the summary, and how much of the residual
 // the catalogue explains of what can be explained at all.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -21,6 +22,26 @@ std::string perChannel(const EffectCandidate& candidate, const Dataset& data) {
     text += (k ? ", " : "") + data.channelName(c) + " -" + percentText(candidate.channelReduction[c]);
   }
   return text;
+}
+
+// The channels a suggestion is left off because, refitted with it, their held-out error rises (by
+// at least 1 %: smaller changes are noise), e.g. " It is left off joint 0 (+16.0 %), where refitted
+// with it the held-out error rises."
+std::string leftOffText(const EffectCandidate& candidate, const Dataset& data) {
+  std::vector<int> raised;
+  std::string amounts;
+  for (std::size_t c = 0; c < candidate.channelReduction.size(); ++c) {
+    const int channel = static_cast<int>(c);
+    if (candidate.channelReduction[c] > -0.01 ||
+        std::find(candidate.joints.begin(), candidate.joints.end(), channel) != candidate.joints.end()) {
+      continue;
+    }
+    raised.push_back(channel);
+    amounts += (amounts.empty() ? "+" : ", +") + percentText(-candidate.channelReduction[c]);
+  }
+  if (raised.empty()) return "";
+  return " It is left off " + describeChannels(data, raised) + " (" + amounts +
+         "), where refitted with it the held-out error rises.";
 }
 
 std::string quantitiesText(const std::vector<PhysicalQuantity>& quantities) {
@@ -59,7 +80,7 @@ std::string explainCandidate(const Effect& effect, const EffectCandidate& candid
     }
     text += " " + candidate.nonlinearUnit;
   }
-  return text + quantitiesText(candidate.quantities) + ".";
+  return text + quantitiesText(candidate.quantities) + "." + leftOffText(candidate, data);
 }
 
 std::string explainDiscovery(const EffectCandidate& candidate, const std::string& words, const std::string& picture,
@@ -71,8 +92,8 @@ std::string explainDiscovery(const EffectCandidate& candidate, const std::string
   return "The residual on " + describeChannels(data, candidate.joints) + " follows " + follows + " (" +
          candidate.entry.expressions.front() + "), a term outside the catalogue" +
          (picture.empty() ? std::string() : "; it fits " + picture) + ". Adding it removes " +
-         percentText(candidate.heldoutReduction) + " of the held-out residual (" + perChannel(candidate, data) +
-         "). Model-file entry: " + candidate.modelEntry;
+         percentText(candidate.heldoutReduction) + " of the held-out residual (" + perChannel(candidate, data) + ")." +
+         leftOffText(candidate, data) + " Model-file entry: " + candidate.modelEntry;
 }
 
 std::string diagnosisSummary(const Diagnosis& diagnosis, double minimumReduction) {

@@ -69,6 +69,7 @@ std::vector<EffectCandidate> discoverTerms(const Dataset& data, const Dataset* v
                       [](const auto& a, const auto& b) { return a.first > b.first; });
     for (std::size_t k = 0; k < keep; ++k) shortlist.emplace(scored[k].second.expression, scored[k].second);
   }
+  std::vector<std::pair<std::string, std::string>> pictures;  // words and picture of each of `found`
   for (const auto& [expression, term] : shortlist) {
     std::vector<double> squares(static_cast<std::size_t>(channels));
     std::vector<int> ranks(static_cast<std::size_t>(channels));
@@ -86,14 +87,27 @@ std::vector<EffectCandidate> discoverTerms(const Dataset& data, const Dataset* v
     judgeCandidate(candidate, squares, ranks, false, baseline, options.minimumReduction);
     if (!candidate.suggested) continue;
     candidate.entry.explanation = term.picture.empty() ? term.words : term.words + ": " + term.picture;
-    candidate.modelEntry = entryText(candidate.entry);
-    candidate.explanation = explainDiscovery(candidate, term.words, term.picture, data);
     found.push_back(std::move(candidate));
+    pictures.emplace_back(term.words, term.picture);
   }
-  std::stable_sort(found.begin(), found.end(),
+  // The best first; each checked by its step (checkStep) until kShownTerms pass.
+  std::vector<std::size_t> order(found.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  auto better = [&](std::size_t a, std::size_t b) { return found[a].heldoutReduction > found[b].heldoutReduction; };
+  std::stable_sort(order.begin(), order.end(), better);
+  std::vector<EffectCandidate> shown;
+  for (std::size_t k = 0; k < order.size() && shown.size() < kShownTerms; ++k) {
+    EffectCandidate& candidate = found[order[k]];
+    if (baseline.checkStep) baseline.checkStep(candidate);
+    if (!candidate.suggested) continue;
+    candidate.modelEntry = entryText(candidate.entry);
+    const auto& [words, picture] = pictures[order[k]];
+    candidate.explanation = explainDiscovery(candidate, words, picture, data);
+    shown.push_back(std::move(candidate));
+  }
+  std::stable_sort(shown.begin(), shown.end(),
                    [](const auto& a, const auto& b) { return a.heldoutReduction > b.heldoutReduction; });
-  if (found.size() > kShownTerms) found.resize(kShownTerms);
-  return found;
+  return shown;
 }
 
 }  // namespace arcplan::model::detail

@@ -229,6 +229,24 @@ Dataset withoutEvents(const Dataset& data, const std::vector<Event>& events, dou
   return selectSamples(data, keep);
 }
 
+EventFreeData leaveOutEvents(const FittedModel& model, const Dataset& data, const Dataset* validation) {
+  auto eventsOf = [&](const Dataset& log) {
+    const auto predictions = predictAll(model, log);
+    std::vector<Eigen::VectorXd> residuals;
+    for (int c = 0; c < log.channelCount(); ++c) residuals.push_back(log.measured(c) - predictions[c]);
+    return findEvents(model, log, residuals);
+  };
+  EventFreeData result;
+  result.allData = &data;
+  result.allValidation = validation;
+  if (!data.timeOrdered()) return result;
+  result.dataEvents = eventsOf(data);
+  if (!result.dataEvents.empty()) result.cleanData = withoutEvents(data, result.dataEvents);
+  if (validation) result.validationEvents = eventsOf(*validation);
+  if (!result.validationEvents.empty()) result.cleanValidation = withoutEvents(*validation, result.validationEvents);
+  return result;
+}
+
 std::string describeEvents(const std::vector<Event>& events, const Dataset& data) {
   const auto& time = data.signal("time", 0);
   double total = 0.0;

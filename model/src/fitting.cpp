@@ -1,3 +1,5 @@
+// Fitting (fitting.h): per-channel least squares, the joint fit of shared (payload) parameters,
+// kept models and the loop's step share the effect bookkeeping here (a little over 400 lines).
 #include "arcplan/model/fitting.h"
 
 #include <algorithm>
@@ -66,19 +68,20 @@ Eigen::VectorXd residualOf(const std::vector<EffectFit>& effects, const Dataset&
   return residual;
 }
 
-// Per channel: nonlinear parameters searched, then the linear ones of every effect in `free`.
+// Per channel: nonlinear parameters searched (those not yet known), then the linear ones of every
+// effect in `free`.
 void fitChannels(std::vector<EffectFit>& effects, const Dataset& data, const std::vector<bool>& free,
                  const std::vector<Eigen::VectorXd>& targets) {
   const std::size_t count = effects.size();
   for (int c = 0; c < data.channelCount(); ++c) {
-    // Linear effects first; each nonlinear effect then searches its parameter on what the others
-    // leave, twice round so that two nonlinear effects settle against each other.
+    // Effects with known parameters first; each nonlinear effect then searches its parameter on
+    // what the others leave, twice round so that two searched effects settle against each other.
     std::vector<bool> include(count);
-    for (std::size_t e = 0; e < count; ++e)
-      include[e] = free[e] && !effects[e].effect->nonlinearParameter().has_value();
     std::vector<std::size_t> nonlinear;
     for (std::size_t e = 0; e < count; ++e) {
-      if (free[e] && !include[e] && effects[e].applied[c]) nonlinear.push_back(e);
+      const bool searched = effects[e].effect->nonlinearParameter().has_value() && std::isnan(effects[e].nonlinear[c]);
+      include[e] = free[e] && !searched;
+      if (free[e] && searched && effects[e].applied[c]) nonlinear.push_back(e);
     }
     for (int round = 0; round < (nonlinear.size() > 1 ? 2 : 1); ++round) {
       for (std::size_t e : nonlinear) {
@@ -225,6 +228,23 @@ void fitFree(FittedModel& model, const Dataset& data, const std::vector<bool>& f
   }
 }
 
+// A searched parameter stored in the model file (found when the effect was added) stays, so a
+// later effect does not move an earlier one's frequency or rate (see extendModel in fitting.h).
+void keepStoredNonlinear(EffectFit& fit, const EffectSpec& spec, const Dataset& data) {
+  const auto nonlinear = fit.effect->nonlinearParameter();
+  if (!nonlinear) return;
+  const auto stored = spec.parameters.find(nonlinear->name);
+  if (stored == spec.parameters.end()) return;
+  if (static_cast<int>(stored->second.size()) != data.channelCount()) {
+    throw Error(spec.id + ": mismatched joint count: parameter '" + nonlinear->name + "' has " +
+                std::to_string(stored->second.size()) + " values but " + data.source() + " has " +
+                std::to_string(data.channelCount()) + " channels");
+  }
+  for (int c = 0; c < data.channelCount(); ++c) {
+    if (fit.applied[static_cast<std::size_t>(c)]) fit.nonlinear[static_cast<std::size_t>(c)] = stored->second[c];
+  }
+}
+
 }  // namespace
 
 std::vector<EffectFit> prepareEffects(const ModelSpec& spec, const Dataset& data) {
@@ -255,6 +275,7 @@ std::vector<EffectFit> prepareEffects(const ModelSpec& spec, const Dataset& data
     }
     const auto count = static_cast<Eigen::Index>(fit.effect->parameterNames().size());
     fit.nonlinear.assign(static_cast<std::size_t>(channels), kNaN);
+    keepStoredNonlinear(fit, effectSpec, data);
     fit.values.assign(static_cast<std::size_t>(channels), Eigen::VectorXd::Zero(count));
     fit.standardErrors.assign(static_cast<std::size_t>(channels), Eigen::VectorXd::Constant(count, kNaN));
     effects.push_back(std::move(fit));
@@ -281,6 +302,12 @@ FittedModel fitModel(const ModelSpec& spec, const Dataset& data) {
   model.effects = prepareEffects(spec, data);
   fitFree(model, data, std::vector<bool>(model.effects.size(), false));
   return model;
+}
+
+FittedModel extendModel(const FittedModel& before, const std::vector<EffectSpec>& additions, const Dataset& data) {
+  ModelSpec spec = specWithParameters(before);
+  spec.effects.insert(spec.effects.end(), additions.begin(), additions.end());
+  return fitModel(spec, data);
 }
 
 FittedModel fitAdditions(const FittedModel& kept, const std::vector<EffectSpec>& additions, const Dataset& data) {

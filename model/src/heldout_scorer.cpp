@@ -1,7 +1,9 @@
-// Held-out scoring shared by the diagnosis of catalogue effects and the discovery of new terms.
+// Held-out scoring shared by the diagnosis of catalogue effects and the discovery of new terms, and
+// the check of what the diagnosis proposes by the step itself.
 #include <algorithm>
 #include <cmath>
 
+#include "arcplan/model/fitting.h"
 #include "arcplan/model/least_squares.h"
 #include "model_internal.h"
 
@@ -121,6 +123,59 @@ double noiseFloor(const Eigen::VectorXd& residual) {
   const Eigen::ArrayXd second =
       residual.segment(2, n - 2).array() - 2.0 * residual.segment(1, n - 2).array() + residual.head(n - 2).array();
   return std::sqrt(second.square().mean() / 6.0);
+}
+
+// The diagnosis' promise, checked by the step itself: a suggestion is proposed on a channel only if
+// the step that `fit --add` runs (extendModel, or fitAdditions with kept parameters) lowers that
+// channel's held-out error. The held-out scorer already predicts this for per-channel effects
+// (the same columns, the same least squares); the check holds it for everything else too (a
+// payload fitted jointly across channels, a column dropped as collinear) and reports the step's
+// own numbers.
+namespace {
+
+std::vector<double> heldOutSquares(const FittedModel& model, const Dataset& validation) {
+  std::vector<double> squares;
+  const auto predictions = predictAll(model, validation);
+  for (int c = 0; c < validation.channelCount(); ++c) {
+    squares.push_back((validation.measured(c) - predictions[c]).squaredNorm());
+  }
+  return squares;
+}
+
+}  // namespace
+
+void checkProposal(EffectCandidate& candidate, const FittedModel& base, bool keepParameters, const Dataset& data,
+                   const Dataset& validation, double minimumReduction) {
+  if (!candidate.suggested) return;
+  // One set of arm parameters (a payload) is seen through the drive gains: without them there is no
+  // step to run (fit --add says so), so nothing to propose.
+  if (createEffect(candidate.entry)->sharedAcrossChannels() && !base.spec.hasEffect("drive_gain")) {
+    candidate.suggested = false;
+    return;
+  }
+  const std::vector<double> before = heldOutSquares(base, validation);
+  // A shared effect refitted on fewer channels changes on the rest: check again until none is dropped.
+  for (int round = 0; round < 3 && !candidate.joints.empty(); ++round) {
+    EffectSpec entry = candidate.entry;
+    entry.joints = candidate.joints;
+    const FittedModel after = keepParameters ? fitAdditions(base, {entry}, data) : extendModel(base, {entry}, data);
+    const std::vector<double> squares = heldOutSquares(after, validation);
+    std::vector<int> kept;
+    double with = 0.0, total = 0.0;
+    for (int c = 0; c < validation.channelCount(); ++c) {
+      const bool applied = std::find(candidate.joints.begin(), candidate.joints.end(), c) != candidate.joints.end();
+      const double reduction = 1.0 - std::sqrt(squares[c] / std::max(before[c], 1e-300));
+      if (applied) candidate.channelReduction[c] = reduction;
+      if (applied && reduction >= minimumReduction) kept.push_back(c);
+      with += squares[c];
+      total += before[c];
+    }
+    candidate.heldoutReduction = total > 0.0 ? 1.0 - std::sqrt(with / total) : 0.0;
+    if (kept.size() == candidate.joints.size()) break;
+    candidate.joints = kept;
+  }
+  candidate.entry.joints = candidate.joints;
+  candidate.suggested = !candidate.joints.empty() && candidate.heldoutReduction > 0.0;
 }
 
 }  // namespace arcplan::model::detail

@@ -68,14 +68,18 @@ public:
     for (int i = 1; loadScaled_ && i <= elements_; ++i) names.push_back("G" + std::to_string(i));
     return names;
   }
-  // The elements start undeflected (the state before the log is unknown).
+  // The elements start undeflected at the start of every run (the state before a run is unknown;
+  // the step from one run's end to the next's start is no motion).
   void regressor(const Dataset& data, int c, double, Eigen::Ref<Eigen::MatrixXd> columns) const override {
     const auto& q = data.signal("q", c);
+    const std::vector<bool> begins = runBeginnings(data, q.size());
     std::vector<double> breakaway(static_cast<std::size_t>(elements_)), deflection(breakaway.size(), 0.0);
     for (int i = 0; i < elements_; ++i) breakaway[i] = smallest_ * std::pow(kGridRatio, i);
     const Eigen::VectorXd* tau = loadScaled_ ? &data.signal("tau", c) : nullptr;
     for (Eigen::Index k = 0; k < q.size(); ++k) {
-      const double step = k == 0 ? 0.0 : q[k] - q[k - 1];
+      const bool runBegins = begins[static_cast<std::size_t>(k)];
+      if (runBegins) std::fill(deflection.begin(), deflection.end(), 0.0);
+      const double step = runBegins ? 0.0 : q[k] - q[k - 1];
       for (int i = 0; i < elements_; ++i) {
         deflection[i] = std::clamp(deflection[i] + step, -breakaway[i], breakaway[i]);
         const double z = deflection[i] / breakaway[i];

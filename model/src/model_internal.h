@@ -12,6 +12,7 @@
 #include "arcplan/model/dataset.h"
 #include "arcplan/model/diagnose.h"
 #include "arcplan/model/effect.h"
+#include "arcplan/model/fitting.h"
 
 namespace arcplan::model::detail {
 
@@ -36,6 +37,10 @@ double typicalViscous(int channel);    // A·s/rad
 
 // sgn(qd) as every friction term smooths it: tanh(qd / velocity_smoothing).
 double smoothedDirection(const Dataset& data, double velocity);
+
+// Per sample of a channel (`samples` long), whether a run begins there: sample 0 and every
+// Dataset::runStarts() entry. Effects with a state along the log start it afresh there.
+std::vector<bool> runBeginnings(const Dataset& data, Eigen::Index samples);
 
 // Held-out sums of squares of one channel: a fixed design fitted on the training data, alone or
 // with extra columns, and scored on the validation data or by cross-validation (contiguous blocks
@@ -68,6 +73,8 @@ struct HeldOutBaseline {
   std::vector<int> rank;
   std::vector<Eigen::MatrixXd> trainBasis;  // orthonormal span of the model's own columns (none when kept)
   std::vector<Eigen::VectorXd> trainResidual, heldOutResidual;
+  // With validation data: checkProposal with the model as it is (empty without: cross-validation).
+  std::function<void(EffectCandidate&)> checkStep;
   double total() const;
 };
 
@@ -76,6 +83,13 @@ struct HeldOutBaseline {
 // held-out squares and ranks per channel; `searched` counts a searched nonlinear parameter.
 void judgeCandidate(EffectCandidate& candidate, const std::vector<double>& squares, const std::vector<int>& ranks,
                     bool searched, const HeldOutBaseline& baseline, double minimumReduction);
+
+// Runs the step a suggested candidate proposes (extendModel, or fitAdditions with kept parameters,
+// on `data`) and keeps the candidate only on the channels whose held-out RMSE on `validation` it
+// lowers by at least `minimumReduction`; channelReduction (on its joints) and heldoutReduction
+// become the step's own (proposal_check.cpp).
+void checkProposal(EffectCandidate& candidate, const FittedModel& base, bool keepParameters, const Dataset& data,
+                   const Dataset& validation, double minimumReduction);
 
 // Library terms (term_library.h) that explain the held-out residual, as candidates (discovery.cpp).
 std::vector<EffectCandidate> discoverTerms(const Dataset& data, const Dataset* validation,

@@ -220,7 +220,11 @@ nlohmann::json toJson(const FitStep& step) {
   nlohmann::json before{{"train", rmseOnly(step.beforeData)}}, after{{"train", rmseOnly(step.afterData)}};
   if (step.beforeValidation) before["validation"] = rmseOnly(*step.beforeValidation);
   if (step.afterValidation) after["validation"] = rmseOnly(*step.afterValidation);
-  return {{"added", step.added}, {"before", before}, {"after", after}, {"parameters", parametersJson(step.after)}};
+  return {{"added", step.added},
+          {"before", before},
+          {"after", after},
+          {"parameters", parametersJson(step.after)},
+          {"events_left_out", {{"data", toJson(step.dataEvents)}, {"validation", toJson(step.validationEvents)}}}};
 }
 
 nlohmann::json toJson(const std::vector<SessionStep>& history) {
@@ -356,6 +360,10 @@ std::string formatFitStep(const FitStep& step) {
   std::ostringstream text;
   text << "added:";
   for (const auto& a : step.added) text << " " << a;
+  if (!step.dataEvents.empty() || !step.validationEvents.empty()) {
+    text << "\nleft out as moments, not effects (as diagnose does): " << step.dataEvents.size()
+         << " events in the data, " << step.validationEvents.size() << " in the validation data";
+  }
   text << "\n" << padded("channel", 26) << padded("train before", 14) << padded("train after", 14);
   if (step.beforeValidation) text << padded("val before", 14) << "val after";
   text << "   (RMSE)\n";

@@ -84,8 +84,8 @@ std::string describeEffect(const EffectSpec& effect) {
   return text;
 }
 
-FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& additions, const Dataset& data,
-                         const Dataset* validation, bool keepParameters) {
+FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& additions, const Dataset& allData,
+                         const Dataset* allValidation, bool keepParameters, bool leaveOutEvents) {
   if (additions.empty()) throw Error("fit: nothing to add (use --add EFFECT[:j0,j1..])");
   ModelSpec extended = spec;
   FitStep step;
@@ -100,12 +100,20 @@ FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& a
     extended.effects.push_back(addition);
     step.added.push_back(describeEffect(addition));
   }
+  // The samples the diagnosis scores on: without the events of the model as it is.
+  const FittedModel asItIs = keepParameters ? modelFromParameters(spec, allData, false) : fitModel(spec, allData);
+  EventFreeData clean{&allData, allValidation, std::nullopt, std::nullopt, {}, {}};
+  if (leaveOutEvents) clean = arcplan::model::leaveOutEvents(asItIs, allData, allValidation);
+  const Dataset& data = clean.data();
+  const Dataset* validation = clean.validation();
+  step.dataEvents = clean.dataEvents;
+  step.validationEvents = clean.validationEvents;
   if (keepParameters) {
-    step.before = modelFromParameters(spec, data, false);
+    step.before = asItIs;
     step.after = fitAdditions(step.before, additions, data);
   } else {
-    step.before = fitModel(spec, data);
-    step.after = fitModel(extended, data);
+    step.before = step.dataEvents.empty() ? asItIs : fitModel(spec, data);
+    step.after = extendModel(step.before, additions, data);
   }
   step.beforeData = errorSummary(data, predictAll(step.before, data));
   step.afterData = errorSummary(data, predictAll(step.after, data));

@@ -68,7 +68,7 @@ TEST(RealLogs, EveryProposedEffectLowersTheHeldOutError) {
       EXPECT_LT(step.afterValidation->channels[joint].rmse, step.beforeValidation->channels[joint].rmse)
           << top.effect << " joint " << joint;
     }
-    spec.effects.push_back(effect);
+    spec = specWithParameters(step.after);  // what fit --save writes
     ++added;
   }
   // The logs have friction the base model lacks: at least one effect must be proposed.

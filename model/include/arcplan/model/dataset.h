@@ -45,6 +45,11 @@ public:
   const LogQuality& quality() const { return quality_; }
   const std::vector<std::string>& notes() const { return notes_; }
   bool timeOrdered() const { return timeOrdered_; }
+  // The first sample of every run, 0 first: joinRuns starts one at each run it joins, and
+  // selectSamples one after every gap it leaves. Effects with a state along the log (friction with
+  // memory) start it afresh there: what the joint did before a run began is not in the log, and a
+  // jump of q across a boundary is no motion.
+  const std::vector<Eigen::Index>& runStarts() const { return runStarts_; }
 
   int channelCount() const { return static_cast<int>(channels_.size()); }
   const std::string& channelName(int channel) const { return channels_[channel].name; }
@@ -64,10 +69,6 @@ public:
   // For the simulator: the exact signals its truth model predicts from (measured values are zero).
   friend Dataset makeSimulationDataset(const ModelSpec& spec, std::vector<Channel> channels, std::string source);
   friend Dataset selectSamples(const Dataset& data, const std::vector<bool>& keep);
-  // Several runs of one robot as one dataset, end to end: each run's time is shifted to start one
-  // sample step after the previous run ends (derivatives were taken per run). The runs must have
-  // the same channels.
-  Dataset joinRuns(const std::vector<Dataset>& runs);
   friend Dataset joinRuns(const std::vector<Dataset>& runs);
 
 private:
@@ -78,6 +79,7 @@ private:
   LogQuality quality_;
   std::vector<std::string> notes_;
   bool timeOrdered_ = true;
+  std::vector<Eigen::Index> runStarts_{0};
   std::vector<Channel> channels_;
   mutable std::shared_ptr<const robot::RobotModel> robot_;                    // loaded on first use
   mutable std::vector<std::map<std::string, Eigen::VectorXd>> robotSignals_;  // filled on first use
@@ -91,11 +93,11 @@ Dataset makeGearboxDataset(const std::vector<ForceTransferPoint>& points, const 
                            const std::string& source);
 Dataset makeSimulationDataset(const ModelSpec& spec, std::vector<Dataset::Channel> channels, std::string source);
 // The samples where `keep` is true (one flag per sample), every signal alike; source, notes and
-// quality stay (the diagnosis leaves event windows out this way).
+// quality stay (the diagnosis leaves event windows out this way). A run starts after every gap.
 Dataset selectSamples(const Dataset& data, const std::vector<bool>& keep);
 // Several runs of one robot as one dataset, end to end: each run's time is shifted to start one
-// sample step after the previous run ends (derivatives were taken per run). The runs must have
-// the same channels.
+// sample step after the previous run ends (derivatives were taken per run), and runStarts() marks
+// where each begins. The runs must have the same channels.
 Dataset joinRuns(const std::vector<Dataset>& runs);
 
 // Reads the file the way the model kind needs it (RTDE/headerless log, or force-transfer CSV).

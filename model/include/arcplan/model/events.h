@@ -65,6 +65,19 @@ std::vector<Event> findEvents(const FittedModel& model, const Dataset& data,
 // diagnosis scores effects without them).
 Dataset withoutEvents(const Dataset& data, const std::vector<Event>& events, double margin = 0.3);
 
+// The samples the model loop fits and scores on, one rule for diagnose and fit: each log without
+// the events of `model`'s residual on it (the model as it is before a step), so a step is fitted
+// and held out on the same samples the diagnosis scored it on.
+struct EventFreeData {
+  const Dataset* allData = nullptr;  // the logs given (not owned)
+  const Dataset* allValidation = nullptr;
+  std::optional<Dataset> cleanData, cleanValidation;  // only where events were left out
+  std::vector<Event> dataEvents, validationEvents;
+  const Dataset& data() const { return cleanData ? *cleanData : *allData; }
+  const Dataset* validation() const { return cleanValidation ? &*cleanValidation : allValidation; }
+};
+EventFreeData leaveOutEvents(const FittedModel& model, const Dataset& data, const Dataset* validation);
+
 // "3 events (2.4 s of 82.1 s) left out: 12.3–13.1 s (joints 0–2), ..."
 std::string describeEvents(const std::vector<Event>& events, const Dataset& data);
 

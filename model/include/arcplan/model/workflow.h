@@ -9,6 +9,7 @@
 
 #include "arcplan/model/compare.h"
 #include "arcplan/model/dataset.h"
+#include "arcplan/model/events.h"
 #include "arcplan/model/fitting.h"
 #include "arcplan/model/measurements.h"
 #include "arcplan/model/model_spec.h"
@@ -49,13 +50,17 @@ struct FitStep {
   FittedModel before, after;
   ErrorSummary beforeData, afterData;
   std::optional<ErrorSummary> beforeValidation, afterValidation;
+  // Moments left out of the fit and of the errors (events of the model before the step), per log.
+  std::vector<Event> dataEvents, validationEvents;
 };
 
 // Adds the effects to the model (each must be new and apply to its kind), refits on `data`, and
-// reports the errors before and after on both datasets. With `keepParameters` the model's stored
-// parameters stay fixed (before = the model as saved) and only the additions are fitted.
+// reports the errors before and after on both datasets. The step is extendModel (fitting.h) on the
+// samples diagnose scores on (leaveOutEvents, events.h; `leaveOutEvents` false: every sample), so
+// it is the step the diagnosis proposed. With `keepParameters` the model's stored parameters stay
+// fixed (before = the model as saved) and only the additions are fitted.
 FitStep addEffectsAndFit(const ModelSpec& spec, const std::vector<EffectSpec>& additions, const Dataset& data,
-                         const Dataset* validation, bool keepParameters = false);
+                         const Dataset* validation, bool keepParameters = false, bool leaveOutEvents = true);
 
 std::string describeEffect(const EffectSpec& effect);  // "coulomb", "load_friction:1,2"
 
