@@ -6,6 +6,8 @@ from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 import numpy as np
 import numpy.typing as npt
 
+from . import bench as bench, model as model
+
 ArrayLike = npt.ArrayLike
 FloatArray = npt.NDArray[np.float64]
 PathLike = Union[str, os.PathLike]
