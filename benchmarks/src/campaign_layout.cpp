@@ -162,11 +162,17 @@ void writePlotScene(const std::filesystem::path& file, const Problem& problem, d
   };
   nlohmann::json obstacles = nlohmann::json::array();
   for (const auto& obstacle : problem.scene.obstacles) obstacles.push_back(plotObstacle(obstacle));
+  nlohmann::json attached = nlohmann::json::array();  // bodies the robot holds, posed in their link's frame
+  for (const auto& body : problem.scene.attachedObstacles) {
+    attached.push_back(plotObstacle(body.body));
+    attached.back()["link"] = body.link;
+  }
   // Joints too, so that a report can draw the robot where no planner found a path.
   const auto joints = [](const robot::Vector6& q) { return std::vector<double>(q.data(), q.data() + q.size()); };
   const nlohmann::json scene{{"problem", problem.name},
                              {"robot", plotRobot(problem.scene.robot)},
                              {"obstacles", obstacles},
+                             {"attached", attached},
                              {"start", position(planning.start)},
                              {"goal", position(planning.goal)},
                              {"start_joints", joints(planning.start)},

@@ -12,7 +12,7 @@
 #include "arcplan/report/robot_animation.h"
 #include "arcplan/robot/robot_model.h"
 #include "arcplan/robot/robot_source.h"
-#include "drawn_meshes.h"
+#include "plot_scene.h"
 #include "compact_number.h"
 #include "json_file.h"
 
@@ -66,59 +66,6 @@ nlohmann::json medianRunJson(const benchmarks::MedianRun& run, const robot::Robo
   return entry;
 }
 
-// The robot a plot scene names (scene.json "robot"; campaigns written before it was there: the UR10e).
-robot::RobotSource robotSourceOf(const nlohmann::json& scene) {
-  robot::RobotSource source;
-  if (!scene.contains("robot")) return source;
-  const auto& json = scene.at("robot");
-  source.urdf = json.value("urdf", "");
-  source.urType = json.value("ur_type", "");
-  source.description = json.value("description", "");
-  source.kinematics = json.value("kinematics", "");
-  source.chain.baseLink = json.value("base_link", source.chain.baseLink);
-  source.chain.tipLink = json.value("tip_link", source.chain.tipLink);
-  if (json.contains("tcp_offset") && json["tcp_offset"].is_array()) {
-    const auto& v = json["tcp_offset"];
-    Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
-    offset.translation() = Eigen::Vector3d(v.at(0), v.at(1), v.at(2));
-    offset.linear() = Eigen::Quaterniond(v.at(6), v.at(3), v.at(4), v.at(5)).normalized().toRotationMatrix();
-    source.chain.tcpOffset = offset;
-  }
-  return source;
-}
-
-robot::Vector6 jointsOf(const nlohmann::json& scene, const char* key) {
-  const auto values = scene.at(key).get<std::vector<double>>();
-  if (values.size() != 6)
-    throw Error(std::string("scene.json: ") + key + " has " + std::to_string(values.size()) + " values, expected 6");
-  return Eigen::Map<const robot::Vector6>(values.data());
-}
-
-// Mesh obstacles carry their triangles in scene.json as plain lists: on the page they travel like the
-// link meshes (base64, thinned when large).
-nlohmann::json drawnScene(nlohmann::json scene) {
-  for (auto& obstacle : scene["obstacles"]) {
-    if (obstacle.value("shape", "") != "mesh" || !obstacle.contains("vertices")) continue;
-    const auto vertices = obstacle["vertices"].get<std::vector<double>>();
-    const auto corners = obstacle["triangles"].get<std::vector<int>>();
-    robot::TriangleMesh mesh;
-    for (std::size_t i = 0; i + 2 < vertices.size(); i += 3)
-      mesh.vertices.emplace_back(vertices[i], vertices[i + 1], vertices[i + 2]);
-    for (std::size_t i = 0; i + 2 < corners.size(); i += 3) {
-      const Eigen::Vector3i triangle(corners[i], corners[i + 1], corners[i + 2]);
-      if (triangle.minCoeff() < 0 || triangle.maxCoeff() >= static_cast<int>(mesh.vertices.size()))
-        throw Error("scene.json: obstacle '" + obstacle.value("name", "") + "': triangle " + std::to_string(i / 3) +
-                    " names a vertex that is not there");
-      mesh.triangles.push_back(triangle);
-    }
-    obstacle.erase("vertices");
-    obstacle.erase("triangles");
-    obstacle["source_triangles"] = mesh.triangles.size();
-    obstacle.update(detail::meshJson(detail::withAtMostTriangles(mesh, kMaxTrianglesPerMesh)));
-  }
-  return scene;
-}
-
 // The robots of the plot problems, each loaded and drawn once (a campaign usually has one). A robot
 // that no longer loads (its URDF moved) costs the pages their arm, not the report.
 class PlotRobots {
@@ -132,7 +79,7 @@ public:
       keys_.push_back(key);
       used_.push_back(false);
       try {
-        models_.emplace_back(robot::loadRobot(robotSourceOf(scene)));
+        models_.emplace_back(robot::loadRobot(detail::robotSourceOf(scene)));
       } catch (const Error& error) {
         models_.emplace_back(std::nullopt);
         missing.push_back("The robot of " + scene.value("problem", std::string("a plot problem")) +
@@ -141,6 +88,7 @@ public:
     }
     return models_[index] ? std::optional<std::size_t>(index) : std::nullopt;
   }
+  const robot::RobotModel& model(std::size_t index) const { return *models_[index]; }
   const robot::RobotModel& use(std::size_t index) {
     used_[index] = true;
     return *models_[index];
@@ -174,13 +122,14 @@ nlohmann::json pathsJson(const std::filesystem::path& campaign, const benchmarks
     if (!std::filesystem::exists(folder / "scene.json")) continue;
     const auto scene = detail::readJsonFile(folder / "scene.json");
     const auto robot = robots.indexOf(scene, missing);
-    nlohmann::json entry{{"scene", drawnScene(scene)},
+    nlohmann::json entry{{"scene", detail::drawnScene(scene, robot ? &robots.model(*robot) : nullptr)},
                          {"robot", robot ? nlohmann::json(*robot) : nlohmann::json(nullptr)},
                          {"planners", nlohmann::json::array()}};
     if (robot && scene.contains("start_joints") && scene.contains("goal_joints")) {
       // Frame 0 the start, frame 1 the goal: the arm is drawn even where no planner found a path.
-      entry["endpoints"] = linkPoseFrames(robots.use(*robot), {0.0, 1.0},
-                                          {jointsOf(scene, "start_joints"), jointsOf(scene, "goal_joints")}, 1.0);
+      entry["endpoints"] =
+          linkPoseFrames(robots.use(*robot), {0.0, 1.0},
+                         {detail::jointsOf(scene, "start_joints"), detail::jointsOf(scene, "goal_joints")}, 1.0);
     }
     for (const auto& [planner, plannerRuns] : planners) {
       const auto file = folder / (planner + ".csv");

@@ -4,7 +4,7 @@
 // counts, a 3D view that draws something and an arm that moves with the time slider.
 //
 //   node browser_test.js --report R.html --kind campaign --planners 3 --speed-problems 2 [--arm]
-//        [--obstacles 5 --mesh-obstacles 2 --links 9 --link-names gripper,finger]
+//        [--obstacles 5 --mesh-obstacles 2 --attached 1 --links 9 --link-names gripper,finger]
 //   node browser_test.js --report R.html --kind model --channels 6 --history-traces 2 --diagnosis-rows 12
 //   node browser_test.js --report R.html --kind comparison --rows 36 --worse 1 --metrics 5
 //   [--screenshot page.png] [--chromium /usr/bin/chromium]
@@ -149,6 +149,20 @@ async function checkObstacles(page, options) {
   check("every obstacle of the plot scenes is drawn", all.length === Number(options.obstacles), JSON.stringify(shapes));
   const meshes = all.filter(type => type === "BufferGeometry").length;
   check("mesh obstacles are drawn", meshes === Number(options["mesh-obstacles"] || 0), meshes + " mesh obstacles");
+  const held = await page.evaluate(() => window.arcplanReport.views.map(view => view.heldBodies()).flat());
+  check("bodies attached to the robot ride on a link", held.length === Number(options.attached || 0), JSON.stringify(held));
+  if (held.length && options.arm) {
+    // Moving the arm moves what it holds.
+    const moved = await page.evaluate(() => {
+      const view = window.arcplanReport.views.find(v => v.heldBodies().length);
+      view.setTime(0);
+      const before = view.heldBodies()[0].position;
+      view.setTime(view.duration);
+      const after = view.heldBodies()[0].position;
+      return Math.hypot(before[0] - after[0], before[1] - after[1], before[2] - after[2]);
+    });
+    check("a held body moves with the arm", moved > 0.01, moved.toFixed(3) + " m");
+  }
 }
 
 async function checkModel(page, options) {

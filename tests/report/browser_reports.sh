@@ -26,7 +26,7 @@ echo "campaign report: $size bytes"
 [ "$size" -lt 5000000 ]
 browser_test --report "$work/campaign/report.html" --kind campaign --planners 3 --speed-problems 2 --arm
 
-echo "== campaign with a gripper and every obstacle kind: a MoveIt scene (box, cylinder, sphere, mesh) and an STL"
+echo "== campaign with a gripper and every obstacle kind: a MoveIt scene (box, cylinder, sphere, mesh, a held sphere) and an STL"
 # arcplan's UR10e with a box body on tool0 and a cylinder finger beyond it (links past the flange).
 mkdir -p "$work/drawn/moveit"
 sed -e "s|filename=\"meshes/|filename=\"$source_dir/data/ur10e/meshes/|" \
@@ -43,6 +43,10 @@ world:
     - {id: wedge, meshes: [{vertices: [[0, 0, 0], [0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]],
                             triangles: [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]}],
        mesh_poses: [{position: [-0.7, 0.6, 0.1]}]}
+robot_state:
+  attached_collision_objects:
+    - {link_name: tool0, object: {id: held, primitives: [{type: sphere, dimensions: [0.02]}],
+                                  primitive_poses: [{position: [0, 0, 0.3]}]}}
 YAML
 joints='[0, -1.57, 1.57, -1.57, -1.57, 0]'
 cat > "$work/drawn/moveit/request0001.yaml" <<YAML
@@ -90,9 +94,9 @@ plots: [stl, moveit-0001]
 YAML
 "$arcplan" bench --suite "$work/drawn/suite.yaml" -j 1 --no-plots --quiet --out "$work/drawn/campaign" \
   --html "$work/drawn/report.html" > /dev/null
-# 5 obstacles (4 MoveIt shapes + the STL part), 2 of them meshes; 7 UR10e links + gripper + finger.
+# 5 obstacles (4 MoveIt shapes + the STL part), 2 of them meshes; a held sphere; 7 UR10e links + gripper + finger.
 browser_test --report "$work/drawn/report.html" --kind campaign --planners 1 --speed-problems 2 --arm \
-  --obstacles 5 --mesh-obstacles 2 --links 9 --link-names gripper,finger
+  --obstacles 5 --mesh-obstacles 2 --attached 1 --links 9 --link-names gripper,finger
 
 echo "== comparison page: the campaign against a baseline of itself whose arc path was 1 mm shorter"
 "$arcplan" bench baseline save "$work/campaign" "$work/baseline.json" 2> /dev/null

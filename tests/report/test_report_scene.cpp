@@ -1,7 +1,7 @@
 // What the campaign report's 3D view gets from a real campaign (`arcplan bench`): every obstacle of a
 // MoveIt scene (box, cylinder [height, radius], sphere, mesh; object pose · primitive pose with
-// quaternions [x, y, z, w]) and of a scene file (an STL mesh), and every link of a robot with a
-// gripper beyond the flange. Expected poses and sizes are worked out by hand from the input files.
+// quaternions [x, y, z, w]) and of a scene file (an STL mesh), a body the robot holds, and every link
+// of a robot with a gripper beyond the flange. Expected poses and sizes are worked out by hand from the input files.
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -89,6 +89,13 @@ world:
         - vertices: [[0, 0, 0], [0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]
           triangles: [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
       mesh_poses: [{position: [-0.7, 0.6, 0.1], orientation: [0, 0, 0, 1]}]
+robot_state:
+  attached_collision_objects:
+    - link_name: tool0
+      object:
+        id: held
+        primitives: [{type: sphere, dimensions: [0.02]}]
+        primitive_poses: [{position: [0, 0, 0.3], orientation: [0, 0, 0, 1]}]
 )");
   write(folder, "request0001.yaml",
         "start_state:\n  joint_state:\n    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, "
@@ -268,6 +275,17 @@ void ReportScene::expectGripper() {
   const double x = g[3], y = g[4], z = g[5], w = g[6];
   const Eigen::Vector3d zAxis(2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y));
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(f[k] - g[k], 0.1 * zAxis[k], 1e-5);
+  // The body held by tool0 (no geometry) rides on wrist_3_link, the nearest drawn link: placed by
+  // wrist_3's pose it is 0.3 m along the gripper's (= tool0's) z axis.
+  const auto& attached = entry["scene"]["attached"];
+  ASSERT_EQ(attached.size(), 1u);
+  EXPECT_EQ(attached[0]["link"], "wrist_3_link");
+  EXPECT_EQ(attached[0]["shape"], "sphere");
+  const float* w3 = &poses[6 * 7];
+  const Eigen::Quaterniond wrist3(w3[6], w3[3], w3[4], w3[5]);
+  const Eigen::Vector3d inWrist3(attached[0]["position"][0], attached[0]["position"][1], attached[0]["position"][2]);
+  const Eigen::Vector3d held = Eigen::Vector3d(w3[0], w3[1], w3[2]) + wrist3 * inWrist3;
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(held[k], g[k] + 0.3 * zAxis[k], 1e-5);
   // The scene-file problem names the same robot: drawn once.
   EXPECT_EQ(problem("stl")["robot"], entry["robot"]);
 }

@@ -112,6 +112,16 @@ function createRobotView(container, problemName, problem, robotData, colours) {
   const animated = planners.filter(planner => planner.frames && robotData);
   const links = robotData ? robotData.meshes.map(makeLinkMesh) : [];
   links.forEach(link => scene.add(link));
+  // Bodies the robot holds ride on their link (their pose is in its frame): three.js moves them with it.
+  const held = [];
+  for (const body of robotData ? problem.scene.attached || [] : []) {
+    const link = links.find(mesh => mesh.name === body.link);
+    const mesh = link && makeObstacle(body);
+    if (!mesh) continue;
+    mesh.material.color.set(0xe69f00);
+    link.add(mesh);
+    held.push(mesh);
+  }
   const poses = {};
   for (const planner of animated) poses[planner.name] = {frames: planner.frames, values: float32Array(planner.frames.poses)};
   const armChoices = animated.map(planner => ({value: planner.name, label: planner.name}));
@@ -228,6 +238,7 @@ function createRobotView(container, problemName, problem, robotData, colours) {
     linkNames: () => links.map(link => link.name),
     obstacleCount: () => obstacles.length,
     obstacleShapes: () => obstacles.map(mesh => mesh.geometry.type),
+    heldBodies: () => held.map(mesh => ({name: mesh.name, link: mesh.parent.name, position: mesh.getWorldPosition(new THREE.Vector3()).toArray()})),
     pathCount: () => planners.length,
     visiblePaths: () => planners.filter(planner => paths[planner.name].visible).length,
   };
