@@ -70,7 +70,8 @@ ArcPlanner::ArcPlanner(const ob::SpaceInformationPtr& si,
     : ob::Planner(si, "arc"),
       collisionModel_(std::move(collisionModel)),
       obstacles_(std::move(obstacles)),
-      ik_(collisionModel_->robot()) {
+      ik_(collisionModel_->robot()),
+      linkOutlines_(linkOutlines(collisionModel_->robot())) {
   specs_.approximateSolutions = false;
   specs_.optimizingPaths = false;
   specs_.multithreaded = false;
@@ -212,6 +213,7 @@ detail::ArcOutcome ArcPlanner::withQuery(const ob::PlannerTerminationCondition& 
   const robot::RobotModel& robot = collisionModel_->robot();
   const detail::ArcQuery query{*collisionModel_,
                                obstacles_,
+                               linkOutlines_,
                                ik_,
                                conversion_,
                                ptc,

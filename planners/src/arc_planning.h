@@ -13,6 +13,7 @@
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/planners/arc_planner.h"
+#include "arm_contact.h"
 #include "path_validation.h"
 
 namespace arcplan::planners::detail {
@@ -20,6 +21,7 @@ namespace arcplan::planners::detail {
 struct ArcQuery {
   const collision::CollisionModel& model;
   const std::vector<collision::Obstacle>& obstacles;
+  const LinkOutlines& outlines;  // the robot's links, for the arm's contacts (arm_contact.h)
   const robot::UrInverseKinematics& ik;
   const JointConversionOptions& conversion;
   const ompl::base::PlannerTerminationCondition& ptc;

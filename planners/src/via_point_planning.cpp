@@ -9,6 +9,7 @@
 
 #include "arc_planning.h"
 #include "arcplan/planners/blended_path.h"
+#include "arm_contact.h"
 #include "route_search.h"
 #include "via_points.h"
 
@@ -221,8 +222,27 @@ private:
         obstacles_.push_back(name);
       }
     }
-    search_.legFailed(route, leg,
-                      viaCandidates(*cluster, route.points[leg], route.points[leg + 1], query_.validator.margin()));
+    search_.legFailed(route, leg, waysRound(*cluster, rejection, walked.rejected->to, route, leg));
+  }
+
+  // The cluster's candidates as the TCP sees it, and where a link above the tool met it, as that link
+  // sees it (arm_contact.h): the TCP moved so that the link clears the cluster.
+  std::vector<ViaCandidate> waysRound(const ObstacleCluster& cluster, const Rejection& rejection,
+                                      const robot::Vector6& refused, const Route& route, std::size_t leg) const {
+    const Eigen::Vector3d &p = route.points[leg], &q = route.points[leg + 1];
+    const double margin = query_.validator.margin();
+    std::vector<ViaCandidate> ways = viaCandidates(cluster, p, q, margin);
+    std::vector<collision::Obstacle> bodies;
+    for (const collision::Obstacle& obstacle : query_.obstacles) {
+      if (std::count(cluster.names.begin(), cluster.names.end(), obstacle.name) > 0) bodies.push_back(obstacle);
+    }
+    for (const ArmContact& contact :
+         armContacts(query_.model.robot(), query_.outlines, refused, rejection.pairs.collisions, bodies)) {
+      const std::vector<ViaCandidate> more =
+          viaCandidates(seenFromTheTcp(cluster, contact.outline), p, q, margin, contact.side);
+      ways.insert(ways.end(), more.begin(), more.end());
+    }
+    return ways;
   }
 
   // The margins come in steps: where a via point can come closer, the path gets shorter. Each trial

@@ -15,6 +15,7 @@ constexpr int kPlaneSteps = 12;       // 30° apart
 constexpr double kEndKeepOut = 0.01;  // m along the leg from p and q
 constexpr double kHighestApex = 1.5;  // m above the leg
 constexpr double kFloorTop = 0.01;    // m: a body whose top is this low is the floor the robot stands on
+const double kWithinSide = std::cos(M_PI / 3.0 + 1e-9);  // planes within 60° of a given side (5 of 12)
 
 struct Box {
   Eigen::Vector3d low, high;
@@ -105,14 +106,17 @@ std::vector<ObstacleCluster> clusterObstacles(const std::vector<collision::Obsta
 }
 
 std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Eigen::Vector3d& p,
-                                        const Eigen::Vector3d& q, double clearance) {
+                                        const Eigen::Vector3d& q, double clearance,
+                                        const std::optional<Eigen::Vector3d>& side) {
   std::vector<ViaCandidate> candidates;
   const double length = (q - p).norm();
   if (length < 4.0 * kEndKeepOut || cluster.hull.empty()) return candidates;
   const Eigen::Vector3d along = (q - p) / length;
   const auto inside = [&](double x) { return std::clamp(x, kEndKeepOut, length - kEndKeepOut); };
+  const Eigen::Vector3d across = side ? Eigen::Vector3d(*side - side->dot(along) * along) : Eigen::Vector3d::Zero();
   for (int step = 0; step < kPlaneSteps; ++step) {
     const Eigen::Vector3d away = avoidanceDirection(along, 2.0 * M_PI * step / kPlaneSteps);
+    if (across.norm() > 1e-6 && away.dot(across.normalized()) < kWithinSide) continue;
     double x0 = length, x1 = 0.0, height = 0.0;
     for (const Eigen::Vector3d& point : cluster.hull) {
       const double x = (point - p).dot(along);

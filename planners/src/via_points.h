@@ -16,6 +16,7 @@
 //     every hull point by clearance + margin (a triangle, the shortest way past a small body).
 // Margins grow from 2 cm to 35 cm: the tool and the arm above it need room besides the clearance.
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,8 +43,11 @@ struct ViaCandidate {
 
 // Candidates (over and apex, every plane and margin) around `cluster` for the leg p -> q. Points
 // closer than 1 cm to p or q along the leg are moved inward; candidates needing an apex higher than
-// 1.5 m are left out.
+// 1.5 m are left out. With `side`, only the planes whose "away" direction lies within 60° of side's
+// part across the leg (the side of the cluster something should pass on; all planes when side runs
+// along the leg).
 std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Eigen::Vector3d& p,
-                                        const Eigen::Vector3d& q, double clearance);
+                                        const Eigen::Vector3d& q, double clearance,
+                                        const std::optional<Eigen::Vector3d>& side = std::nullopt);
 
 }  // namespace arcplan::planners

@@ -153,6 +153,8 @@ private:
   std::shared_ptr<const collision::CollisionModel> collisionModel_;
   std::vector<collision::Obstacle> obstacles_;
   robot::UrInverseKinematics ik_;
+  // Per link, points outlining its collision geometry: where a link met a body (src/arm_contact.h).
+  std::vector<std::vector<Eigen::Vector3d>> linkOutlines_;
   ArcParameters shape_{0.1, 0.2, 0.1, 0.2};  // the thesis example: h = 0.5 r, r = 0.2, R2 = 0.5 r, R3 = r
   bool shapeGiven_ = false;
   double planeAngle_ = 0.0;
