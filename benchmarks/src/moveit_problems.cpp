@@ -17,6 +17,9 @@
 namespace arcplan::benchmarks {
 namespace {
 
+// The start of Problem::origin for MoveIt problems ("MoveIt <scene file> + <request file>").
+const std::string kMoveItOrigin = "MoveIt ";
+
 // NNNN -> (scene, request) of one folder.
 std::map<std::string, std::pair<std::filesystem::path, std::filesystem::path>> pairsIn(
     const std::filesystem::path& folder) {
@@ -98,7 +101,7 @@ void addMoveItProblems(const MoveItProblemSource& source, Suite& suite) {
     Problem problem;
     problem.name = files.name;
     problem.kind = files.family;
-    problem.origin = files.scene.string() + " + " + files.request.filename().string();
+    problem.origin = kMoveItOrigin + files.scene.string() + " + " + files.request.filename().string();
     problem.query = loaded.scene.queries.front().name;
     problem.scene = std::move(loaded.scene);
     const ProblemValidity validity = checkEndpoints(problem.scene, problem.query);
@@ -119,12 +122,17 @@ void addMoveItProblems(const MoveItProblemSource& source, Suite& suite) {
 }
 
 std::string validityTable(const Suite& suite) {
+  const auto fromMoveIt = [](const Problem& problem) { return problem.origin.rfind(kMoveItOrigin, 0) == 0; };
+  if (suite.excludedProblems.empty() && std::none_of(suite.problems.begin(), suite.problems.end(), fromMoveIt))
+    return "";
   struct Counts {
     int valid = 0, invalidStart = 0, invalidGoal = 0;
     std::map<std::string, int> reasons;  // what made them invalid, counted
   };
   std::map<std::string, Counts> families;
-  for (const auto& problem : suite.problems) ++families[problem.kind].valid;
+  for (const auto& problem : suite.problems) {
+    if (fromMoveIt(problem)) ++families[problem.kind].valid;
+  }
   for (const auto& excluded : suite.excludedProblems) {
     Counts& counts = families[excluded.family];
     counts.invalidStart += excluded.start.empty() ? 0 : 1;

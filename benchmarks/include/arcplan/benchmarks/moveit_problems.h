@@ -43,7 +43,8 @@ struct MoveItProblemSource {
 void addMoveItProblems(const MoveItProblemSource& source, Suite& suite);
 
 // The per-family table of loaded / valid / invalid start / invalid goal with the pairs in contact
-// (Markdown), as bench prints it and docs/benchmarks.md shows it.
+// (Markdown) of the suite's MoveIt problems, as bench prints it and docs/benchmarks.md shows it; ""
+// for a suite without any.
 std::string validityTable(const Suite& suite);
 
 }  // namespace arcplan::benchmarks
