@@ -135,12 +135,13 @@ function createRobotView(container, problemName, problem, robotData, colours) {
   const duration = Math.max(0, ...planners.map(planner => planner.t[planner.t.length - 1]));
   let time = 0;
 
-  // Look at the middle of the robot base, the paths and the obstacles near them (not a room-sized
+  // Look at the middle of the robot base, the start and goal, the paths and the obstacles near them (not a room-sized
   // wall or floor), from the front right, far enough to see all.
   const bounds = new THREE.Box3(new THREE.Vector3(-0.1, -0.1, 0), new THREE.Vector3(0.1, 0.1, 0.2));
   for (const planner of planners) {
     for (let i = 0; i < planner.tcp.length; i += 3) bounds.expandByPoint(new THREE.Vector3().fromArray(planner.tcp, i));
   }
+  for (const end of [problem.scene.start, problem.scene.goal]) if (end) bounds.expandByPoint(new THREE.Vector3().fromArray(end));
   for (const mesh of obstacles) {
     mesh.updateMatrixWorld(true);
     const box = new THREE.Box3().setFromObject(mesh);
