@@ -4,7 +4,7 @@
 // counts, a 3D view that draws something and an arm that moves with the time slider.
 //
 //   node browser_test.js --report R.html --kind campaign --planners 3 --speed-problems 2 [--arm]
-//        [--obstacles 5 --mesh-obstacles 2 --attached 1 --links 9 --link-names gripper,finger]
+//        [--obstacles 5 --mesh-obstacles 2 --attached 1 --links 9 --link-names gripper,finger --endpoints]
 //   node browser_test.js --report R.html --kind model --channels 6 --history-traces 2 --diagnosis-rows 12
 //   node browser_test.js --report R.html --kind comparison --rows 36 --worse 1 --metrics 5
 //   [--screenshot page.png] [--chromium /usr/bin/chromium]
@@ -21,7 +21,7 @@ function parseArguments(argv) {
   for (let i = 0; i < argv.length; ++i) {
     if (!argv[i].startsWith("--")) throw new Error("unexpected argument " + argv[i]);
     const name = argv[i].slice(2);
-    if (name === "arm") options.arm = true;
+    if (name === "arm" || name === "endpoints") options[name] = true;
     else options[name] = argv[++i];
   }
   if (!options.report || !options.kind) throw new Error("give --report FILE and --kind campaign|model|comparison");
@@ -120,6 +120,23 @@ async function checkCampaign(page, options) {
       const wanted = (options["link-names"] || "").split(",").filter(Boolean);
       check(views[index].problem + ": one mesh per robot link with geometry", names.length === Number(options.links) &&
             wanted.every(name => names.includes(name)), names.length + " links: " + names.join(", "));
+    }
+
+    if (options.endpoints) {
+      // The arm can be shown at the start and at the goal configuration (also where no planner solved).
+      const ends = await page.evaluate(i => {
+        const view = window.arcplanReport.views[i];
+        const select = document.querySelectorAll(".robot-view")[i].querySelector("select");
+        const show = value => { select.value = value; select.dispatchEvent(new Event("change")); return view.linkPositions(); };
+        const start = show("@start"), goal = show("@goal");
+        show(select.options[0].value);
+        let largest = 0;
+        start.forEach((p, k) => { largest = Math.max(largest, Math.hypot(p[0] - goal[k][0], p[1] - goal[k][1], p[2] - goal[k][2])); });
+        return {options: [...select.options].map(o => o.value), largest};
+      }, index);
+      check(views[index].problem + ": the arm shows the start and the goal configuration",
+            ends.options.includes("@start") && ends.options.includes("@goal") && ends.largest > 0.01,
+            ends.options.join(", ") + "; largest link move " + ends.largest.toFixed(3) + " m");
     }
 
     if (options.arm) {

@@ -96,7 +96,7 @@ YAML
   --html "$work/drawn/report.html" > /dev/null
 # 5 obstacles (4 MoveIt shapes + the STL part), 2 of them meshes; a held sphere; 7 UR10e links + gripper + finger.
 browser_test --report "$work/drawn/report.html" --kind campaign --planners 1 --speed-problems 2 --arm \
-  --obstacles 5 --mesh-obstacles 2 --attached 1 --links 9 --link-names gripper,finger
+  --obstacles 5 --mesh-obstacles 2 --attached 1 --links 9 --link-names gripper,finger --endpoints
 
 echo "== comparison page: the campaign against a baseline of itself whose arc path was 1 mm shorter"
 "$arcplan" bench baseline save "$work/campaign" "$work/baseline.json" 2> /dev/null
