@@ -124,8 +124,11 @@ std::vector<model::EffectSpec> additionsOf(const py::handle& object) {
       additions.push_back(model::parseEffectArgument(py::cast<std::string>(item)));
     } else if (py::isinstance<model::EffectCandidate>(item)) {
       additions.push_back(py::cast<const model::EffectCandidate&>(item).entry);
-    } else {
+    } else if (py::isinstance<model::EffectSpec>(item)) {
       additions.push_back(py::cast<model::EffectSpec>(item));
+    } else {
+      throw py::type_error("add: expected 'effect[:joints]', an Effect or a Candidate, got " +
+                           py::cast<std::string>(py::repr(item)));
     }
   }
   return additions;

@@ -3,6 +3,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include "arcplan/common/error.h"
 #include "arcplan/model/result_formats.h"
 #include "model_objects.h"
 
@@ -18,6 +19,7 @@ struct Series {
 };
 
 Series seriesOf(const FittedOnData& fitted, bool validation) {
+  if (validation && !fitted.data->validation) throw Error("series(validation=True): the data has no validation log");
   const auto& data = validation ? *fitted.data->validation : fitted.data->data;
   Series series;
   series.predicted = model::predictAll(fitted.model, data);

@@ -143,6 +143,8 @@ def test_bad_input_raises_arcplans_message(base, data, logs, tmp_path):
         model.fit(base, data, "no_such_effect")
     with pytest.raises(arcplan.Error, match=r"effect 'coulomb' is already in the model"):
         model.fit(base, data, ["coulomb"])
+    with pytest.raises(arcplan.Error, match=r"^series\(validation=True\): the data has no validation log$"):
+        model.compare(base, model.load_data(base, logs[1])).fitted.series(validation=True)
     with pytest.raises(arcplan.Error, match=r"^m\.yaml:1:1: model: unknown key 'kindd'"):
         model.parse_model("kindd: joint_current\n", "m.yaml")
     tracking = model.parse_model("kind: joint_tracking\neffects: [offset]\n", "tracking.yaml")
