@@ -31,7 +31,8 @@ namespace {
 
 struct PlanOptions {
   std::string scene;
-  std::string moveitScene, moveitRequest, urdf, srdf;  // a MoveIt problem instead of --scene
+  std::string moveitScene, moveitRequest, srdf;  // a MoveIt problem instead of --scene
+  RobotSourceOptions robot;                      // its robot: --urdf, --tip, --tcp-offset
   std::string query;
   std::string planner = "arc";
   std::vector<std::string> parameters;
@@ -115,13 +116,21 @@ std::shared_ptr<const collision::Scene> loadPlanScene(const PlanOptions& options
   if (moveit == !options.scene.empty())
     throw UsageError("give either --scene or --moveit-scene with --moveit-request (and --urdf)");
   if (!moveit) {
-    if (!options.urdf.empty() || !options.srdf.empty()) throw UsageError("--urdf and --srdf go with --moveit-scene");
+    if (options.robot.given() || !options.srdf.empty())
+      throw UsageError("the robot options and --srdf go with --moveit-scene (a scene file names its robot)");
     return std::make_shared<const collision::Scene>(collision::loadScene(resolveDataPath(options.scene)));
   }
-  if (options.moveitScene.empty() || options.moveitRequest.empty() || options.urdf.empty())
+  if (options.moveitScene.empty() || options.moveitRequest.empty() || options.robot.urdf.empty())
     throw UsageError("--moveit-scene needs --moveit-request and --urdf");
+  if (!options.robot.urType.empty()) {
+    throw UsageError(
+        "--ur-type: MoveIt problems are read against the URDF their joint and link names come from; "
+        "give --urdf");
+  }
   if (!options.query.empty()) throw UsageError("--query names a query of --scene; a MoveIt request is one query");
-  auto problem = collision::loadMoveItProblem(options.moveitScene, options.moveitRequest, {options.urdf, options.srdf});
+  const robot::RobotSource source = robotSourceFrom(options.robot);
+  auto problem = collision::loadMoveItProblem(options.moveitScene, options.moveitRequest, {source.urdf, options.srdf});
+  problem.scene.robot.chain = source.chain;  // the TCP the arc planner moves along lines
   for (const auto& name : problem.ignoredMatrixNames) {
     std::cerr
         << "arcplan: note: allowed_collision_matrix name '" << name
@@ -211,10 +220,11 @@ void registerPlanCommand(CLI::App& app) {
   command->add_option("--scene", options->scene,
                       "scene YAML (a path, or a name under data/, e.g. scenes/thesis_obstacle.yaml)");
   command->add_option("--moveit-scene", options->moveitScene,
-                      "instead of --scene: a moveit_msgs/PlanningScene YAML (with --moveit-request and --urdf)");
+                      "instead of --scene: a moveit_msgs/PlanningScene YAML or an RViz .scene file (with "
+                      "--moveit-request and --urdf)");
   command->add_option("--moveit-request", options->moveitRequest,
                       "the moveit_msgs/MotionPlanRequest YAML to plan in --moveit-scene");
-  command->add_option("--urdf", options->urdf, "the robot of the MoveIt problem (URDF; joint and link names)");
+  addRobotSourceOptions(*command, options->robot, "the robot of the MoveIt problem (URDF; joint and link names)");
   command->add_option("--srdf", options->srdf, "its SRDF (disabled collision pairs), optional");
   command->add_option("--query", options->query, "query name in the scene (default: the first)");
   command

@@ -184,7 +184,9 @@ private:
 
 MoveItProblem loadMoveItProblem(const std::filesystem::path& sceneFile, const std::filesystem::path& requestFile,
                                 const MoveItRobot& robot) {
-  MoveItProblem problem = loadMoveItScene(sceneFile, robot);
+  // RViz's `.scene` text export or a PlanningScene YAML, told apart by the extension as MoveIt does.
+  MoveItProblem problem =
+      sceneFile.extension() == ".scene" ? loadMoveItTextScene(sceneFile, robot) : loadMoveItScene(sceneFile, robot);
   RequestReader(requestFile, *detail::sharedRobotModel(robot.urdf), *detail::sharedUrdfFrames(robot.urdf), problem)
       .read();
   return problem;

@@ -272,4 +272,41 @@ TEST(MoveItTextScene, OldAndNewLayoutsGiveTheSameObstacles) {
             std::string::npos);
 }
 
+TEST(MoveItTextScene, WithARequestItIsAProblemThatPlanPlans) {
+  const auto dir = arcplan::testing::freshTempDirectory("moveit_text_request");
+  const auto scene =
+      write(dir, "bench.scene", "bench\n* table\n1\nbox\n1 0.5 0.04\n0.6 0 -0.02\n0 0 0 1\n0.5 0.5 0.5 1\n.\n");
+  const auto request = write(dir, "request.yaml", R"(
+start_state: {joint_state: {name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint], position: [0, -1.57, 1.57, -1.57, -1.57, 0]}}
+goal_constraints:
+  - joint_constraints:
+      - {joint_name: shoulder_pan_joint, position: 0.5}
+      - {joint_name: shoulder_lift_joint, position: -1.57}
+      - {joint_name: elbow_joint, position: 1.57}
+      - {joint_name: wrist_1_joint, position: -1.57}
+      - {joint_name: wrist_2_joint, position: -1.57}
+      - {joint_name: wrist_3_joint, position: 0}
+)");
+  const MoveItProblem problem = arcplan::collision::loadMoveItProblem(scene, request, ur10e());
+  ASSERT_EQ(problem.scene.obstacles.size(), 1u);  // read as a .scene file (the YAML reader would refuse it)
+  EXPECT_NEAR((named(problem.scene, "table").pose.translation() - Eigen::Vector3d(0.6, 0, -0.02)).norm(), 0.0, 1e-12);
+  ASSERT_TRUE(problem.scene.queries.front().goal.joints.has_value());
+  EXPECT_EQ((*problem.scene.queries.front().goal.joints)[0], 0.5);
+  // The same through `plan`, with a TCP 0.1 m beyond tool0 for the arc planner.
+  const auto json = dir / "plan.json";
+  const auto result =
+      arcplan::testing::runArcplan({"plan", "--moveit-scene", scene.string(), "--moveit-request", request.string(),
+                                    "--urdf", arcplan::robot::ur10eUrdfPath().string(), "--tcp-offset", "0,0,0.1,0,0,0",
+                                    "--planner", "arc", "--json", json.string()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const std::string text = arcplan::testing::readFile(json);
+  EXPECT_NE(text.find("\"status\": \"exact\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"goal_valid\": true"), std::string::npos) << text;
+  // --ur-type names no URDF to read the messages' names against: a usage error.
+  EXPECT_EQ(arcplan::testing::runArcplan(
+                {"plan", "--moveit-scene", scene.string(), "--moveit-request", request.string(), "--ur-type", "ur10e"})
+                .exitCode,
+            2);
+}
+
 }  // namespace

@@ -44,7 +44,8 @@ struct MoveItProblem {
 // allowed-matrix name that is no link or object (unless the matrix is complete, see above).
 MoveItProblem loadMoveItScene(const std::filesystem::path& sceneFile, const MoveItRobot& robot);
 
-// The scene plus a MotionPlanRequest YAML: start_state (merged over the scene's robot_state; every
+// The scene (a `.scene` file is read as loadMoveItTextScene does, any other as a PlanningScene YAML)
+// plus a MotionPlanRequest YAML: start_state (merged over the scene's robot_state; every
 // arm joint must be given by one of them), goal_constraints[0] as joint constraints (every arm
 // joint) or a position + orientation constraint on a link rigidly fixed to tool0 (solved by IK with
 // the start as seed). Throws arcplan::Error naming file, line and field.
