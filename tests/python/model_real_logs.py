@@ -55,3 +55,21 @@ def test_fit_with_the_first_effect_equals_the_cli_and_lowers_the_heldout_error(b
     assert step.after_validation.overall_nrmse < step.before_validation.overall_nrmse
     for joint in first.joints:
         assert step.after_validation.rmse[joint] < step.before_validation.rmse[joint]
+
+
+def test_run_folders_of_the_real_ur5_equal_the_cli(tmp_path):
+    # Run folders (one log_<signal>.csv per signal) of the UR5 runs, two joined as --data does, and its own URDF.
+    runs = pathlib.Path(os.environ["ARCPLAN_SHARED_DATA"]) / "ur5_kufieta"
+    fit = [runs / "Movement_No1", runs / "Movement_No2"]
+    validation = runs / "Movement_No7_Acc_slow_Verify_Model_short"
+    spec = tmp_path / "ur5.yaml"
+    urdf = pathlib.Path(os.environ["ARCPLAN_SHARED_DATA"]) / "mbm_ur5" / "ur5.urdf"
+    spec.write_text("kind: joint_current\nload_torque: target_moment\nrobot: {urdf: %s}\n"
+                    "effects: [drive_gain, offset, coulomb, viscous]\n" % urdf)
+    expected = run_cli("model", "compare", "--model", spec, "--data", *fit, "--validate", validation)
+    ur5 = model.load_model(spec)
+    comparison = model.compare(ur5, model.load_data(ur5, fit, validation))
+    assert abs(comparison.overall_nrmse - expected["overall_nrmse"]) <= 1e-12
+    assert_same_document(comparison.to_dict(), expected)
+    log = model.read_log(fit[0])
+    assert log.joint_count == 6 and "actual_current" in log.signals and log["actual_q"].shape == (log.rows, 6)
