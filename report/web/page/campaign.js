@@ -146,7 +146,7 @@
       "The TCP speed along each planner's median run (by execution time) after time scaling, with the speed limit v_max. " +
       "Drag to zoom into a ramp or a plateau, double-click to reset; click a legend entry to hide a planner.");
     const views = addSection("view3d", "3D view",
-      "The scene's obstacles (small ones red, tables grey), start (green) and goal (black), each planner's TCP path in its colour, and the robot (its tool and gripper included) at the " +
+      "The scene's obstacles (small ones red, tables grey; bodies the robot holds orange), start (green) and goal (black), each planner's TCP path in its colour, and the robot (its tool and gripper included) at the " +
       "planned joint states. Drag to orbit, scroll to zoom, right-drag to pan; move the time slider or press play to run the " +
       "time-scaled motion, choose which planner's motion the arm shows, tick planners on or off.");
     const byRank = (a, b) => allPlanners.indexOf(a.name) - allPlanners.indexOf(b.name);
