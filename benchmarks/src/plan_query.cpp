@@ -1,6 +1,7 @@
 #include "arcplan/benchmarks/plan_query.h"
 
 #include <ompl/geometric/SimpleSetup.h>
+#include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <cmath>
@@ -102,8 +103,15 @@ const char* toString(PlanStatus status) {
 PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std::string& queryName,
                        const PlanQueryOptions& options) {
   checkOptions(options);
-  // OMPL's seed must be set before anything random exists.
-  if (options.seed) ompl::RNG::setSeed(*options.seed);
+  // OMPL's seed must be set before anything random exists. Set again in a process that has planned
+  // before (Python), OMPL re-seeds its seed generator, so every RNG made from here on draws the same
+  // as in a fresh process, but logs an error saying it would not be deterministic: kept quiet.
+  if (options.seed) {
+    const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+    ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+    ompl::RNG::setSeed(*options.seed);
+    ompl::msg::setLogLevel(level);
+  }
   PlannedQuery planned;
   planned.options = options;
   planned.options.planner = planners::canonicalPlannerName(options.planner);
