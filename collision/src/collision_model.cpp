@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <tuple>
 
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
@@ -19,6 +20,10 @@ namespace {
 using detail::Implementation;
 using detail::Part;
 using detail::Workspace;
+
+// GJK's distances are exact to about 1e-6 m (docs/collision.md); a hull's distance is taken this
+// much smaller, so that as a lower bound it never rests on an overestimate.
+constexpr double kHullDistanceSlack = 1e-6;
 
 // FCL compares surfaces; a part entirely inside the other has no intersecting surfaces, so one
 // point of each is tested against the other's solid as well.
@@ -99,6 +104,16 @@ double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& 
   return std::max(d, 0.0);  // FCL reports -1 or 0 for intersecting shapes
 }
 
+double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+               const CollisionModelOptions& options) {
+  if (!options.hullLayer || !a.hullGeometry || !b.hullGeometry) return 0.0;
+  if (options.convexDistance && a.convexGeometry && b.convexGeometry) return 0.0;
+  static const fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-9);
+  fcl::DistanceResultd result;
+  const double d = fcl::distance(a.hullGeometry.get(), poseA, b.hullGeometry.get(), poseB, request, result);
+  return std::max(d - kHullDistanceSlack, 0.0);
+}
+
 }  // namespace detail
 
 namespace {
@@ -122,12 +137,21 @@ bool partsCollide(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, 
   if (options.convexCollision && a.convexGeometry && b.convexGeometry) {
     return fcl::collide(a.convexGeometry.get(), poseA, b.convexGeometry.get(), poseB, request, result) > 0;
   }
+  // The hulls contain the parts: hulls apart, parts apart (one GJK instead of a BVH traversal).
+  if (options.hullLayer && a.hullGeometry && b.hullGeometry &&
+      fcl::collide(a.hullGeometry.get(), poseA, b.hullGeometry.get(), poseB, request, result) == 0) {
+    return false;
+  }
+  result.clear();
   if (fcl::collide(a.collisionGeometry.get(), poseA, b.collisionGeometry.get(), poseB, request, result) > 0)
     return true;
   return oneInsideOther(a, poseA, b, poseB);
 }
 
-bool groupCollides(const CollisionModel& model, Workspace& data, const Implementation::PairGroup& group) {
+}  // namespace
+
+bool detail::groupCollides(const CollisionModel& model, Workspace& data, const Implementation::PairGroup& group) {
+  if (group.rigid) return group.rigidCollides;
   const Implementation& impl = detail::implementationOf(model);
   const bool broadPhase = model.options().broadPhase;
   if (broadPhase && linksApart(impl, data, group)) return false;
@@ -142,6 +166,26 @@ bool groupCollides(const CollisionModel& model, Workspace& data, const Implement
   }
   return false;
 }
+
+// Appends to data.openPairs the part pairs of group k (impl.groups) that its capsules (the link's,
+// the parts') do not prove at least `clearance` apart; false if the group is known closer (rigid).
+bool addOpenPairs(const CollisionModel& model, Workspace& data, int k, double clearance) {
+  const Implementation& impl = detail::implementationOf(model);
+  const Implementation::PairGroup& group = *impl.groups[k];
+  if (group.rigid) return group.rigidDistance >= clearance;
+  if (detail::linkGap(impl, data, group) >= clearance) return true;
+  for (std::size_t p = 0; p < group.parts.size(); ++p) {
+    const auto [i, j] = group.parts[p];
+    const double bound = boundGap(impl, data, i, j, group.self);  // also places both parts
+    if (bound >= clearance) continue;
+    data.openPairs.emplace_back(impl.firstPartPair[k] + static_cast<int>(p), bound <= 0.0);
+  }
+  return true;
+}
+
+namespace {
+
+using detail::groupCollides;
 
 NamePair namesOf(const CollisionModel& model, const Implementation::PairGroup& group) {
   return {model.linkNames()[group.firstBody],
@@ -213,22 +257,84 @@ DistanceReport distance(const CollisionModel& model, CollisionData& workspace, c
   std::sort(data.distanceOrder.begin(), data.distanceOrder.end());
 
   DistanceReport report;
+  for (const auto& group : impl.selfGroups) {
+    if (group.rigid && group.rigidDistance < report.selfDistance) {
+      report.selfDistance = group.rigidDistance;
+      report.selfPair = namesOf(model, group);
+    }
+  }
   for (const auto& [bound, index] : data.distanceOrder) {
     const auto& candidate = impl.partPairs[index];
+    if (candidate.group->rigid) continue;
     const bool self = candidate.group->self;
     double& best = self ? report.selfDistance : report.obstacleDistance;
     if (bound >= std::max(report.selfDistance, report.obstacleDistance)) break;
     if (bound >= best) continue;
+    const Part& first = impl.robotParts[candidate.first];
+    const Part& second = secondPart(impl, *candidate.group, candidate.second);
+    const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, *candidate.group, candidate.second);
+    if (detail::hullGap(first, data.partPoses[candidate.first], second, secondPose, model.options()) >= best) continue;
     const double d =
-        partsDistance(impl.robotParts[candidate.first], data.partPoses[candidate.first],
-                      secondPart(impl, *candidate.group, candidate.second),
-                      secondPose(impl, data, *candidate.group, candidate.second), bound <= 0.0, model.options());
+        partsDistance(first, data.partPoses[candidate.first], second, secondPose, bound <= 0.0, model.options());
     if (d < best) {
       best = d;
       (self ? report.selfPair : report.obstaclePair) = namesOf(model, *candidate.group);
     }
   }
   return report;
+}
+
+bool hasClearance(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q, double clearance) {
+  if (!(clearance > 0.0) || !std::isfinite(clearance)) {
+    throw Error("clearance query: clearance must be a finite distance > 0 m, got " + std::to_string(clearance));
+  }
+  Workspace& data = detail::workspaceOf(workspace);
+  const Implementation& impl = detail::implementationOf(model);
+  // The spheres' gaps per pair (a body against its obstacles, then the self pairs) settle most pairs.
+  const detail::SpherePrefilter* spheres = impl.prefilter && impl.prefilter->usable() ? impl.prefilter.get() : nullptr;
+  if (spheres != nullptr) {
+    if (q.size() != model.robot().dof()) updateRobot(model, data, q);  // throws the usual message
+    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) spheres->loadLane(*data.spheres, lane, q.data());
+    // A pair whose coarse spheres clear it by that much needs no fine spheres (sphere_tables.h).
+    std::fill(data.spheres->enough.begin(), data.spheres->enough.end(),
+              static_cast<float>(clearance + spheres->margin()));
+    spheres->gaps(*data.spheres);
+  }
+  const auto settled = [&](int pair) {
+    return spheres != nullptr &&
+           static_cast<double>(data.spheres->gaps[static_cast<std::size_t>(pair) * detail::prefilter::kLanes]) >=
+               clearance;
+  };
+  data.openPairs.clear();
+  bool placed = false;
+  const int obstacleGroups = static_cast<int>(impl.obstacleGroups.size());
+  const int bodies = spheres != nullptr ? spheres->tables().bodyCount : 0;
+  for (int k = 0; k < static_cast<int>(impl.groups.size()); ++k) {
+    if (k < obstacleGroups ? settled(impl.groups[k]->firstBody)
+                           : spheres != nullptr && spheres->kernelPairOf(k - obstacleGroups) >= 0 &&
+                                 settled(bodies + spheres->kernelPairOf(k - obstacleGroups)))
+      continue;
+    if (!placed) updateRobot(model, data, q);
+    placed = true;
+    if (!addOpenPairs(model, data, k, clearance)) return false;
+  }
+  // A pair in contact answers at once (boolean queries, hulls first, cost a fraction of a distance);
+  // else the hulls' distances, and for the pairs they leave open the distances distance() measures.
+  const auto parts = [&](const std::pair<int, bool>& open) {
+    const auto& pair = impl.partPairs[open.first];
+    return std::tie(impl.robotParts[pair.first], data.partPoses[pair.first], secondPart(impl, *pair.group, pair.second),
+                    secondPose(impl, data, *pair.group, pair.second));
+  };
+  for (const auto& open : data.openPairs) {
+    const auto [a, poseA, b, poseB] = parts(open);
+    if (partsCollide(a, poseA, b, poseB, model.options())) return false;
+  }
+  for (const auto& open : data.openPairs) {
+    const auto [a, poseA, b, poseB] = parts(open);
+    if (detail::hullGap(a, poseA, b, poseB, model.options()) >= clearance) continue;
+    if (partsDistance(a, poseA, b, poseB, open.second, model.options()) < clearance) return false;
+  }
+  return true;
 }
 
 }  // namespace arcplan::collision

@@ -18,6 +18,7 @@ namespace {
 
 using detail::Implementation;
 using detail::Part;
+using detail::Workspace;
 
 }  // namespace
 const char* toString(BoundingVolume boundingVolume) {
@@ -191,12 +192,30 @@ void addPairGroups(const AllowedCollisionMatrix& allowed, const std::vector<std:
   for (const auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
     for (const auto& group : *groups) {
       impl.groups.push_back(&group);
+      impl.firstPartPair.push_back(static_cast<int>(impl.partPairs.size()));
       for (const auto& [i, j] : group.parts) impl.partPairs.push_back({&group, i, j});
     }
   }
 }
 
 }  // namespace
+
+void detail::measureRigidPairs(const CollisionModel& model, Implementation& impl) {
+  Workspace data(model);
+  updateRobot(model, data, robot::JointVector::Zero(model.robot().dof()));
+  for (auto& group : impl.selfGroups) {
+    if (group.relativeReach.size() > 0 && group.relativeReach.maxCoeff() > 0.0) continue;
+    group.rigidCollides = groupCollides(model, data, group);
+    group.rigidDistance = std::numeric_limits<double>::infinity();
+    for (const auto& [i, j] : group.parts) {
+      const double bound = boundGap(impl, data, i, j, true);  // places both parts
+      group.rigidDistance =
+          std::min(group.rigidDistance, partsDistance(impl.robotParts[i], data.partPoses[i], impl.robotParts[j],
+                                                      data.partPoses[j], bound <= 0.0, model.options()));
+    }
+    group.rigid = true;
+  }
+}
 
 CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, const Scene& scene,
                                AllowedCollisionMatrix allowed, CollisionModelOptions options)
@@ -215,6 +234,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
   checkAllowedNames(allowed_, *robot_, obstacleNames_, linkNames_);
   addPairGroups(allowed_, linkNames_, obstacleNames_, impl);
   detail::computeMotionBounds(*robot_, impl);
+  detail::measureRigidPairs(*this, impl);
   if (options_.spherePrefilter)
     impl.prefilter = std::make_shared<const detail::SpherePrefilter>(*robot_, impl, linkNames_);
 }

@@ -46,6 +46,11 @@ struct ModelImplementation {
     // On a straight joint motion with steps dq the pair's distance shrinks at most by
     // relativeReach · |dq| (motion_check.cpp).
     Eigen::VectorXd relativeReach;
+    // A self pair no joint moves apart (both bodies on the same rigid end, e.g. a gripper's fingers and
+    // its base): its distance never changes, so it is measured once, when the model is built.
+    bool rigid = false;
+    bool rigidCollides = false;
+    double rigidDistance = 0.0;
   };
   std::vector<PairGroup> obstacleGroups, selfGroups;
   std::vector<const PairGroup*> groups;  // obstacle groups, then self groups
@@ -55,6 +60,7 @@ struct ModelImplementation {
     int first, second;
   };
   std::vector<PartPair> partPairs;
+  std::vector<int> firstPartPair;  // per group of `groups`: where its part pairs start in partPairs
   // The SIMD sphere prefilter in front of FCL (null with CollisionModelOptions::spherePrefilter off).
   std::shared_ptr<const SpherePrefilter> prefilter;
 };
@@ -73,6 +79,8 @@ struct Workspace {
   std::uint64_t stamp = 0;
   std::vector<Eigen::Vector3d> linkCapsuleStarts, linkCapsuleEnds;  // per link with geometry
   std::vector<std::pair<double, int>> distanceOrder;                // (lower bound, pair) for distance queries
+  // hasClearance: the part pairs its bounds leave open (index into partPairs, bounding volumes overlap).
+  std::vector<std::pair<int, bool>> openPairs;
   // Motion checks (motion_check.h): per non-allowed body pair, how fast its distance can shrink
   // along the motion [m per unit of the motion's fraction], the fractions before / after which it is
   // proven apart, and where those certificates were measured.
@@ -130,6 +138,11 @@ double linkGap(const Implementation& impl, const Workspace& data, const Implemen
 double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                      bool boundsOverlap, const CollisionModelOptions& options);
 
+// A lower bound of partsDistance(a, b) from the parts' hulls (GJK, less its tolerance): 0 when the
+// hulls touch, when the layer is off, or when partsDistance would run GJK on the parts themselves.
+double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+               const CollisionModelOptions& options);
+
 inline const Part& secondPart(const Implementation& impl, const Implementation::PairGroup& group, int j) {
   return group.self ? impl.robotParts[j] : impl.obstacleParts[j];
 }
@@ -138,6 +151,12 @@ inline const Eigen::Isometry3d& secondPose(const Implementation& impl, const Wor
                                            const Implementation::PairGroup& group, int j) {
   return group.self ? data.partPoses[j] : impl.obstacleParts[j].offset;
 }
+
+// Whether the group's bodies touch in the current configuration (updateRobot) (collision_model.cpp).
+bool groupCollides(const CollisionModel& model, Workspace& data, const ModelImplementation::PairGroup& group);
+
+// Measures the self pairs whose relativeReach is 0 once and marks them rigid (collision_model_building.cpp).
+void measureRigidPairs(const CollisionModel& model, ModelImplementation& impl);
 
 // Fills impl.jointReach, impl.movedBy and every group's relativeReach (motion_check.cpp).
 void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl);

@@ -104,13 +104,13 @@ struct PairMeasurement {
 PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data,
                             const Implementation::PairGroup& group, double wanted, double minimumClearance) {
   const Implementation& impl = detail::implementationOf(model);
+  if (group.rigid) return {group.rigidDistance - kDistanceSlack, group.rigidDistance < minimumClearance};
   double gap = detail::linkGap(impl, data, group);
   if (gap >= wanted) return {gap, false};
   double partGap = kInfinity;
   for (const auto& [i, j] : group.parts) partGap = std::min(partGap, detail::boundGap(impl, data, i, j, group.self));
   gap = std::max(gap, partGap);
   if (gap >= minimumClearance) return {gap, false};
-
   double exact = kInfinity;
   for (const auto& [i, j] : group.parts) {
     const double bound = detail::boundGap(impl, data, i, j, group.self);
@@ -120,8 +120,15 @@ PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data
       exact = std::min(exact, bound);
       continue;
     }
-    const double d = detail::partsDistance(impl.robotParts[i], data.partPoses[i], detail::secondPart(impl, group, j),
-                                           detail::secondPose(impl, data, group, j), bound <= 0.0, model.options());
+    const auto &first = impl.robotParts[i], &second = detail::secondPart(impl, group, j);
+    const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, group, j);
+    // The hulls' lower bound (cheaper than the BVHs) will do unless closer than minimumClearance.
+    const double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options());
+    if (hull >= std::min(minimumClearance, exact)) {
+      exact = std::min(exact, hull);
+      continue;
+    }
+    const double d = detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options());
     if (d < minimumClearance) return {d, true};
     exact = std::min(exact, d - kDistanceSlack);
   }

@@ -43,7 +43,7 @@ bool CollisionStateValidityChecker::isValid(const ob::State* state) const {
   const auto lease = pool_.lease();
   const auto q = jointsOf(state, model().robot().dof());
   const double required = required_->stateClearanceAt(q);
-  if (required > 0.0) return distance(model(), *lease, q).minimum() >= required;
+  if (required > 0.0) return hasClearance(model(), *lease, q, required);
   return isCollisionFree(model(), *lease, q);
 }
 

@@ -20,6 +20,7 @@
 #include <fcl/math/bv/kIOS.h>
 
 #include "arcplan/common/error.h"
+#include "convex_hull.h"
 
 namespace arcplan::collision::detail {
 namespace {
@@ -244,6 +245,9 @@ Part makeMeshPart(const robot::TriangleMesh& mesh, Solid solid, const CollisionM
         std::make_shared<fcl::Convexd>(std::make_shared<const std::vector<Eigen::Vector3d>>(mesh.vertices),
                                        static_cast<int>(mesh.triangles.size()), faces);
     part.convexGeometry->computeLocalAABB();
+    part.hullGeometry = part.convexGeometry;
+  } else {
+    part.hullGeometry = containingHull(mesh.vertices);
   }
   part.solid = std::move(solid);
   part.referencePoint = mesh.vertices.front();
@@ -317,7 +321,8 @@ std::vector<Part> meshParts(const robot::TriangleMesh& input, const CollisionMod
 
 Part spherePart(double radius) {
   Part part;
-  part.collisionGeometry = part.distanceGeometry = part.convexGeometry = std::make_shared<fcl::Sphered>(radius);
+  part.collisionGeometry = part.distanceGeometry = part.convexGeometry = part.hullGeometry =
+      std::make_shared<fcl::Sphered>(radius);
   part.capsule.radius = radius + kBoundPadding;
   part.solid.kind = Solid::Kind::Sphere;
   part.solid.radius = radius;
@@ -326,7 +331,7 @@ Part spherePart(double radius) {
 
 Part boxPart(const Eigen::Vector3d& size) {
   Part part;
-  part.collisionGeometry = part.distanceGeometry = part.convexGeometry =
+  part.collisionGeometry = part.distanceGeometry = part.convexGeometry = part.hullGeometry =
       std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z());
   std::vector<Eigen::Vector3d> corners;
   for (int corner = 0; corner < 8; ++corner) {
@@ -343,7 +348,7 @@ Part boxPart(const Eigen::Vector3d& size) {
 
 Part cylinderPart(double radius, double length) {
   Part part;
-  part.collisionGeometry = part.distanceGeometry = part.convexGeometry =
+  part.collisionGeometry = part.distanceGeometry = part.convexGeometry = part.hullGeometry =
       std::make_shared<fcl::Cylinderd>(radius, length);
   part.capsule = fitCapsuleToProfile(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(),
                                      {{-length / 2.0, radius}, {length / 2.0, radius}});

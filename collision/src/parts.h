@@ -37,6 +37,10 @@ struct Part {
   // The part as one convex FCL shape (fcl::Convex of a closed convex component, or the primitive)
   // for GJK queries, which also see a part lying entirely inside the other; null otherwise.
   std::shared_ptr<fcl::CollisionGeometryd> convexGeometry;
+  // A convex shape containing the part: convexGeometry where there is one, else the convex hull of
+  // a mesh part's vertices (convex_hull.h). Its GJK answers are bounds between the capsule and the
+  // exact mesh: no contact proves the part free, its distance is a lower bound of the part's.
+  std::shared_ptr<fcl::CollisionGeometryd> hullGeometry;
   // Broad phase: a capsule in the part frame, or (obstacle boxes) the box itself.
   bool boxBound = false;
   Capsule capsule;

@@ -124,7 +124,12 @@ SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const ro
   const Eigen::VectorXd step = (qb - qa).cwiseAbs();
   work.rates.resize(pairs);
   for (int b = 0; b < bodies; ++b) work.rates[b] = impl.jointReach.row(b).dot(step);
-  for (int p = bodies; p < pairs; ++p) work.rates[p] = impl.selfGroups[p - bodies].relativeReach.dot(step);
+  for (int p = bodies; p < pairs; ++p)
+    work.rates[p] = impl.selfGroups[prefilter.selfGroupOf(p - bodies)].relativeReach.dot(step);
+  // The rigid pairs left out of the tables keep their one distance all along the motion.
+  for (const auto& group : impl.selfGroups) {
+    if (group.rigid && group.rigidDistance < minimumClearance + kSlack) return SphereMotion::Unknown;
+  }
 
   Rake rake{model, prefilter, data, work, qa, qb, minimumClearance, pairs};
   work.samples.clear();

@@ -181,7 +181,15 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
     }
     bodies_[b].obstacleCount = static_cast<int>(obstacleIndex_.size()) - bodies_[b].obstacleBegin;
   }
-  for (const auto& group : impl.selfGroups) selfPairs_.insert(selfPairs_.end(), {group.firstBody, group.secondBody});
+  // A rigid pair apart (measured once, ModelImplementation::PairGroup) can never touch: not in the tables.
+  for (std::size_t k = 0; k < impl.selfGroups.size(); ++k) {
+    const auto& group = impl.selfGroups[k];
+    const bool never = group.rigid && !group.rigidCollides;
+    kernelPairs_.push_back(never ? -1 : static_cast<int>(selfGroupsOfPairs_.size()));
+    if (never) continue;
+    selfGroupsOfPairs_.push_back(static_cast<int>(k));
+    selfPairs_.insert(selfPairs_.end(), {group.firstBody, group.secondBody});
+  }
   if (links_.size() > static_cast<std::size_t>(prefilter::kMaxLinks) ||
       bodies_.size() > static_cast<std::size_t>(prefilter::kMaxBodies) ||
       fineX_.size() > static_cast<std::size_t>(prefilter::kMaxFineSpheres)) {

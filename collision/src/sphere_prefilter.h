@@ -42,8 +42,12 @@ public:
   // measured error), and the margin the kernels require beyond it (sphere_prefilter.cpp).
   double centreErrorBound() const { return centreErrorBound_; }
   double margin() const { return tables_.margin; }
-  // Pairs of gaps(): one per body (against its obstacles), then the self pairs (ModelImplementation::selfGroups order).
+  // Pairs of gaps(): one per body (against its obstacles), then the self pairs: those of
+  // ModelImplementation::selfGroups except the rigid ones that never touch, in that order.
   int pairCount() const { return tables_.bodyCount + tables_.selfPairCount; }
+  // Self pair p of the tables -> its index in selfGroups, and back (-1: not in the tables).
+  int selfGroupOf(int p) const { return selfGroupsOfPairs_[p]; }
+  int kernelPairOf(int selfGroup) const { return kernelPairs_[selfGroup]; }
   int dof() const { return tables_.dof; }
 
   void prepare(SphereWorkspace& workspace) const;
@@ -61,7 +65,7 @@ private:
   std::vector<prefilter::BodyRow> bodies_;
   std::vector<float> fineX_, fineY_, fineZ_, fineR_;
   std::vector<prefilter::ObstacleRow> obstacles_;
-  std::vector<int> obstacleIndex_, selfPairs_;
+  std::vector<int> obstacleIndex_, selfPairs_, selfGroupsOfPairs_, kernelPairs_;
   prefilter::Tables tables_;
   double centreErrorBound_ = 0.0;
 };

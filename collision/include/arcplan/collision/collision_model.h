@@ -68,6 +68,11 @@ struct CollisionModelOptions {
   // spheres are clear of everything; all else goes to FCL, so answers are the same either way
   // (docs/collision.md). false: FCL only. Default: spherePrefilterDefault().
   bool spherePrefilter = spherePrefilterDefault();
+  // Parts that are not convex (e.g. the 40 000-triangle Robotiq base) also carry their convex hull:
+  // hulls apart prove the parts apart, and the hulls' distance bounds theirs from below, so FCL's
+  // BVHs only run where the hulls touch or come closer than what a query asks. Answers unchanged.
+  // Default: spherePrefilterDefault() (`--collision exact-only` turns both layers off).
+  bool hullLayer = spherePrefilterDefault();
 };
 
 class CollisionModel {
@@ -144,5 +149,9 @@ bool isCollisionFree(const CollisionModel& model, CollisionData& data, const rob
 CollisionReport collide(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
 // Minimum distances (pairs whose bounding capsules are already farther than the best are skipped).
 DistanceReport distance(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
+// distance(model, data, q).minimum() >= clearance, answered with the cheapest bounds that decide it
+// (spheres, capsules, hulls; exact distances only for the pairs they leave open): what a planner
+// keeping a clearance asks of every state. Throws arcplan::Error unless clearance > 0 is finite.
+bool hasClearance(const CollisionModel& model, CollisionData& data, const robot::JointRef& q, double clearance);
 
 }  // namespace arcplan::collision

@@ -1,0 +1,113 @@
+#include "convex_hull.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+
+namespace arcplan::collision::detail {
+namespace {
+
+// Beyond what qhull's rounding leaves outside, the hull is pushed out by this much more [m]: well
+// below anything a query resolves (distances are exact to 1e-6 m), well above double rounding.
+constexpr double kPushOut = 1e-12;
+
+// qhull refuses flat or degenerate input (with a message on its error stream): those get no hull.
+bool spansVolume(const std::vector<Eigen::Vector3d>& points) {
+  if (points.size() < 4) return false;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
+  const Eigen::Vector3d spread = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues();
+  return spread[0] > 1e-12 * spread[2];
+}
+
+struct Facet {
+  Eigen::Vector3d normal;  // outward, unit
+  double offset;           // normal · x + offset = 0 on the plane, < 0 inside
+  int corners[3];
+};
+
+}  // namespace
+
+std::shared_ptr<fcl::Convexd> containingHull(const std::vector<Eigen::Vector3d>& points) {
+  if (!spansVolume(points)) return nullptr;
+  std::vector<coordT> coordinates;
+  coordinates.reserve(3 * points.size());
+  for (const auto& p : points) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
+
+  qhT context;
+  qhT* qh = &context;
+  qh_zero(qh, stderr);
+  char options[] = "qhull Qt";  // triangulated facets
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Facet> facets;
+  if (qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False, options, nullptr, stderr) == 0) {
+    std::vector<int> indexOf(points.size(), -1);
+    vertexT* vertex = nullptr;
+    vertexT** vertexp = nullptr;
+    FORALLvertices {
+      const int id = qh_pointid(qh, vertex->point);
+      indexOf[id] = static_cast<int>(vertices.size());
+      vertices.push_back(points[id]);
+    }
+    facetT* facet = nullptr;
+    FORALLfacets {
+      Facet f{Eigen::Vector3d(facet->normal[0], facet->normal[1], facet->normal[2]), facet->offset, {-1, -1, -1}};
+      int k = 0;
+      FOREACHvertex_(facet->vertices) {
+        if (k < 3) f.corners[k] = indexOf[qh_pointid(qh, vertex->point)];
+        ++k;
+      }
+      if (k != 3) continue;  // Qt gives triangles only
+      const Eigen::Vector3d& a = vertices[f.corners[0]];
+      if ((vertices[f.corners[1]] - a).cross(vertices[f.corners[2]] - a).dot(f.normal) < 0.0)
+        std::swap(f.corners[1], f.corners[2]);
+      facets.push_back(f);
+    }
+  }
+  qh_freeqhull(qh, !qh_ALL);
+  int shortLeft = 0, longLeft = 0;
+  qh_memfreeshort(qh, &shortLeft, &longLeft);
+  if (facets.size() < 4) return nullptr;
+
+  // Scaling about an interior point c by (1 + s) moves every plane out by s × its distance from c.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& v : vertices) centre += v;
+  centre /= static_cast<double>(vertices.size());
+  double outside = 0.0, nearestPlane = std::numeric_limits<double>::infinity();
+  for (const auto& f : facets) {
+    nearestPlane = std::min(nearestPlane, -(f.normal.dot(centre) + f.offset));
+    for (const auto& p : points) outside = std::max(outside, f.normal.dot(p) + f.offset);
+  }
+  if (!(nearestPlane > 0.0)) return nullptr;
+  const double scale = 1.0 + (outside + kPushOut) / nearestPlane;
+  auto shapeVertices = std::make_shared<std::vector<Eigen::Vector3d>>();
+  for (const auto& v : vertices) shapeVertices->push_back(centre + scale * (v - centre));
+  auto faces = std::make_shared<std::vector<int>>();
+  for (const auto& f : facets) faces->insert(faces->end(), {3, f.corners[0], f.corners[1], f.corners[2]});
+  auto hull = std::make_shared<fcl::Convexd>(shapeVertices, static_cast<int>(facets.size()), faces);
+  hull->computeLocalAABB();
+  return hull;
+}
+
+double largestOutside(const fcl::Convexd& hull, const std::vector<Eigen::Vector3d>& points) {
+  const auto& vertices = hull.getVertices();
+  const auto& faces = hull.getFaces();
+  double largest = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < faces.size(); k += static_cast<std::size_t>(faces[k]) + 1) {
+    const Eigen::Vector3d& a = vertices[faces[k + 1]];
+    const Eigen::Vector3d normal = (vertices[faces[k + 2]] - a).cross(vertices[faces[k + 3]] - a).normalized();
+    for (const auto& p : points) largest = std::max(largest, normal.dot(p - a));
+  }
+  return largest;
+}
+
+}  // namespace arcplan::collision::detail
