@@ -13,6 +13,7 @@
 //     from the obstacles' geometry (via_points.h), the fastest route found by a lazy search
 //     (route_search.h); where no such route exists, the joint-space fallback: RRTConnect on a
 //     SpaceInformation keeping the planner's margin, its random draws seeded by `seed`, simplified
+//     as `plan` and `bench` simplify RRTConnect's path, then shortcut for the TCP where that pays
 //     (up to 4 plans, the fastest kept); then of that path, its segments as straight TCP lines where
 //     they validate, and mixes of the two, the one that executes fastest at `speed_limit` (reason
 //     says which). lastResult().mode says which
