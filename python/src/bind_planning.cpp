@@ -10,6 +10,7 @@
 #include <string>
 
 #include "arcplan/benchmarks/plan_query.h"
+#include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/trajectory/metric_descriptors.h"
@@ -28,8 +29,14 @@ using Planned = benchmarks::PlannedQuery;
 // A scene object from load_scene, or a scene file (a path or a name under the data folder).
 std::shared_ptr<const collision::Scene> sceneOf(const py::handle& scene) {
   if (py::isinstance<SceneHandle>(scene)) return scene.cast<const SceneHandle&>().scene;
-  return std::make_shared<const collision::Scene>(
-      collision::loadScene(resolveDataPath(scene.cast<std::filesystem::path>())));
+  std::filesystem::path file;
+  try {
+    file = scene.cast<std::filesystem::path>();
+  } catch (const py::cast_error&) {
+    throw Error("scene_file: expected a scene file (str or path) or an arcplan.Scene, got " +
+                py::str(py::type::of(scene).attr("__name__")).cast<std::string>());
+  }
+  return std::make_shared<const collision::Scene>(collision::loadScene(resolveDataPath(file)));
 }
 
 // Planner parameters as `--param name=value` writes them; True/False as OMPL's 1/0.

@@ -116,9 +116,12 @@ def test_cli_and_python_give_the_same_message():
     assert run.stderr.strip() == "arcplan: error: " + str(raised.value)
 
 
-def test_missing_scene_file_raises(tmp_path):
+def test_missing_or_wrong_scene_raises(tmp_path):
     with pytest.raises(arcplan.Error, match="missing.yaml"):
         arcplan.plan(tmp_path / "missing.yaml")
+    with pytest.raises(arcplan.Error) as raised:
+        arcplan.plan(42)
+    assert str(raised.value) == "scene_file: expected a scene file (str or path) or an arcplan.Scene, got int"
 
 
 def test_planning_releases_the_gil():
