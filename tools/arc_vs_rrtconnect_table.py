@@ -34,7 +34,7 @@ def run_campaign(arcplan, out, arc, baseline):
     command = [arcplan, "bench", "--suite", "generated", "--planners", f"{arc},{baseline}", "--runs", "3",
                "--time", "10", "--budget", "10000000", "--no-plots", "-j", "2", "--quiet", "--out", out]
     print("$ " + " ".join(command), file=sys.stderr)
-    subprocess.run(command, check=True)
+    subprocess.run(command, check=True, stdout=sys.stderr)  # bench's ranking table: not part of this one
     return os.path.join(out, "benchmark.db")
 
 
