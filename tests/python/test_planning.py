@@ -8,7 +8,6 @@ import time
 
 import numpy as np
 import pytest
-import yaml
 
 import arcplan
 from conftest import THESIS_SCENE
@@ -49,16 +48,18 @@ def test_thesis_arc_path_length_is_the_analytic_one():
     assert result.parameters["sagitta"] == "0.1"
 
 
-def test_path_arrays_and_endpoints(scene_yaml=THESIS_SCENE):
-    result = arcplan.plan(arcplan.load_scene(scene_yaml), vmax=0.25)
+def test_path_arrays_and_endpoints():
+    result = arcplan.plan(arcplan.load_scene(THESIS_SCENE), vmax=0.25)
     path = result.path
     assert path.dtype == np.float64 and path.ndim == 2 and path.shape[1] == 6 and path.flags.c_contiguous
-    # The path starts at pose A and ends at pose B of the scene file (read here with PyYAML).
-    query = yaml.safe_load(THESIS_SCENE.read_text().replace("-pi", str(-np.pi)).replace("pi/2", str(np.pi / 2)))
+    # The path starts at pose A and ends at pose B: the scene file's two `pose:` lines, read here.
+    poses = [line.split("[")[1].split("]")[0].split(",") for line in THESIS_SCENE.read_text().splitlines()
+             if line.strip().startswith("pose:")]
+    assert len(poses) == 2
     robot = arcplan.load_robot()
-    for q, end in ((path[0], "start"), (path[-1], "goal")):
-        expected = arcplan.pose_from_xyz_rpy(query["queries"][0][end]["pose"])
-        np.testing.assert_allclose(robot.fk(q), expected, atol=1e-9)
+    for q, pose in ((path[0], poses[0]), (path[-1], poses[1])):
+        xyz_rpy = [eval(value, {"pi": np.pi}) for value in pose]  # numbers and "-pi", "pi/2"
+        np.testing.assert_allclose(robot.fk(q), arcplan.pose_from_xyz_rpy(xyz_rpy), atol=1e-9)
     # Time-scaled under 0.25 m/s: the trajectory samples and its metrics.
     trajectory = result.trajectory
     assert trajectory.tcp_speed.max() <= 0.25 + 1e-9
