@@ -1,6 +1,7 @@
 # Type stubs of arcplan's core (robots, scenes, planning, time scaling): what editors complete.
 # The model loop and benchmarks have their own stubs (model.pyi, bench.pyi).
 import os
+import pathlib
 from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
@@ -18,7 +19,7 @@ class Error(RuntimeError):
 class Robot:
     name: str
     dof: int
-    source_file: str
+    source_file: pathlib.Path
     joint_names: List[str]
     link_names: List[str]
     tip_link: str
@@ -44,7 +45,7 @@ class Distance:
 
 class Scene:
     name: str
-    source_file: os.PathLike
+    source_file: pathlib.Path
     query_names: List[str]
     obstacle_names: List[str]
     link_names: List[str]
