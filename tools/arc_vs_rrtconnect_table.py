@@ -113,18 +113,24 @@ def fallback_table(arc, base, arc_label, base_label):
 
 
 def solve_time_table(arc, base, arc_label, base_label, factor):
-    print(f"| problem | {arc_label} solve (ms) | {base_label} solve (ms) | ratio |")
-    print("|---|---:|---:|---:|")
-    violators = 0
+    # Wall-clock solve times of sub-millisecond queries move several-fold with the machine's load (the arc
+    # planner's runs are identical work, yet differ), so the ratio of the fastest runs is shown beside the
+    # medians': a problem over the factor by both is a finding, one over it by the medians alone may be load.
+    print(f"| problem | {arc_label} solve (ms) | {base_label} solve (ms) | ratio of medians | ratio of fastest runs |")
+    print("|---|---:|---:|---:|---:|")
+    violators = robust = 0
     for problem in sorted(arc):
-        mine = median([r["solve"] for r in arc[problem][1] if r["solve"] is not None])
-        theirs = median([r["solve"] for r in base.get(problem, ("", []))[1] if r["solve"] is not None])
-        if mine is None or not theirs or mine <= factor * theirs:
+        mine = [r["solve"] for r in arc[problem][1] if r["solve"] is not None]
+        theirs = [r["solve"] for r in base.get(problem, ("", []))[1] if r["solve"] is not None]
+        if not mine or not theirs or median(mine) <= factor * median(theirs):
             continue
         violators += 1
-        print(f"| {problem} | {fmt(1e3 * mine, 2)} | {fmt(1e3 * theirs, 2)} | {mine / theirs:.1f} |")
+        fastest = min(mine) / min(theirs)
+        robust += fastest > factor
+        print(f"| {problem} | {fmt(1e3 * median(mine), 2)} | {fmt(1e3 * median(theirs), 2)} "
+              f"| {median(mine) / median(theirs):.1f} | {fastest:.1f} |")
     print(f"\n{violators} of {len(arc)} problems with the {arc_label} median solve time over {factor:g}x "
-          f"{base_label}'s.")
+          f"{base_label}'s; {robust} of them also by the fastest runs.")
 
 
 def main():
