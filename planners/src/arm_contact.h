@@ -36,10 +36,10 @@ struct ArmContact {
 inline constexpr double kArmContactReach = 0.08;
 
 // Per link of a robot (indexed like RobotModel::links()), points in the link's frame that outline its
-// collision geometry: a mesh's vertices (every k-th, at most kOutlinePoints), a box's corners, a
+// collision geometry: a mesh's vertices (every k-th, about kOutlinePoints), a box's corners, a
 // cylinder's end circles, a sphere's centre; the link's origin where it has no geometry or its mesh
 // cannot be read. Built once per planner.
-inline constexpr std::size_t kOutlinePoints = 200;
+inline constexpr std::size_t kOutlinePoints = 48;
 using LinkOutlines = std::vector<std::vector<Eigen::Vector3d>>;
 LinkOutlines linkOutlines(const robot::RobotModel& robot);
 
