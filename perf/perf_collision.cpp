@@ -173,6 +173,7 @@ void CollisionPrefilterAgreement(benchmark::State& state, const std::string& sui
     for (std::size_t s = 0; s < scenes.size(); ++s) {
       CollisionModelOptions exactOnly;
       exactOnly.spherePrefilter = false;
+      exactOnly.hullLayer = false;
       const auto fast = makeCollisionModel(scenes[s]), exact = makeCollisionModel(scenes[s], exactOnly);
       CollisionData fastData(*fast), exactData(*exact);
       std::mt19937_64 random(1000 + s);
