@@ -1,8 +1,11 @@
 // arcplan model compare|diagnose|fit|simulate|history — the model-vs-measurement loop (docs/model.md).
+#include <cmath>
+#include <functional>
 #include <iostream>
 #include <memory>
 
 #include "arcplan/common/error.h"
+#include "arcplan/common/text_formatting.h"
 #include "arcplan/model/compare.h"
 #include "arcplan/model/diagnose.h"
 #include "arcplan/model/plots.h"
@@ -27,10 +30,53 @@ struct ModelOptions {
   double minimumReduction = 0.01;
   // simulate
   std::string trajectory = "excitation", format = "rtde";
-  double duration = 60.0, rate = 500.0, noise = -1.0;
+  double duration = 60.0, rate = 500.0, noise = -1.0;  // noise < 0: the model kind's default
+  bool noiseGiven = false;
   unsigned seed = 1;
   int harmonics = 5;
 };
+
+// docs/cli.md: with `--json -` the JSON document is all that goes to stdout, so the text for people
+// (and what helpers such as the HTML report announce) is dropped while the step runs.
+class DropStdout {
+public:
+  explicit DropStdout(bool drop) : saved_(drop ? std::cout.rdbuf(nullptr) : nullptr) {}
+  ~DropStdout() {
+    if (saved_) std::cout.rdbuf(saved_);  // also clears the badbit a null buffer set
+  }
+  DropStdout(const DropStdout&) = delete;
+  DropStdout& operator=(const DropStdout&) = delete;
+
+private:
+  std::streambuf* saved_;
+};
+
+// Runs a subcommand's step, which returns its JSON document, and writes that to --json afterwards.
+void runStep(const ModelOptions& o, const std::function<nlohmann::json()>& step) {
+  nlohmann::json document;
+  {
+    const DropStdout quiet(o.json == "-");
+    document = step();
+  }
+  if (!o.json.empty()) writeJson(o.json, document);
+}
+
+// The limits of diagnose's numbers are the library's (diagnose.h); on the command line a wrong one
+// is a usage error, found before any log is read.
+void checkDiagnoseOptions(const ModelOptions& o) {
+  try {
+    model::checkFolds(o.folds, "--folds");
+    model::checkMinimumReduction(o.minimumReduction, "--min-reduction");
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
+void addKeepEvents(CLI::App& command, ModelOptions& o) {
+  command.add_flag("--keep-events", o.keepEvents,
+                   "score on every sample: do not leave out the events (moments the residual leaves its noise band "
+                   "and comes back, e.g. a push)");
+}
 
 void addKeepParameters(CLI::App& command, ModelOptions& o, const std::string& what) {
   command.add_flag("--keep-parameters", o.keepParameters,
@@ -105,14 +151,13 @@ void reportPlot(const PlotOutcome& outcome, const std::filesystem::path& directo
   }
 }
 
-void runCompare(const ModelOptions& o) {
+nlohmann::json runCompare(const ModelOptions& o) {
   const auto spec = model::loadModelFile(o.model);
   const auto loaded = model::loadData(spec, dataFiles(o));
   printQuality(loaded);
   const auto fitted = model::comparedModel(spec, loaded.data, o.keepParameters);
   const auto comparison = model::compareModel(fitted, loaded.data, loaded.validationOrNull());
   std::cout << model::formatComparison(comparison) << "\n" << model::formatParameters(fitted);
-  if (!o.json.empty()) writeJson(o.json, model::toJson(comparison, fitted, loaded.data));
   if (!o.out.empty()) {
     const std::filesystem::path directory = o.out;
     auto outcome = model::plotComparison(fitted, loaded.data, directory, "compare_data");
@@ -125,9 +170,11 @@ void runCompare(const ModelOptions& o) {
               model::toJson(comparison, fitted, loaded.data));  // worst windows for the report
   }
   writeSessionReport(o);
+  return model::toJson(comparison, fitted, loaded.data);
 }
 
-void runDiagnose(const ModelOptions& o) {
+nlohmann::json runDiagnose(const ModelOptions& o) {
+  checkDiagnoseOptions(o);
   const auto spec = model::loadModelFile(o.model);
   const auto loaded = model::loadData(spec, dataFiles(o));
   printQuality(loaded);
@@ -139,24 +186,24 @@ void runDiagnose(const ModelOptions& o) {
   options.leaveOutEvents = !o.keepEvents;
   const auto diagnosis = model::diagnose(spec, loaded.data, loaded.validationOrNull(), options);
   std::cout << model::formatDiagnosis(diagnosis);
-  if (!o.json.empty()) writeJson(o.json, model::toJson(diagnosis));
   if (!o.out.empty()) reportPlot(model::plotDiagnosis(diagnosis, o.out), o.out);
   writeSessionReport(o);
+  return model::toJson(diagnosis);
 }
 
-void runFit(const ModelOptions& o) {
+nlohmann::json runFit(const ModelOptions& o) {
   const auto spec = model::loadModelFile(o.model);
   std::vector<model::EffectSpec> additions;
   for (const auto& text : o.add) additions.push_back(model::parseEffectArgument(text));
   const auto loaded = model::loadData(spec, dataFiles(o));
   printQuality(loaded);
-  const auto step = model::addEffectsAndFit(spec, additions, loaded.data, loaded.validationOrNull(), o.keepParameters);
+  const auto step =
+      model::addEffectsAndFit(spec, additions, loaded.data, loaded.validationOrNull(), o.keepParameters, !o.keepEvents);
   std::cout << model::formatFitStep(step);
   if (!o.save.empty()) {
     model::saveModelFile(model::specWithParameters(step.after), o.save);
     std::cout << "saved the refitted model to " << o.save << "\n";
   }
-  if (!o.json.empty()) writeJson(o.json, model::toJson(step));
   if (!o.out.empty()) {
     const std::filesystem::path directory = o.out;
     auto outcome = model::plotFitStep(step, directory);
@@ -167,9 +214,10 @@ void runFit(const ModelOptions& o) {
     model::appendSessionStep(directory / "session.json", model::fitSessionStep(step));
   }
   writeSessionReport(o);
+  return model::toJson(step);
 }
 
-void runHistory(const ModelOptions& o) {
+nlohmann::json runHistory(const ModelOptions& o) {
   if (o.out.empty()) throw UsageError("history: give the session directory with --out DIR");
   const std::filesystem::path directory = o.out;
   const auto session = directory / "session.json";
@@ -178,16 +226,21 @@ void runHistory(const ModelOptions& o) {
   }
   const auto history = model::readSession(session);
   std::cout << model::formatHistory(history);
-  if (!o.json.empty()) writeJson(o.json, model::toJson(history));
   if (!history.empty()) reportPlot(model::plotHistory(session, directory), directory);
   writeSessionReport(o);
+  return model::toJson(history);
 }
 
-void runSimulate(const ModelOptions& o) {
+nlohmann::json runSimulate(const ModelOptions& o) {
   if (o.format != "rtde" && o.format != "record") {
     throw UsageError("--format: expected rtde or record, got '" + o.format + "'");
   }
-  if (!(o.rate > 0.0) || !(o.duration > 0.0)) throw UsageError("--rate and --duration must be positive");
+  requirePositive(o.rate, "--rate", "Hz");
+  requirePositive(o.duration, "--duration", "s");
+  if (o.harmonics < 1) throw UsageError("--harmonics must be an integer >= 1, got " + std::to_string(o.harmonics));
+  if (o.noiseGiven && !(o.noise >= 0.0 && std::isfinite(o.noise))) {
+    throw UsageError("--noise must be a standard deviation >= 0, got " + formatNumber(o.noise, 6));
+  }
   const auto truth = model::loadModelFile(o.model);
   const auto robot = model::modelRobot(truth);
   auto trajectoryFor = [&](unsigned seed) {
@@ -221,7 +274,7 @@ void runSimulate(const ModelOptions& o) {
               << " joints, seed " << outputs[i].second << "\n";
     result["logs"].push_back({{"file", outputs[i].first}, {"samples", logs[i].rows()}, {"seed", outputs[i].second}});
   }
-  if (!o.json.empty()) writeJson(o.json, result);
+  return result;
 }
 
 }  // namespace
@@ -238,7 +291,7 @@ void registerModelCommand(CLI::App& app) {
       "windows, events (moments the residual leaves its noise band, e.g. a push) and the residual by regime");
   addDataOptions(*compare, *o);
   addKeepParameters(*compare, *o, "compare them with the data as they are");
-  compare->callback([o] { runCompare(*o); });
+  compare->callback([o] { runStep(*o, [o] { return runCompare(*o); }); });
 
   auto* diagnose = modelCommand->add_subcommand(
       "diagnose",
@@ -254,10 +307,8 @@ void registerModelCommand(CLI::App& app) {
   addKeepParameters(*diagnose, *o, "every candidate is fitted to what the kept model leaves");
   diagnose->add_flag("--no-discovery", o->noDiscovery,
                      "try only registered effects, not the library of terms from every joint's signals");
-  diagnose->add_flag("--keep-events", o->keepEvents,
-                     "score on every sample: do not leave out the events (moments the residual leaves its noise band "
-                     "and comes back, e.g. a push)");
-  diagnose->callback([o] { runDiagnose(*o); });
+  addKeepEvents(*diagnose, *o);
+  diagnose->callback([o] { runStep(*o, [o] { return runDiagnose(*o); }); });
 
   auto* fit = modelCommand->add_subcommand(
       "fit", "add effects to the model, refit, and report the errors before and after on --data and --validate");
@@ -266,14 +317,15 @@ void registerModelCommand(CLI::App& app) {
       ->required();
   fit->add_option("--save", o->save, "write the refitted model (with parameters and standard errors) to this file");
   addKeepParameters(*fit, *o, "only the added effects are fitted");
-  fit->callback([o] { runFit(*o); });
+  addKeepEvents(*fit, *o);
+  fit->callback([o] { runStep(*o, [o] { return runFit(*o); }); });
 
   auto* history = modelCommand->add_subcommand(
       "history", "the error after every compare/fit step of a session (--out DIR) as a table and a falling-error plot");
   auto* historyOut = history->add_option("--out", o->out, "session directory used with compare/fit --out")->required();
   history->add_option("--json", o->json, "write the history as JSON to this file ('-' for stdout)");
   addHtmlOption(*history, *o, historyOut);
-  history->callback([o] { runHistory(*o); });
+  history->callback([o] { runStep(*o, [o] { return runHistory(*o); }); });
 
   auto* simulate = modelCommand->add_subcommand(
       "simulate",
@@ -291,12 +343,17 @@ void registerModelCommand(CLI::App& app) {
   simulate->add_option("--rate", o->rate, "sampling rate [Hz]")->capture_default_str();
   simulate->add_option("--harmonics", o->harmonics, "harmonics of the excitation")->capture_default_str();
   simulate->add_option("--seed", o->seed, "random seed of the trajectory and the noise")->capture_default_str();
-  simulate->add_option("--noise", o->noise,
-                       "noise standard deviation (default 0.05 A for currents, 2e-5 rad for positions)");
+  simulate->add_option_function<double>(
+      "--noise",
+      [o](double noise) {
+        o->noise = noise;
+        o->noiseGiven = true;
+      },
+      "noise standard deviation (default 0.05 A for currents, 2e-5 rad for positions)");
   simulate->add_option("--format", o->format, "rtde (ur_rtde, comma-separated) or record (record.py, space-separated)")
       ->capture_default_str();
   simulate->add_option("--json", o->json, "write a summary as JSON to this file ('-' for stdout)");
-  simulate->callback([o] { runSimulate(*o); });
+  simulate->callback([o] { runStep(*o, [o] { return runSimulate(*o); }); });
 }
 
 }  // namespace arcplan::apps

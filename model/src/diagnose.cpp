@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "arcplan/common/error.h"
+#include "arcplan/common/text_formatting.h"
 #include "arcplan/model/fitting.h"
 #include "arcplan/model/least_squares.h"
 #include "arcplan/model/term_library.h"
@@ -176,14 +177,13 @@ FittedModel baseModel(const ModelSpec& spec, const Dataset& data, const Diagnose
 Diagnosis diagnoseWithoutEvents(const ModelSpec& spec, const Dataset& data, const Dataset* validation,
                                 const DiagnoseOptions& options) {
   const FittedModel base = baseModel(spec, data, options);
-  const int folds = std::max(2, options.folds);
   Diagnosis diagnosis;
   diagnosis.heldout = validation ? "validation data (" + validation->source() + ")"
-                                 : std::to_string(folds) + "-fold " +
+                                 : std::to_string(options.folds) + "-fold " +
                                        (data.timeOrdered() ? "time-blocked" : "interleaved") + " cross-validation";
   if (options.keepParameters) diagnosis.heldout += ", parameters of " + spec.source.string() + " kept fixed";
   const Dataset& heldData = validation ? *validation : data;
-  auto baseline = makeBaseline(base, options.keepParameters, data, validation, folds);
+  auto baseline = makeBaseline(base, options.keepParameters, data, validation, options.folds);
   if (validation) {
     baseline.checkStep = [&](EffectCandidate& candidate) {
       detail::checkProposal(candidate, base, options.keepParameters, data, *validation, options.minimumReduction);
@@ -255,8 +255,21 @@ Diagnosis diagnoseWithoutEvents(const ModelSpec& spec, const Dataset& data, cons
 
 }  // namespace
 
+void checkFolds(int folds, const std::string& name) {
+  if (folds < 2) throw Error(name + " must be an integer >= 2 (cross-validation folds), got " + std::to_string(folds));
+}
+
+void checkMinimumReduction(double fraction, const std::string& name) {
+  if (!(fraction >= 0.0 && fraction <= 1.0)) {
+    throw Error(name + " must be a fraction from 0 to 1 (of a channel's held-out residual RMS), got " +
+                formatNumber(fraction, 6));
+  }
+}
+
 Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* validation,
                    const DiagnoseOptions& options) {
+  checkFolds(options.folds, "folds");
+  checkMinimumReduction(options.minimumReduction, "minimumReduction");
   if (validation && validation->channelCount() != data.channelCount()) {
     throw Error(validation->source() + ": mismatched joint count: " + std::to_string(validation->channelCount()) +
                 " channels, the data has " + std::to_string(data.channelCount()));

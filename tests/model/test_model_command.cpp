@@ -8,6 +8,8 @@
 
 #include "arcplan/model/measurements.h"
 #include "arcplan/model/model_spec.h"
+#include "arcplan/robot/robot_model.h"
+#include "model/push_simulation.h"
 #include "support/command.h"
 
 namespace {
@@ -148,6 +150,10 @@ TEST_F(ModelCommand, TheLoopCompareDiagnoseFitHistoryFollowsTheJsonContract) {
             steps[0]["validation"]["overall_nrmse"].get<double>());
   const bool plotted = std::filesystem::exists(session / "history.png");
   EXPECT_TRUE(plotted || history.out.find("plots skipped") != std::string::npos) << history.out;
+  // With `--json -` the table and the plot line stay off stdout: it parses as the one document.
+  const auto historyStdout = model({"history", "--out", session.string(), "--json", "-"});
+  ASSERT_EQ(historyStdout.exitCode, 0) << historyStdout.err;
+  EXPECT_EQ(nlohmann::json::parse(historyStdout.out)["steps"].size(), 2u) << historyStdout.out;
 }
 
 TEST_F(ModelCommand, HeaderlessLogsLoadThroughTheColumnMap) {
@@ -177,6 +183,58 @@ TEST_F(ModelCommand, GearboxDataGivesForceTransferDiagrams) {
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const bool plotted = std::filesystem::exists(out / "fit_data_force_transfer.png");
   EXPECT_TRUE(plotted || result.out.find("plots skipped") != std::string::npos) << result.out;
+}
+
+// docs/cli.md: `--json -` puts one document on stdout and nothing else (the text is dropped). history,
+// which needs a session, and the plots' lines: TheLoopCompareDiagnoseFitHistoryFollowsTheJsonContract.
+TEST_F(ModelCommand, JsonToStdoutIsOneDocumentAndNothingElse) {
+  const auto session = freshTempDirectory("model_json_stdout");
+  const auto base = (dir / "base.yaml").string(), data = (dir / "fit.csv").string(), val = (dir / "val.csv").string();
+  const std::vector<std::vector<std::string>> commands{
+      {"compare", "--model", base, "--data", data, "--validate", val},
+      {"diagnose", "--model", base, "--data", data, "--validate", val, "--no-discovery"},
+      {"fit", "--model", base, "--data", data, "--add", "load_friction"},
+      {"simulate", "--model", base, "--data", (session / "sim.csv").string(), "--duration", "1", "--rate", "50"}};
+  for (auto arguments : commands) {
+    arguments.insert(arguments.end(), {"--json", "-"});
+    const auto result = model(arguments);
+    ASSERT_EQ(result.exitCode, 0) << arguments[0] << ": " << result.err;
+    // parse() refuses anything before or after the one document.
+    nlohmann::json document;
+    ASSERT_NO_THROW(document = nlohmann::json::parse(result.out)) << arguments[0] << ":\n" << result.out;
+    EXPECT_TRUE(document.is_object()) << arguments[0];
+  }
+}
+
+// Pushes (tests/model/push_simulation.h) in the validation log: fit leaves their windows out unless
+// --keep-events, as diagnose does.
+TEST_F(ModelCommand, FitKeepEventsScoresOnEverySample) {
+  const auto out = freshTempDirectory("model_fit_events");
+  auto log = arcplan::model::readLog(dir / "val.csv");
+  const Eigen::VectorXd gains = Eigen::VectorXd::Constant(6, 0.1);  // A per N·m, about the UR10e's
+  arcplan::testing::addPushes(log, arcplan::robot::ur10e(),
+                              {{3.0, 3.8, {40.0, 0.0, 0.0}}, {7.0, 8.5, {0.0, -50.0, 20.0}}}, gains);
+  arcplan::model::writeLog(log, out / "pushed.csv");
+  auto eventsLeftOut = [&](bool keepEvents) {
+    std::vector<std::string> arguments{"fit",
+                                       "--model",
+                                       (dir / "base.yaml").string(),
+                                       "--data",
+                                       (dir / "fit.csv").string(),
+                                       "--validate",
+                                       (out / "pushed.csv").string(),
+                                       "--add",
+                                       "load_friction",
+                                       "--json",
+                                       "-"};
+    if (keepEvents) arguments.push_back("--keep-events");
+    const auto result = model(arguments);
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    const auto document = nlohmann::json::parse(result.out);
+    return document["events_left_out"]["data"].size() + document["events_left_out"]["validation"].size();
+  };
+  EXPECT_GT(eventsLeftOut(false), 0u);
+  EXPECT_EQ(eventsLeftOut(true), 0u);
 }
 
 TEST_F(ModelCommand, EveryModelSubcommandHasHelp) {
@@ -289,6 +347,37 @@ TEST_F(ModelCommandErrors, LogMissingASignalATermNeedsNamesTheLogAndTheSignal) {
   expectFailure({"fit", "--model", (dir / "base.yaml").string(), "--data", (dir / "no_temperature.csv").string(),
                  "--add", "temperature_friction"},
                 "no_temperature.csv: signal 'temperature' is not available");
+}
+
+// Out-of-range option values: a usage error (exit 2) naming the option and what it expects, found
+// before anything is read or written.
+TEST_F(ModelCommandErrors, OutOfRangeOptionValuesAreUsageErrors) {
+  const auto out = freshTempDirectory("model_usage_errors");
+  const auto json = (out / "result.json").string(), log = (out / "log.csv").string();
+  const auto base = (dir / "base.yaml").string(), data = (dir / "fit.csv").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"diagnose", "--folds", "0"}, "--folds must be an integer >= 2"},
+      {{"diagnose", "--folds", "1"}, "--folds must be an integer >= 2"},
+      {{"diagnose", "--folds", "-1"}, "--folds must be an integer >= 2"},
+      {{"diagnose", "--min-reduction", "nan"}, "--min-reduction must be a fraction from 0 to 1"},
+      {{"diagnose", "--min-reduction", "-0.1"}, "--min-reduction must be a fraction from 0 to 1"},
+      {{"diagnose", "--min-reduction", "1.5"}, "--min-reduction must be a fraction from 0 to 1"},
+      {{"simulate", "--rate", "nan"}, "--rate must be a positive number"},
+      {{"simulate", "--duration", "-1"}, "--duration must be a positive number"},
+      {{"simulate", "--duration", "inf"}, "--duration must be a positive number"},
+      {{"simulate", "--harmonics", "0"}, "--harmonics must be an integer >= 1"},
+      {{"simulate", "--noise", "nan"}, "--noise must be a standard deviation >= 0"},
+      {{"simulate", "--noise", "-0.1"}, "--noise must be a standard deviation >= 0"}};
+  for (auto [arguments, message] : cases) {
+    const auto where = arguments[0] == "simulate" ? log : data;
+    arguments.insert(arguments.end(), {"--model", base, "--data", where, "--json", json});
+    const auto result = model(arguments);
+    EXPECT_EQ(result.exitCode, 2) << arguments[1] << " " << arguments[2] << ": " << result.err;
+    EXPECT_NE(result.err.find(message), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("got " + arguments[2] + "\n"), std::string::npos) << result.err;
+    EXPECT_TRUE(result.out.empty()) << result.out;
+    EXPECT_TRUE(arcplan::testing::filesBelow(out).empty()) << arguments[1] << " " << arguments[2];
+  }
 }
 
 TEST_F(ModelCommandErrors, SimulateWritesNothingWhenItFails) {

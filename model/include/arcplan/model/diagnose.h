@@ -79,8 +79,17 @@ struct Diagnosis {
   std::vector<Event> dataEvents, validationEvents;
 };
 
+// Throws Error unless the options' numbers are usable (checkFolds, checkMinimumReduction).
 Diagnosis diagnose(const ModelSpec& spec, const Dataset& data, const Dataset* validation,
                    const DiagnoseOptions& options = {});
+
+// The limits of DiagnoseOptions' numbers, one owner for diagnose(), the command line and Python, so
+// a wrong value is refused, never clamped. `name` is the caller's spelling (--folds, folds) for the
+// message "<name> must be ..., got <value>" (Error).
+// folds: an integer >= 2 (one fold is held out while the others are fitted).
+void checkFolds(int folds, const std::string& name);
+// minimumReduction: a fraction in [0, 1] (a negative one would keep effects that add error).
+void checkMinimumReduction(double fraction, const std::string& name);
 
 // "joints 1–2", "joint 3", "joints 0, 2 and 5"; channel names for gearbox data.
 std::string describeChannels(const Dataset& data, const std::vector<int>& channels);
