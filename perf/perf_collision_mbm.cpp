@@ -7,7 +7,7 @@
 // load); counters median_us and p95_us are over queries (what issue 22's goals refer to), plus the
 // share that answered free / clear. Models: "exact" = FCL on the meshes only (`--collision
 // exact-only`), "spheres" = the sphere prefilter in front of it, "layered" = spheres and convex
-// hulls (the default model). CollisionMbmAgreement counts answers that differ from FCL's (10^4 states).
+// hulls (the default model). CollisionMbmAgreement counts answers that differ from FCL's (10^5 states).
 // Run: build/perf/arcplan_perf --benchmark_filter=CollisionMbm
 #include <algorithm>
 #include <ctime>
@@ -184,7 +184,7 @@ void CollisionMbmMotion(benchmark::State& state, Layers layers) {
               });
 }
 
-// "Answers identical to FCL" on MBM: 200 seeded random states in each of the 50 scenes (10^4 states;
+// "Answers identical to FCL" on MBM: 2000 seeded random states in each of the 50 scenes (10^5 states;
 // FCL alone takes ~5 ms per clearance answer), the default model's isCollisionFree and
 // hasClearance(1 cm) against FCL on the meshes alone. Counters: disagreements (must be 0), states,
 // free and clear fractions.
@@ -195,7 +195,7 @@ void CollisionMbmAgreement(benchmark::State& state) {
       const CollisionModel &layered = *models(Layers::Layered)[s], &exact = *models(Layers::Exact)[s];
       CollisionData layeredData(layered), exactData(exact);
       std::mt19937_64 random(2000 + s);
-      for (int k = 0; k < 200; ++k) {
+      for (int k = 0; k < 2000; ++k) {
         const Eigen::VectorXd q = randomState(exact, random);
         const bool expectedFree = isCollisionFree(exact, exactData, q);
         const bool expectedClear = expectedFree && hasClearance(exact, exactData, q, kClearance);
