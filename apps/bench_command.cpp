@@ -58,6 +58,7 @@ void printOutputs(const std::filesystem::path& directory, const std::filesystem:
 }
 
 void runBench(const BenchOptions& options) {
+  const DropStdout quiet(options.json == "-");
   auto suite = benchmarks::loadSuite(benchmarks::findSuite(options.suite));
   if (!options.planners.empty()) benchmarks::selectPlanners(suite, options.planners);
   try {
@@ -119,6 +120,7 @@ void runBench(const BenchOptions& options) {
 }
 
 void runRank(const RankOptions& options) {
+  const DropStdout quiet(options.json == "-");
   const std::filesystem::path database = options.database;
   if (!options.logs.empty()) {
     std::vector<std::filesystem::path> roots(options.logs.begin(), options.logs.end());

@@ -1,6 +1,7 @@
 #include "cli_support.h"
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 
 #include "arcplan/collision/collision_model.h"
@@ -14,7 +15,9 @@ namespace arcplan::apps {
 void writeJson(const std::filesystem::path& file, const nlohmann::json& document) {
   const std::string text = document.dump(2) + "\n";
   if (file == "-") {
-    std::cout << text;
+    std::cout.flush();  // what was printed before stays before the document
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    std::fflush(stdout);
     return;
   }
   writeFileAtomically(file, text);

@@ -2,6 +2,7 @@
 // Small helpers shared by the subcommands: option parsing of vectors, JSON output files, and the
 // exception for a wrong command line.
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,25 @@ public:
   using Error::Error;
 };
 
-// Writes `document` (pretty-printed) atomically; "-" writes to stdout.
+// Writes `document` (pretty-printed) atomically; "-" writes to stdout (through C stdio, so a DropStdout
+// in force does not swallow it).
 void writeJson(const std::filesystem::path& file, const nlohmann::json& document);
+
+// docs/cli.md: with `--json -` the JSON document is all that goes to stdout, so while one of these is
+// alive with drop = true the text for people written to std::cout (tables, "plots written to ...") is
+// dropped. Construct it at the start of a command that takes --json.
+class DropStdout {
+public:
+  explicit DropStdout(bool drop) : saved_(drop ? std::cout.rdbuf(nullptr) : nullptr) {}
+  ~DropStdout() {
+    if (saved_) std::cout.rdbuf(saved_);  // also clears the badbit a null buffer set
+  }
+  DropStdout(const DropStdout&) = delete;
+  DropStdout& operator=(const DropStdout&) = delete;
+
+private:
+  std::streambuf* saved_;
+};
 
 // "q0,q1,...": exactly `count` finite numbers, else UsageError naming `option`.
 std::vector<double> parseVector(const std::string& text, const std::string& option, std::size_t count);

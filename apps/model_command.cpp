@@ -36,21 +36,6 @@ struct ModelOptions {
   int harmonics = 5;
 };
 
-// docs/cli.md: with `--json -` the JSON document is all that goes to stdout, so the text for people
-// (and what helpers such as the HTML report announce) is dropped while the step runs.
-class DropStdout {
-public:
-  explicit DropStdout(bool drop) : saved_(drop ? std::cout.rdbuf(nullptr) : nullptr) {}
-  ~DropStdout() {
-    if (saved_) std::cout.rdbuf(saved_);  // also clears the badbit a null buffer set
-  }
-  DropStdout(const DropStdout&) = delete;
-  DropStdout& operator=(const DropStdout&) = delete;
-
-private:
-  std::streambuf* saved_;
-};
-
 // Runs a subcommand's step, which returns its JSON document, and writes that to --json afterwards.
 void runStep(const ModelOptions& o, const std::function<nlohmann::json()>& step) {
   nlohmann::json document;

@@ -56,6 +56,7 @@ Eigen::VectorXd parseJoints(const robot::RobotModel& model, const std::string& j
 }
 
 void runForwardKinematics(const RobotOptions& options, const std::string& jointText) {
+  const DropStdout quiet(options.json == "-");
   const auto model = loadModel(options);
   const Eigen::VectorXd q = parseJoints(model, jointText);
   const std::vector<double> values(q.data(), q.data() + q.size());
@@ -80,6 +81,7 @@ void runForwardKinematics(const RobotOptions& options, const std::string& jointT
 }
 
 void runInverseKinematics(const RobotOptions& options, const std::string& poseText, const std::string& seedText) {
+  const DropStdout quiet(options.json == "-");
   const auto model = loadModel(options);
   const robot::UrInverseKinematics ik(model);
   const auto values = parseVector(poseText, "--pose", 6);
@@ -167,6 +169,7 @@ nlohmann::json checkConfiguration(const collision::CollisionModel& model, const 
 }
 
 void runCollisionCheck(const CheckOptions& options) {
+  const DropStdout quiet(options.json == "-");
   if (options.joints.empty() == options.query.empty()) throw UsageError("give exactly one of --joints or --query");
   collision::Scene scene = collision::loadScene(resolveDataPath(options.scene));
   if (options.robot.given()) scene.robot = robotSourceFrom(options.robot);

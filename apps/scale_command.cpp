@@ -78,6 +78,7 @@ void plotTrajectory(const trajectory::TimedTrajectory& trajectory, const ScaleOp
 }
 
 void runScale(const ScaleOptions& options) {
+  const DropStdout quiet(options.json == "-");
   requirePositive(options.maxTcpSpeed, "--vmax", "m/s");
   requirePositive(options.riseTime, "--rise", "s");
   if (options.maxTcpAcceleration) requirePositive(*options.maxTcpAcceleration, "--max-acc", "m/s²");

@@ -167,7 +167,8 @@ TEST(ArcplanExitCodes, ModelOptionValuesOutOfRangeOrMissingAreUsageErrors) {
   } cases[] = {
       {{"model", "simulate", "--model", model, "--data", log, "--format", "csv"},
        "--format: expected rtde or record, got 'csv'"},
-      {{"model", "simulate", "--model", model, "--data", log, "--rate", "0"}, "--rate and --duration must be positive"},
+      {{"model", "simulate", "--model", model, "--data", log, "--rate", "0"},
+       "--rate must be a positive number (Hz), got 0"},
       {{"model", "history", "--out", ""}, "history: give the session directory with --out DIR"},
   };
   for (const auto& c : cases) {
@@ -202,6 +203,27 @@ TEST(ArcplanExitCodes, APlotThatCannotBeWrittenFailsTheCommand) {
   EXPECT_FALSE(fs::exists(plot));
   EXPECT_FALSE(fs::exists(dir / "m.json"));
   EXPECT_FALSE(fs::exists(dir / "t.csv"));
+}
+
+// docs/cli.md: with `--json -` the document is all that goes to stdout (the text for people is dropped).
+TEST(ArcplanJsonOutput, JsonToStdoutIsOneDocumentAndNothingElse) {
+  const auto dir = freshTempDirectory("cli_json_stdout");
+  const fs::path path = dir / "path.csv";
+  std::ofstream(path) << "q0,q1,q2,q3,q4,q5\n-1.1,-1.5,2.35,-2.4,-1.57,-1.1\n-0.9,-1.5,2.35,-2.4,-1.57,-1.1\n";
+  const std::vector<std::vector<std::string>> commands{
+      {"robot", "fk", "--joints", "0,-1.5,1.5,-1.5,-1.5,0"},
+      {"robot", "ik", "--pose", "0.6,0.2,0.4,3.14159,0,0", "--seed", "0,-1.5,1.5,-1.5,-1.5,0"},
+      {"robot", "check", "--scene", kScene, "--joints", "-1.1,-1.5,2.35,-2.4,-1.57,-1.1"},
+      {"scale", "--path-csv", path.string()},
+      {"plan", "--scene", kScene}};
+  for (auto arguments : commands) {
+    arguments.insert(arguments.end(), {"--json", "-"});
+    const auto result = runArcplan(arguments);
+    ASSERT_EQ(result.exitCode, 0) << arguments[0] << ": " << result.err;
+    nlohmann::json document;  // parse() refuses anything before or after the one document
+    ASSERT_NO_THROW(document = nlohmann::json::parse(result.out)) << arguments[0] << ":\n" << result.out;
+    EXPECT_TRUE(document.is_object()) << arguments[0];
+  }
 }
 
 }  // namespace
