@@ -132,8 +132,11 @@ TEST(CampaignFaults, KilledWorkerIsReportedAndItsJobRunsAgainOnResume) {
   std::vector<pid_t> workers;
   waitUntil([&] { return !(workers = campaign.children()).empty() || !campaign.running(); }, 20s);
   ASSERT_FALSE(workers.empty()) << campaign.err();
+  // A seeded moment early in the campaign (a fraction of the reference's duration, not a fixed time:
+  // a faster build finished the whole tiny campaign before a fixed 0.1-0.6 s had passed).
   std::mt19937 random(kKillMomentSeed);
-  std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(100, 600)(random)));
+  const double delay = std::uniform_real_distribution<double>(0.1, 0.4)(random) * reference().wallTime;
+  std::this_thread::sleep_for(std::chrono::duration<double>(delay));
   ::kill(workers.front(), SIGKILL);
   EXPECT_EQ(campaign.wait(), 1);
   EXPECT_NE(campaign.err().find("worker process " + std::to_string(workers.front()) + " ended abnormally (signal 9)"),
