@@ -16,6 +16,7 @@
 #include "arcplan/trajectory/metric_descriptors.h"
 #include "bindings.h"
 #include "errors.h"
+#include "json_objects.h"
 #include "scene_handle.h"
 #include "trajectory_objects.h"
 
@@ -73,9 +74,7 @@ py::object metricOf(const Planned& planned, double trajectory::TrajectoryMetrics
   return std::isfinite(value) ? py::object(py::float_(value)) : py::none();
 }
 
-py::object toDict(const Planned& planned) {
-  return py::module_::import("json").attr("loads")(benchmarks::toJson(planned).dump());
-}
+py::object toDict(const Planned& planned) { return toPython(benchmarks::toJson(planned)); }
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include "arcplan/trajectory/time_scaling.h"
 #include "bindings.h"
 #include "errors.h"
+#include "json_objects.h"
 #include "robot_handle.h"
 #include "trajectory_objects.h"
 
@@ -74,8 +75,7 @@ void bindTrajectory(py::module_& module) {
       .def_property_readonly("joint_speed_limits",
                              [](const T& t) -> robot::Vector6 { return t.timed.jointSpeedLimits; })
       .def_property_readonly(
-          "metrics",
-          [](const T& t) { return py::module_::import("json").attr("loads")(trajectory::toJson(t.metrics).dump()); },
+          "metrics", [](const T& t) { return toPython(trajectory::toJson(t.metrics)); },
           "The metrics under the keys of `arcplan scale --json` (None where not computed).")
       .def("__repr__", [](const T& t) {
         return "<arcplan.Trajectory " + std::to_string(t.timed.time.size()) + " samples, " +
