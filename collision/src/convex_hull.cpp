@@ -82,10 +82,16 @@ std::shared_ptr<fcl::Convexd> containingHull(const std::vector<Eigen::Vector3d>&
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const auto& v : vertices) centre += v;
   centre /= static_cast<double>(vertices.size());
+  // The planes of the triangles FCL is given, not qhull's facet planes: where qhull merged nearly
+  // coplanar facets, a triangle's own plane differs a little from its merged facet's.
   double outside = 0.0, nearestPlane = std::numeric_limits<double>::infinity();
   for (const auto& f : facets) {
-    nearestPlane = std::min(nearestPlane, -(f.normal.dot(centre) + f.offset));
-    for (const auto& p : points) outside = std::max(outside, f.normal.dot(p) + f.offset);
+    const Eigen::Vector3d& a = vertices[f.corners[0]];
+    const Eigen::Vector3d normal = (vertices[f.corners[1]] - a).cross(vertices[f.corners[2]] - a);
+    if (!(normal.norm() > 1e-15)) continue;  // a sliver has no plane of its own; its neighbours bound it
+    const Eigen::Vector3d unit = normal.normalized();
+    nearestPlane = std::min(nearestPlane, -unit.dot(centre - a));
+    for (const auto& p : points) outside = std::max(outside, unit.dot(p - a));
   }
   if (!(nearestPlane > 0.0)) return nullptr;
   const double scale = 1.0 + (outside + kPushOut) / nearestPlane;
@@ -95,6 +101,8 @@ std::shared_ptr<fcl::Convexd> containingHull(const std::vector<Eigen::Vector3d>&
   for (const auto& f : facets) faces->insert(faces->end(), {3, f.corners[0], f.corners[1], f.corners[2]});
   auto hull = std::make_shared<fcl::Convexd>(shapeVertices, static_cast<int>(facets.size()), faces);
   hull->computeLocalAABB();
+  // Checked, not assumed: a hull that leaves a point outside is no lower bound, so that part has none.
+  if (!(largestOutside(*hull, points) <= 0.0)) return nullptr;
   return hull;
 }
 
