@@ -5,6 +5,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include "arcplan/benchmarks/solution_policy.h"
@@ -107,6 +108,10 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
   // before (Python), OMPL re-seeds its seed generator, so every RNG made from here on draws the same
   // as in a fresh process, but logs an error saying it would not be deterministic: kept quiet.
   if (options.seed) {
+    // OMPL's seed and log level are process-wide: two plans seeding at once (Python threads) must not
+    // interleave here, or one restores the other's LOG_NONE for good.
+    static std::mutex seeding;
+    const std::lock_guard<std::mutex> lock(seeding);
     const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
     ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
     ompl::RNG::setSeed(*options.seed);

@@ -29,7 +29,7 @@ py::object isValid(SceneHandle& scene, const py::handle& q) {
   const py::array array = py::array::ensure(q);
   if (array && array.ndim() == 2) {
     const DoubleArray rows = toJointRows(q, "Q");
-    const Eigen::Map<const Eigen::MatrixXd> states(rows.data(), 6, static_cast<Eigen::Index>(rows.shape(0)));
+    const auto states = asColumns(rows);  // the (N, 6) rows are the 6 x N columns, no copy
     std::vector<bool> free;
     {
       py::gil_scoped_release release;

@@ -235,7 +235,7 @@ void bindLoop(py::module_& m) {
           model::appendSessionStep(*session / "session.json", model::comparisonStep(spec, result.comparison));
         return result;
       },
-      py::arg("model"), py::arg("data"), py::kw_only(), py::arg("keep_parameters") = false,
+      py::arg("model"), py::arg("data").none(false), py::kw_only(), py::arg("keep_parameters") = false,
       py::arg("session") = py::none(),
       "fit the model to the data (or keep its parameters) and compare; `session`: a folder whose session.json gets "
       "the step, as `compare --out`");
@@ -254,9 +254,9 @@ void bindLoop(py::module_& m) {
         model::checkPreparedFor(*data, spec);
         return model::diagnose(spec, data->data, data->validationOrNull(), options);
       },
-      py::arg("model"), py::arg("data"), py::kw_only(), py::arg("folds") = 5, py::arg("min_reduction") = 0.01,
-      py::arg("keep_parameters") = false, py::arg("discovery") = true, py::arg("keep_events") = false,
-      py::arg("candidates") = std::vector<std::string>{},
+      py::arg("model"), py::arg("data").none(false), py::kw_only(), py::arg("folds") = 5,
+      py::arg("min_reduction") = 0.01, py::arg("keep_parameters") = false, py::arg("discovery") = true,
+      py::arg("keep_events") = false, py::arg("candidates") = std::vector<std::string>{},
       "rank the missing effects by the held-out residual they remove (as `arcplan model diagnose`)");
   m.def(
       "fit",
@@ -270,7 +270,7 @@ void bindLoop(py::module_& m) {
         if (session) model::appendSessionStep(*session / "session.json", model::fitSessionStep(result.step));
         return result;
       },
-      py::arg("model"), py::arg("data"), py::arg("add"), py::kw_only(), py::arg("keep_parameters") = false,
+      py::arg("model"), py::arg("data").none(false), py::arg("add"), py::kw_only(), py::arg("keep_parameters") = false,
       py::arg("session") = py::none(),
       "add effects ('load_friction:1,2', an Effect or a diagnosis Candidate), refit, errors before and after");
   m.def(

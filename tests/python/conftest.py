@@ -5,6 +5,8 @@ import os
 import pathlib
 import subprocess
 import tempfile
+import threading
+import time
 
 import pytest
 
@@ -28,3 +30,24 @@ def run_cli(*arguments):
 @pytest.fixture(scope="session")
 def cli():
     return run_cli
+
+
+def main_thread_ran_during(call):
+    """Runs call() in a thread and tells whether this thread ran Python before call() returned. While a
+    call holds the GIL no other Python runs until it returns; a call that releases it lets this thread
+    take its timestamp (after a short sleep that hands the GIL to the worker) long before the return."""
+    started, when = threading.Event(), {}
+
+    def work():
+        started.set()
+        call()
+        when["returned"] = time.perf_counter()
+
+    worker = threading.Thread(target=work)
+    worker.start()
+    started.wait()
+    time.sleep(0.02)
+    when["main"] = time.perf_counter()
+    worker.join()
+    return when["main"] < when["returned"]
+
