@@ -154,8 +154,9 @@ void checkProposal(EffectCandidate& candidate, const FittedModel& base, bool kee
     return;
   }
   const std::vector<double> before = heldOutSquares(base, validation);
-  // A shared effect refitted on fewer channels changes on the rest: check again until none is dropped.
-  for (int round = 0; round < 3 && !candidate.joints.empty(); ++round) {
+  // A shared effect refitted on fewer channels changes on the rest: check again until none is dropped
+  // (every round keeps a subset, so this ends), so the joints proposed are the ones last scored.
+  while (!candidate.joints.empty()) {
     EffectSpec entry = candidate.entry;
     entry.joints = candidate.joints;
     const FittedModel after = keepParameters ? fitAdditions(base, {entry}, data) : extendModel(base, {entry}, data);
