@@ -86,7 +86,8 @@ public:
 
 // RRTConnect's path from start to goal, simplified, drawing from generators seeded with `seed`: what
 // `arcplan plan` and the benchmark campaigns compute for RRTConnect (solve, then
-// SimpleSetup::simplifySolution(), i.e. PathSimplifier::simplifyMax with the problem's goal), on a
+// SimpleSetup::simplifySolution(), i.e. PathSimplifier::simplifyMax with the problem's goal; here
+// stopped by the caller's termination condition, identical until it fires), on a
 // SpaceInformation with the same validity (the campaign's clearance is the planner's margin). Only
 // where the random numbers come from differs: here from `seed`, there from OMPL's process-wide seed.
 std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& query, const ob::SpaceInformationPtr& si,
@@ -101,7 +102,7 @@ std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& q
   sampler.setup();
   if (sampler.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) return std::nullopt;
   og::PathGeometric path(*problem->getSolutionPath()->as<og::PathGeometric>());
-  SeededSimplifier(si, *problem, seed).simplifyMax(path);
+  SeededSimplifier(si, *problem, seed).simplify(path, query.ptc);  // simplifyMax, but within the caller's time
   return collision::waypointsOf(path);
 }
 
@@ -130,7 +131,7 @@ std::vector<robot::Vector6> tcpShortcuts(const ArcQuery& query, const ob::SpaceI
   ompl::RNG rng;
   rng.setLocalSeed(seed);
   ob::ScopedState<> from(si), to(si);
-  for (int attempt = 0; attempt < kTcpShortcuts && path.size() > 2; ++attempt) {
+  for (int attempt = 0; attempt < kTcpShortcuts && path.size() > 2 && !query.ptc(); ++attempt) {
     std::vector<double> at{0.0};
     for (std::size_t i = 1; i < path.size(); ++i) at.push_back(at.back() + (path[i] - path[i - 1]).norm());
     double s1 = rng.uniformReal(0.0, at.back()), s2 = rng.uniformReal(0.0, at.back());
