@@ -164,6 +164,7 @@ void checkMoveItEndpoints(const collision::Scene& scene, const PlanOptions& opti
 }
 
 void runPlan(const PlanOptions& options) {
+  const DropStdout quiet(options.json == "-");
   ompl::msg::setLogLevel(options.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
   if (!(options.time > 0.0) || !std::isfinite(options.time))
     throw UsageError("--time must be a positive number of seconds");
