@@ -78,12 +78,17 @@ public:
     if (found == keys_.end()) {
       keys_.push_back(key);
       used_.push_back(false);
+      const auto noArm = [&](const std::string& why) {
+        models_.emplace_back(std::nullopt);
+        missing.push_back("The robot of " + scene.value("problem", std::string("a plot problem")) +
+                          " cannot be loaded (" + why + "): its 3D views show no arm.");
+      };
       try {
         models_.emplace_back(robot::loadRobot(detail::robotSourceOf(scene)));
       } catch (const Error& error) {
-        models_.emplace_back(std::nullopt);
-        missing.push_back("The robot of " + scene.value("problem", std::string("a plot problem")) +
-                          " cannot be loaded (" + error.what() + "): its 3D views show no arm.");
+        noArm(error.what());
+      } catch (const nlohmann::json::exception& error) {  // a malformed "robot" entry
+        noArm(error.what());
       }
     }
     return models_[index] ? std::optional<std::size_t>(index) : std::nullopt;
@@ -120,16 +125,22 @@ nlohmann::json pathsJson(const std::filesystem::path& campaign, const benchmarks
   for (const auto& [problem, planners] : runs.runs) {
     const auto folder = campaign / "paths" / problem;
     if (!std::filesystem::exists(folder / "scene.json")) continue;
-    const auto scene = detail::readJsonFile(folder / "scene.json");
+    const auto sceneFile = folder / "scene.json";
+    const auto scene = detail::readJsonFile(sceneFile);
     const auto robot = robots.indexOf(scene, missing);
-    nlohmann::json entry{{"scene", detail::drawnScene(scene, robot ? &robots.model(*robot) : nullptr)},
-                         {"robot", robot ? nlohmann::json(*robot) : nlohmann::json(nullptr)},
-                         {"planners", nlohmann::json::array()}};
-    if (robot && scene.contains("start_joints") && scene.contains("goal_joints")) {
-      // Frame 0 the start, frame 1 the goal: the arm is drawn even where no planner found a path.
-      entry["endpoints"] =
-          linkPoseFrames(robots.use(*robot), {0.0, 1.0},
-                         {detail::jointsOf(scene, "start_joints"), detail::jointsOf(scene, "goal_joints")}, 1.0);
+    nlohmann::json entry;
+    try {
+      entry = {{"scene", detail::drawnScene(scene, robot ? &robots.model(*robot) : nullptr)},
+               {"robot", robot ? nlohmann::json(*robot) : nlohmann::json(nullptr)},
+               {"planners", nlohmann::json::array()}};
+      if (robot && scene.contains("start_joints") && scene.contains("goal_joints")) {
+        // Frame 0 the start, frame 1 the goal: the arm is drawn even where no planner found a path.
+        entry["endpoints"] =
+            linkPoseFrames(robots.use(*robot), {0.0, 1.0},
+                           {detail::jointsOf(scene, "start_joints"), detail::jointsOf(scene, "goal_joints")}, 1.0);
+      }
+    } catch (const nlohmann::json::exception& error) {  // a key of the wrong type or missing: name the file
+      throw Error(sceneFile.string() + ": " + error.what());
     }
     for (const auto& [planner, plannerRuns] : planners) {
       const auto file = folder / (planner + ".csv");

@@ -19,6 +19,10 @@ void encodeMesh(nlohmann::json& shape) {
   if (shape.value("shape", "") != "mesh" || !shape.contains("vertices")) return;
   const auto vertices = shape["vertices"].get<std::vector<double>>();
   const auto corners = shape["triangles"].get<std::vector<int>>();
+  if (vertices.size() % 3 != 0 || corners.size() % 3 != 0)
+    throw Error("scene.json: obstacle '" + shape.value("name", "") + "': " + std::to_string(vertices.size()) +
+                " vertex coordinates and " + std::to_string(corners.size()) +
+                " triangle corners; expected multiples of 3");
   robot::TriangleMesh mesh;
   for (std::size_t i = 0; i + 2 < vertices.size(); i += 3)
     mesh.vertices.emplace_back(vertices[i], vertices[i + 1], vertices[i + 2]);

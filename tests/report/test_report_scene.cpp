@@ -4,12 +4,14 @@
 // of a robot with a gripper beyond the flange. Expected poses and sizes are worked out by hand from the input files.
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <set>
 
 #include <gtest/gtest.h>
 
+#include "arcplan/common/error.h"
 #include "arcplan/report/campaign_report.h"
 #include "arcplan/report/robot_animation.h"
 #include "arcplan/robot/robot_model.h"
@@ -167,8 +169,12 @@ protected:
                                                       (dir / "campaign").string(), "--no-plots", "--quiet", "-j", "1"});
     ASSERT_EQ(result.exitCode, 0) << result.err;
     data_ = new Json(arcplan::report::campaignReportData(dir / "campaign", dir / "campaign" / "report.html"));
+    campaign_ = new std::filesystem::path(dir / "campaign");
   }
-  static void TearDownTestSuite() { delete data_; }
+  static void TearDownTestSuite() {
+    delete data_;
+    delete campaign_;
+  }
 
   static const Json& problem(const std::string& name) {
     for (const auto& [key, value] : data_->at("paths").items()) {
@@ -193,8 +199,10 @@ protected:
   static void expectSceneFileMesh();
   static void expectGripper();
   static Json* data_;
+  static std::filesystem::path* campaign_;  // the finished campaign, for the bad-input test
 };
 Json* ReportScene::data_ = nullptr;
+std::filesystem::path* ReportScene::campaign_ = nullptr;
 
 Eigen::Matrix3d rows(std::initializer_list<double> values) {
   Eigen::Matrix3d m;
@@ -295,6 +303,38 @@ TEST_F(ReportScene, EveryObstacleKindAndTheGripperPosed) {
   expectMoveItPrimitives();
   expectSceneFileMesh();
   expectGripper();
+}
+
+// A campaign's scene.json with a key of the wrong type, or a mesh whose coordinates are not triples, is
+// an error naming the file, not an internal error.
+TEST_F(ReportScene, AMalformedSceneJsonIsAnErrorNamingTheFile) {
+  ASSERT_NE(campaign_, nullptr) << "the campaign failed";
+  const auto copy = arcplan::testing::freshTempDirectory("report_scene_bad") / "campaign";
+  std::filesystem::copy(*campaign_, copy, std::filesystem::copy_options::recursive);
+  std::filesystem::path sceneFile;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(copy / "paths")) {
+    if (entry.path().filename() == "scene.json" && entry.path().string().find("moveit") != std::string::npos)
+      sceneFile = entry.path();
+  }
+  ASSERT_FALSE(sceneFile.empty());
+  const Json good = Json::parse(std::ifstream(sceneFile));
+  const auto expectError = [&](const Json& bad, const std::string& part) {
+    std::ofstream(sceneFile) << bad.dump();
+    try {
+      arcplan::report::campaignReportData(copy, copy / "report.html");
+      ADD_FAILURE() << "no error for " << part;
+    } catch (const arcplan::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  Json wrongType = good;
+  wrongType["start_joints"] = "home";
+  expectError(wrongType, sceneFile.string());
+  Json notTriples = good;
+  for (auto& obstacle : notTriples["obstacles"]) {
+    if (obstacle.value("shape", "") == "mesh") obstacle["vertices"].push_back(0.5);
+  }
+  expectError(notTriples, "expected multiples of 3");
 }
 
 TEST(RobotMeshes, MbmUr5EveryLinkWithGeometryIsDrawn) {
