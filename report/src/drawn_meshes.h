@@ -1,21 +1,15 @@
 #pragma once
-// Triangle meshes as the 3D view draws them: the URDF's primitive shapes tessellated (so a link is
-// one mesh whatever its geometry), large meshes thinned to a triangle budget (a 43 000-triangle force
-// sensor would make the page megabytes larger and look the same at report scale), and the page's
-// encoding (base64 Float32 positions, Uint32 triangle corners).
+// Triangle meshes as the 3D view draws them: large meshes thinned to a triangle budget (a
+// 43 000-triangle force sensor would make the page megabytes larger and look the same at report
+// scale), and the page's encoding (base64 Float32 positions, Uint32 triangle corners). A URDF's
+// primitive shapes are tessellated by robot/primitive_mesh.h.
 #include <cstddef>
 
-#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include "arcplan/robot/mesh.h"
 
 namespace arcplan::report::detail {
-
-// Centred on the origin; the cylinder along z, `segments` facets around (>= 3).
-robot::TriangleMesh boxMesh(const Eigen::Vector3d& size);
-robot::TriangleMesh cylinderMesh(double radius, double length, int segments = 24);
-robot::TriangleMesh sphereMesh(double radius, int segments = 16);
 
 // Vertex clustering (Rossignac and Borrel): vertices on one cell of a grid become their mean, and
 // triangles whose corners merge disappear. The cell grows from 1/400 of the bounding box's diagonal

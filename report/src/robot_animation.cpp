@@ -8,6 +8,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/mesh.h"
+#include "arcplan/robot/primitive_mesh.h"
 #include "base64.h"
 #include "drawn_meshes.h"
 
@@ -23,15 +24,25 @@ std::vector<int> drawnLinks(const robot::RobotModel& model) {
   return links;
 }
 
+// Facets around a drawn cylinder: round enough at report scale, fewer triangles than the default.
+constexpr int kCylinderSegments = 24;
+
+// The geometry in its own frame. A URDF may give a primitive no volume (urdfdom accepts a zero
+// radius); it draws nothing rather than ending the report.
 robot::TriangleMesh geometryMesh(const robot::CollisionGeometry& geometry) {
+  using Shape = robot::CollisionGeometry::Shape;
   switch (geometry.shape) {
-    case robot::CollisionGeometry::Shape::Box:
-      return detail::boxMesh(geometry.boxSize);
-    case robot::CollisionGeometry::Shape::Sphere:
-      return detail::sphereMesh(geometry.radius);
-    case robot::CollisionGeometry::Shape::Cylinder:
-      return detail::cylinderMesh(geometry.radius, geometry.length);
-    case robot::CollisionGeometry::Shape::Mesh:
+    case Shape::Box:
+      if (!(geometry.boxSize.minCoeff() > 0.0)) return {};
+      return robot::boxMesh(geometry.boxSize);
+    case Shape::Sphere:
+      if (!(geometry.radius > 0.0)) return {};
+      return robot::sphereMesh(geometry.radius);
+    case Shape::Cylinder:
+      if (!(geometry.radius > 0.0 && geometry.length > 0.0)) return {};
+      return robot::cylinderMesh(Eigen::Vector3d(0.0, 0.0, -geometry.length / 2.0),
+                                 Eigen::Vector3d(0.0, 0.0, geometry.length / 2.0), geometry.radius, kCylinderSegments);
+    case Shape::Mesh:
       break;
   }
   return robot::loadMesh(geometry.meshFile, geometry.meshScale);
@@ -45,10 +56,9 @@ nlohmann::json robotMeshesJson(const robot::RobotModel& model, std::size_t maxTr
     const auto& link = model.links()[static_cast<std::size_t>(index)];
     robot::TriangleMesh merged;  // every geometry of the link, in the link frame
     for (const auto& geometry : link.collisions) {
-      const auto mesh = geometryMesh(geometry);
-      const auto offset = static_cast<int>(merged.vertices.size());
-      for (const auto& vertex : mesh.vertices) merged.vertices.push_back(geometry.origin * vertex);
-      for (const auto& triangle : mesh.triangles) merged.triangles.push_back(triangle.array() + offset);
+      auto mesh = geometryMesh(geometry);
+      for (auto& vertex : mesh.vertices) vertex = geometry.origin * vertex;
+      robot::appendMesh(merged, mesh);
     }
     const auto drawn = detail::withAtMostTriangles(merged, maxTrianglesPerLink);
     auto json = detail::meshJson(drawn);

@@ -20,6 +20,7 @@
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/robot_model.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
+#include "support/joint_states.h"
 
 namespace arcplan::benchmarks {
 namespace {
@@ -132,10 +133,7 @@ TEST(ArmContactProblems, TenOrMoreOfEachFamilyWithValidEnds) {
     collision::CollisionData data(*collisionModel);
     const auto& query = problem.scene.queries.front();
     for (const auto& q : {*query.start.joints, *query.goal.joints}) {
-      for (int j = 0; j < 6; ++j) {
-        EXPECT_GE(q[j], model.joints()[j].limits.lower);
-        EXPECT_LE(q[j], model.joints()[j].limits.upper);
-      }
+      arcplan::testing::expectWithinJointLimits(model, q);
       EXPECT_GE(collision::distance(*collisionModel, data, q).minimum(), 0.01);  // the suites' clearance
     }
   }

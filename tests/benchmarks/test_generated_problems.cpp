@@ -13,6 +13,7 @@
 #include "arcplan/robot/robot_model.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "support/command.h"
+#include "support/joint_states.h"
 
 namespace arcplan::benchmarks {
 namespace {
@@ -109,10 +110,7 @@ TEST(GeneratedProblems, StartAndGoalAreValidReachableToolDownPoses) {
     collision::CollisionData data(*collisionModel);
     const auto& query = problem.scene.queries.front();
     for (const auto& q : {*query.start.joints, *query.goal.joints}) {
-      for (int j = 0; j < 6; ++j) {
-        EXPECT_GE(q[j], model.joints()[j].limits.lower);
-        EXPECT_LE(q[j], model.joints()[j].limits.upper);
-      }
+      arcplan::testing::expectWithinJointLimits(model, q);
       // Every colliding pair, not just the first: none may be reported.
       const auto report = collision::collide(*collisionModel, data, q);
       EXPECT_TRUE(report.valid) << (report.collisions.empty()

@@ -9,6 +9,7 @@
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/common/error.h"
 #include "support/command.h"
+#include "support/joint_states.h"
 
 namespace {
 
@@ -61,11 +62,7 @@ TEST(AllowedCollisions, RecordedNeverPairsDoNotCollideInFreshSamples) {
   std::mt19937_64 random(2024);
   int collidingStates = 0;
   for (int sample = 0; sample < 3000; ++sample) {
-    Eigen::VectorXd q(6);
-    for (int j = 0; j < 6; ++j) {
-      const auto& limits = robot->joints()[j].limits;
-      q[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
-    }
+    const Eigen::VectorXd q = arcplan::testing::randomJointState(*robot, random);
     const auto report = collide(model, data, q);
     collidingStates += report.valid ? 0 : 1;
     for (const auto& pair : report.collisions) {

@@ -14,6 +14,7 @@
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "support/command.h"
+#include "support/joint_states.h"
 
 namespace {
 
@@ -46,14 +47,7 @@ bool hasPair(const CollisionReport& report, const std::string& a, const std::str
 std::vector<Eigen::VectorXd> randomConfigurations(const arcplan::robot::RobotModel& robot, int count, unsigned seed) {
   std::mt19937_64 random(seed);
   std::vector<Eigen::VectorXd> result;
-  for (int i = 0; i < count; ++i) {
-    Eigen::VectorXd q(robot.dof());
-    for (int j = 0; j < robot.dof(); ++j) {
-      const auto& limits = robot.joints()[j].limits;
-      q[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
-    }
-    result.push_back(q);
-  }
+  for (int i = 0; i < count; ++i) result.push_back(arcplan::testing::randomJointState(robot, random));
   return result;
 }
 

@@ -3,7 +3,6 @@
 // quaternions [x, y, z, w]) and of a scene file (an STL mesh), a body the robot holds, and every link
 // of a robot with a gripper beyond the flange. Expected poses and sizes are worked out by hand from the input files.
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -15,36 +14,17 @@
 #include "arcplan/report/campaign_report.h"
 #include "arcplan/report/robot_animation.h"
 #include "arcplan/robot/robot_model.h"
+#include "support/base64_decoding.h"
 #include "support/command.h"
 
 namespace {
 
+using arcplan::testing::decodeBase64Array;
 using Json = nlohmann::json;
 
 std::filesystem::path write(const std::filesystem::path& dir, const std::string& name, const std::string& text) {
   std::ofstream(dir / name) << text;
   return dir / name;
-}
-
-// Base64 (RFC 4648) decoded by table lookup into little-endian values.
-template <typename T>
-std::vector<T> decoded(const std::string& text) {
-  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::vector<unsigned char> bytes;
-  unsigned buffer = 0;
-  int bits = 0;
-  for (const char c : text) {
-    if (c == '=') break;
-    buffer = (buffer << 6) | static_cast<unsigned>(alphabet.find(c));
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      bytes.push_back(static_cast<unsigned char>((buffer >> bits) & 0xFF));
-    }
-  }
-  std::vector<T> values(bytes.size() / sizeof(T));
-  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
-  return values;
 }
 
 // arcplan's UR10e with a gripper beyond the flange: a box body on tool0 and a finger 0.1 m further.
@@ -234,8 +214,10 @@ void ReportScene::expectMoveItPrimitives() {
   const auto& wedge = obstacle("moveit-0001", "wedge");
   EXPECT_EQ(wedge["shape"], "mesh");
   EXPECT_EQ(wedge["triangles"], 4);
-  EXPECT_EQ(decoded<float>(wedge["positions"]), std::vector<float>({0, 0, 0, 0.1f, 0, 0, 0, 0.1f, 0, 0, 0, 0.1f}));
-  EXPECT_EQ(decoded<std::uint32_t>(wedge["indices"]), std::vector<std::uint32_t>({0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}));
+  EXPECT_EQ(decodeBase64Array<float>(wedge["positions"]),
+            std::vector<float>({0, 0, 0, 0.1f, 0, 0, 0, 0.1f, 0, 0, 0, 0.1f}));
+  EXPECT_EQ(decodeBase64Array<std::uint32_t>(wedge["indices"]),
+            std::vector<std::uint32_t>({0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}));
   expectPose(wedge, {-0.7, 0.6, 0.1}, Eigen::Matrix3d::Identity());
 }
 
@@ -243,7 +225,7 @@ void ReportScene::expectSceneFileMesh() {
   const auto& part = obstacle("stl", "part");
   EXPECT_EQ(part["shape"], "mesh");
   EXPECT_EQ(part["triangles"], 4);
-  const auto positions = decoded<float>(part["positions"]);
+  const auto positions = decodeBase64Array<float>(part["positions"]);
   ASSERT_EQ(positions.size() % 3, 0u);
   // Every vertex is one of the tetrahedron's corners scaled 2x: (0,0,0), (0.2,0,0), (0,0.2,0), (0,0,0.2).
   std::set<int> corners;
@@ -269,14 +251,14 @@ void ReportScene::expectGripper() {
   const auto& gripper = robot["meshes"][7];
   EXPECT_EQ(gripper["triangles"], 12);
   // The box's corners in the gripper's frame: +-(0.04, 0.03, 0.04) about (0, 0, 0.05).
-  const auto corners = decoded<float>(gripper["positions"]);
+  const auto corners = decodeBase64Array<float>(gripper["positions"]);
   for (std::size_t i = 0; i < corners.size(); i += 3) {
     EXPECT_NEAR(std::abs(corners[i]), 0.04, 1e-6);
     EXPECT_NEAR(std::abs(corners[i + 1]), 0.03, 1e-6);
     EXPECT_NEAR(std::abs(corners[i + 2] - 0.05), 0.04, 1e-6);
   }
   // At the start configuration the finger's frame is 0.1 m along the gripper frame's z axis.
-  const auto poses = decoded<float>(entry["endpoints"]["poses"]);
+  const auto poses = decodeBase64Array<float>(entry["endpoints"]["poses"]);
   ASSERT_EQ(poses.size(), 2u * 9u * 7u);  // start and goal, nine links, position + quaternion
   const float* g = &poses[7 * 7];
   const float* f = &poses[8 * 7];

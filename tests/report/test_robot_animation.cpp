@@ -1,6 +1,7 @@
 // The 3D view's data: base64 encoding, link meshes, link-pose frames along a trajectory.
 #include <cmath>
-#include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/mesh.h"
 #include "base64.h"
+#include "support/base64_decoding.h"
 #include "support/error_message.h"
 
 namespace {
@@ -15,32 +17,8 @@ namespace {
 using arcplan::report::linkPoseFrames;
 using arcplan::report::robotMeshesJson;
 using arcplan::report::detail::base64;
-
-// RFC 4648 §10 test vectors, decoded by a table lookup written here.
-std::vector<unsigned char> decode(const std::string& text) {
-  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::vector<unsigned char> bytes;
-  unsigned buffer = 0;
-  int bits = 0;
-  for (const char c : text) {
-    if (c == '=') break;
-    buffer = (buffer << 6) | static_cast<unsigned>(alphabet.find(c));
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      bytes.push_back(static_cast<unsigned char>((buffer >> bits) & 0xFF));
-    }
-  }
-  return bytes;
-}
-
-template <typename T>
-std::vector<T> decodeArray(const std::string& text) {
-  const auto bytes = decode(text);
-  std::vector<T> values(bytes.size() / sizeof(T));
-  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
-  return values;
-}
+using arcplan::testing::decodeBase64;
+using arcplan::testing::decodeBase64Array;
 
 TEST(Base64, MatchesTheRfcVectors) {
   const auto encode = [](const std::string& text) {
@@ -55,6 +33,21 @@ TEST(Base64, MatchesTheRfcVectors) {
   EXPECT_EQ(encode("foobar"), "Zm9vYmFy");
 }
 
+// The tests' own decoder (support/base64_decoding.h), which every check of the report's arrays relies on.
+TEST(Base64, TheTestDecoderInvertsTheRfcVectors) {
+  const auto decoded = [](const std::string& text) {
+    const auto bytes = decodeBase64(text);
+    return std::string(bytes.begin(), bytes.end());
+  };
+  EXPECT_EQ(decoded(""), "");
+  EXPECT_EQ(decoded("Zg=="), "f");
+  EXPECT_EQ(decoded("Zm8="), "fo");
+  EXPECT_EQ(decoded("Zm9v"), "foo");
+  EXPECT_EQ(decoded("Zm9vYg=="), "foob");
+  EXPECT_EQ(decoded("Zm9vYmE="), "fooba");
+  EXPECT_EQ(decoded("Zm9vYmFy"), "foobar");
+}
+
 TEST(RobotMeshes, EveryMeshedLinkWithItsStlTriangles) {
   const auto& robot = arcplan::robot::ur10e();
   const auto meshes = robotMeshesJson(robot);
@@ -64,8 +57,8 @@ TEST(RobotMeshes, EveryMeshedLinkWithItsStlTriangles) {
     const auto& link = robot.links()[static_cast<std::size_t>(robot.linkIndex(mesh["link"]))];
     ASSERT_EQ(link.collisions.size(), 1u) << mesh["link"];
     const auto stl = arcplan::robot::loadMesh(link.collisions.front().meshFile, link.collisions.front().meshScale);
-    const auto positions = decodeArray<float>(mesh["positions"]);
-    const auto indices = decodeArray<std::uint32_t>(mesh["indices"]);
+    const auto positions = decodeBase64Array<float>(mesh["positions"]);
+    const auto indices = decodeBase64Array<std::uint32_t>(mesh["indices"]);
     EXPECT_EQ(positions.size(), 3 * stl.vertices.size());
     EXPECT_EQ(indices.size(), 3 * stl.triangles.size());
     EXPECT_EQ(mesh["triangles"], stl.triangles.size());
@@ -74,6 +67,29 @@ TEST(RobotMeshes, EveryMeshedLinkWithItsStlTriangles) {
     EXPECT_NEAR(positions[0], stl.vertices[0].x(), 1e-6);
     EXPECT_NEAR(positions[2], stl.vertices[0].z(), 1e-6);
   }
+}
+
+// A URDF may give a primitive no volume (urdfdom takes a zero radius or length): the link is listed
+// with nothing to draw instead of the report ending; the primitives beside it are still drawn.
+TEST(RobotMeshes, APrimitiveWithoutVolumeDrawsNothing) {
+  std::ifstream in(arcplan::robot::ur10eUrdfPath());
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  urdf.insert(urdf.rfind("</robot>"),
+              "<link name=\"flat\"><collision><geometry><cylinder radius=\"0.05\" length=\"0\"/></geometry></collision>"
+              "<collision><geometry><sphere radius=\"0\"/></geometry></collision></link>"
+              "<joint name=\"tool0-flat\" type=\"fixed\"><parent link=\"tool0\"/><child link=\"flat\"/></joint>"
+              "<link name=\"tip\"><collision><geometry><box size=\"0.02 0.02 0\"/></geometry></collision>"
+              "<collision><geometry><sphere radius=\"0.01\"/></geometry></collision></link>"
+              "<joint name=\"flat-tip\" type=\"fixed\"><parent link=\"flat\"/><child link=\"tip\"/></joint>");
+  const auto robot = arcplan::robot::parseRobotModel(urdf, arcplan::robot::ur10eUrdfPath());
+  const auto meshes = robotMeshesJson(robot);
+  ASSERT_EQ(meshes.size(), 9u);  // the seven STL links, flat and tip
+  EXPECT_EQ(meshes[7]["link"], "flat");
+  EXPECT_EQ(meshes[7]["triangles"], 0u);
+  EXPECT_EQ(meshes[8]["link"], "tip");
+  // Only the sphere of radius 0.01: 16 segments, 7 rings of latitude, 2 poles.
+  EXPECT_EQ(meshes[8]["vertices"], 16u * 7u + 2u);
+  for (const auto value : decodeBase64Array<float>(meshes[8]["positions"])) EXPECT_LE(std::abs(value), 0.01f + 1e-7f);
 }
 
 TEST(LinkPoseFrames, SamplesTheMotionAtTheRate) {
@@ -86,7 +102,7 @@ TEST(LinkPoseFrames, SamplesTheMotionAtTheRate) {
   const auto frames = linkPoseFrames(robot, {0.0, 2.0}, {start, end}, 25.0);
   EXPECT_EQ(frames["frames"], 51);  // 0, 0.04, ..., 2.0 s
   EXPECT_DOUBLE_EQ(frames["duration_s"], 2.0);
-  const auto poses = decodeArray<float>(frames["poses"]);
+  const auto poses = decodeBase64Array<float>(frames["poses"]);
   ASSERT_EQ(poses.size(), 51u * 7u * 7u);
   // Frame 25 is t = 1 s, q0 = 0.5 rad: the wrist_3 link origin is the start pose's rotated by 0.5
   // rad about the base z axis (joint 0 turns the whole arm about it).
