@@ -3,7 +3,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "arcplan/benchmarks/campaign.h"
@@ -30,7 +29,7 @@ struct BenchOptions {
   std::optional<double> vMax;
   std::string out;
   std::string shard = "1/1";
-  unsigned workers = std::max(1u, std::thread::hardware_concurrency());
+  unsigned workers = 1;  // addWorkersOption: all cores
   bool noPlots = false;
   bool quiet = false;
   std::string json;
@@ -66,7 +65,7 @@ void runBench(const BenchOptions& options) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  if (options.workers < 1) throw UsageError("--workers must be at least 1");
+  requireWorkers(options.workers);
 
   benchmarks::CampaignOptions campaign;
   campaign.outDirectory =
@@ -181,9 +180,7 @@ void registerBenchCommand(CLI::App& app) {
                    "run shard K of N (K = 1..N): a deterministic 1/N share of the (problem, planner) jobs, e.g. "
                    "--shard $SLURM_ARRAY_TASK_ID/N")
       ->capture_default_str();
-  command
-      ->add_option("-j,--workers", options->workers, "worker processes running jobs in parallel (default: all cores)")
-      ->capture_default_str();
+  addWorkersOption(*command, options->workers);
   addCollisionModeOption(*command);
   command->add_flag("--no-plots", options->noPlots, "do not draw the PNG plots");
   command->add_flag("--quiet", options->quiet, "no progress output");

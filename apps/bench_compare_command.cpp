@@ -5,7 +5,6 @@
 #include <optional>
 #include <random>
 #include <string>
-#include <thread>
 
 #include "arcplan/benchmarks/baseline.h"
 #include "arcplan/benchmarks/campaign.h"
@@ -45,7 +44,7 @@ struct BaselineCheckOptions {
   std::string file;
   std::string suite;
   std::string campaignOut;
-  unsigned workers = std::max(1u, std::thread::hardware_concurrency());
+  unsigned workers = 1;  // addWorkersOption: all cores
   bool quiet = false;
   ComparisonFlags flags;
 };
@@ -154,7 +153,7 @@ private:
 };
 
 void runBaselineCheck(const BaselineCheckOptions& options) {
-  if (options.workers < 1) throw UsageError("--workers must be at least 1");
+  requireWorkers(options.workers);
   checkOptions(options.flags.options);  // before the campaign runs
   const auto baseline = benchmarks::readBaseline(options.file);
   const std::optional<std::filesystem::path> suiteFile =
@@ -233,10 +232,7 @@ void registerBenchCompareCommands(CLI::App& bench) {
                     "suite file to run (default: the baseline's suite by name, as `bench --suite NAME` finds it)");
   check->add_option("--campaign-out", checkOptions->campaignOut,
                     "keep the new campaign in this folder (default: a temporary folder, removed afterwards)");
-  check
-      ->add_option("-j,--workers", checkOptions->workers,
-                   "worker processes running jobs in parallel (default: all cores)")
-      ->capture_default_str();
+  addWorkersOption(*check, checkOptions->workers);
   check->add_flag("--quiet", checkOptions->quiet, "no progress output");
   check->footer(
       "Runs the baseline's suite, planners and problems with its runs, time limit, v_max and iteration budget, then "

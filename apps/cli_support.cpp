@@ -1,8 +1,10 @@
 #include "cli_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <thread>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/common/atomic_file.h"
@@ -21,6 +23,16 @@ void writeJson(const std::filesystem::path& file, const nlohmann::json& document
     return;
   }
   writeFileAtomically(file, text);
+}
+
+void addWorkersOption(CLI::App& command, unsigned& workers) {
+  workers = std::max(1u, std::thread::hardware_concurrency());  // 0 when it cannot be determined
+  command.add_option("-j,--workers", workers, "worker processes running jobs in parallel (default: all cores)")
+      ->capture_default_str();
+}
+
+void requireWorkers(unsigned workers) {
+  if (workers < 1) throw UsageError("--workers must be at least 1");
 }
 
 std::vector<double> parseVector(const std::string& text, const std::string& option, std::size_t count) {

@@ -47,6 +47,12 @@ std::vector<double> parseVector(const std::string& text, const std::string& opti
 // Throws UsageError "<option> must be a positive number (<unit>), got <value>" unless value > 0 and finite.
 void requirePositive(double value, const std::string& option, const std::string& unit);
 
+// `-j,--workers N` of the commands that run a campaign (bench, bench baseline check): worker processes
+// running jobs in parallel, all cores unless given (`workers` is set to that default here).
+void addWorkersOption(CLI::App& command, unsigned& workers);
+// Throws UsageError "--workers must be at least 1" for 0.
+void requireWorkers(unsigned workers);
+
 // The robot options of every command that takes a robot (robot fk|ik|check, scale): --urdf F, or
 // --ur-type T [--description DIR] [--kinematics F] (docs/cli.md), and the TCP: --tip LINK, --tcp-offset.
 struct RobotSourceOptions {

@@ -150,6 +150,10 @@ TEST(BenchCompareCommand, BadInputExitsWith1AndAWrongCommandLineWith2) {
   EXPECT_EQ(alpha.exitCode, 2);
   EXPECT_NE(alpha.err.find("--alpha must be in (0, 1)"), std::string::npos) << alpha.err;
   EXPECT_EQ(runArcplan({"bench", "compare", directory.string(), directory.string(), "--metrics", "speed"}).exitCode, 2);
+  // The same --workers rule as `bench` (apps/cli_support.h), checked before the baseline is read.
+  const auto noWorkers = runArcplan({"bench", "baseline", "check", (directory / "broken.json").string(), "-j", "0"});
+  EXPECT_EQ(noWorkers.exitCode, 2);
+  EXPECT_NE(noWorkers.err.find("--workers must be at least 1"), std::string::npos) << noWorkers.err;
   EXPECT_EQ(runArcplan({"bench", "baseline"}).exitCode, 2);
   EXPECT_EQ(runArcplan({"bench", "compare", "--help"}).exitCode, 0);
 }
