@@ -1,10 +1,16 @@
 #pragma once
 // Synthetic logs for the model tests: closed-form motions (independent of the simulator under
-// test), and pairs of simulated fit / validation logs for the hidden-effect cases.
+// test), a joint driven along a given path, pairs of simulated fit / validation logs for the
+// hidden-effect cases, and what an effect's regressor makes of a dataset.
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "arcplan/model/dataset.h"
+#include "arcplan/model/effect.h"
 #include "arcplan/model/measurements.h"
+#include "arcplan/model/model_spec.h"
 #include "arcplan/model/simulate.h"
 
 namespace arcplan::testing {
@@ -41,6 +47,34 @@ inline MotionLog makeMotionLog(int samples, double rate, double phase = 0.0) {
   log.vectors["actual_current"] = Eigen::MatrixXd::Zero(samples, 6);
   log.quality.dataRows = log.quality.keptRows = static_cast<std::size_t>(samples);
   return motion;
+}
+
+// makeMotionLog at 100 Hz, `samples` long, with joint 0 following `path` (rad) and then resting at its
+// last value: a dataset of a joint_current model without effects.
+inline model::Dataset pathDataset(const std::vector<double>& path, int samples) {
+  auto motion = makeMotionLog(samples, 100.0);
+  Eigen::MatrixXd& q = motion.log.vectors["actual_q"];
+  for (int k = 0; k < samples; ++k) q(k, 0) = path[std::min<std::size_t>(static_cast<std::size_t>(k), path.size() - 1)];
+  const auto spec = model::parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: []\n", "m.yaml");
+  return model::makeJointDataset(motion.log, spec);
+}
+
+// The regressor columns (one per parameter) of `spec`'s effect on channel `channel` of `data`, with
+// the nonlinear parameter `nonlinear` (a rate, a delay) where the effect has one.
+inline Eigen::MatrixXd regressorColumns(const model::EffectSpec& spec, const model::Dataset& data, int channel = 0,
+                                        double nonlinear = 0.0) {
+  const auto effect = model::createEffect(spec);
+  Eigen::MatrixXd columns(data.samples(channel), static_cast<Eigen::Index>(effect->parameterNames().size()));
+  effect->regressor(data, channel, nonlinear, columns);
+  return columns;
+}
+
+// The same for the effect registered as `id`, with its default options.
+inline Eigen::MatrixXd regressorColumns(const std::string& id, const model::Dataset& data, int channel = 0,
+                                        double nonlinear = 0.0) {
+  model::EffectSpec spec;
+  spec.id = id;
+  return regressorColumns(spec, data, channel, nonlinear);
 }
 
 // A fit and a validation log simulated from `truth` along two excitation trajectories (seeds

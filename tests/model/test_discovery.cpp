@@ -193,9 +193,8 @@ TEST(TermLibrary, EveryExpressionReproducesTheTermsValues) {
     EffectSpec spec;
     spec.id = "term";
     spec.expressions = {term.expression};
-    const auto effect = createEffect(spec);
-    Eigen::MatrixXd column(data.samples(channel), 1);
-    effect->regressor(data, channel, 0.0, column);
+    const Eigen::MatrixXd column = arcplan::testing::regressorColumns(spec, data, channel);
+    ASSERT_EQ(column.cols(), 1);
     EXPECT_LT((column.col(0) - evaluateTerm(term, data, channel)).cwiseAbs().maxCoeff(), 1e-9) << term.expression;
   }
 }

@@ -18,21 +18,13 @@
 namespace {
 
 using arcplan::testing::errorMessageOf;
+using arcplan::testing::regressorColumns;
 
 using namespace arcplan::model;
 using arcplan::Error;
 
 ModelSpec currentModel(const std::string& effects) {
   return parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: " + effects + "\n", "test.yaml");
-}
-
-Eigen::MatrixXd columnsOf(const std::string& id, const Dataset& data, int channel, double nonlinear = 0.0) {
-  EffectSpec spec;
-  spec.id = id;
-  const auto effect = createEffect(spec);
-  Eigen::MatrixXd columns(data.samples(channel), static_cast<Eigen::Index>(effect->parameterNames().size()));
-  effect->regressor(data, channel, nonlinear, columns);
-  return columns;
 }
 
 TEST(ModelFile, ParsesTheBaseModelOfTheIssue) {
@@ -131,14 +123,14 @@ TEST_F(CatalogueOnSyntheticLog, FrictionRegressorsFollowTheirFormulas) {
   const auto& tau = motion.log.vectors["target_moment"];
   const auto& temperature = motion.log.vectors["joint_temperatures"];
   const double width = spec.velocitySmoothing;
-  const auto coulomb = columnsOf("coulomb", *data, j);
-  const auto viscous = columnsOf("viscous", *data, j);
-  const auto stribeck = columnsOf("stribeck", *data, j, 0.05);
-  const auto load = columnsOf("load_friction", *data, j);
-  const auto asymmetry = columnsOf("direction_asymmetry", *data, j);
-  const auto warming = columnsOf("temperature_friction", *data, j);
-  const auto gain = columnsOf("drive_gain", *data, j);
-  const auto offset = columnsOf("offset", *data, j);
+  const auto coulomb = regressorColumns("coulomb", *data, j);
+  const auto viscous = regressorColumns("viscous", *data, j);
+  const auto stribeck = regressorColumns("stribeck", *data, j, 0.05);
+  const auto load = regressorColumns("load_friction", *data, j);
+  const auto asymmetry = regressorColumns("direction_asymmetry", *data, j);
+  const auto warming = regressorColumns("temperature_friction", *data, j);
+  const auto gain = regressorColumns("drive_gain", *data, j);
+  const auto offset = regressorColumns("offset", *data, j);
   for (Eigen::Index k = 0; k < qd.rows(); k += 37) {
     const double s = std::tanh(qd(k, j) / width);
     EXPECT_DOUBLE_EQ(coulomb(k, 0), s);
@@ -155,7 +147,7 @@ TEST_F(CatalogueOnSyntheticLog, FrictionRegressorsFollowTheirFormulas) {
 }
 
 TEST_F(CatalogueOnSyntheticLog, AccelerationIsDerivedWithoutLagAndDrivesRotorInertia) {
-  const auto rotor = columnsOf("rotor_inertia", *data, 1);
+  const auto rotor = regressorColumns("rotor_inertia", *data, 1);
   double worst = 0.0, scale = 0.0;
   for (Eigen::Index k = 50; k < rotor.rows() - 50; ++k) {
     worst = std::max(worst, std::abs(rotor(k, 0) - motion.qdd(k, 1)));
@@ -168,9 +160,8 @@ TEST_F(CatalogueOnSyntheticLog, PositionRippleIsACosineAndSineSeriesInTheJointAn
   EffectSpec rippleSpec;
   rippleSpec.id = "position_ripple";
   rippleSpec.options["harmonics"] = 2;
-  const auto ripple = createEffect(rippleSpec);
-  Eigen::MatrixXd columns(data->samples(0), 4);
-  ripple->regressor(*data, 0, 12.0, columns);
+  const Eigen::MatrixXd columns = regressorColumns(rippleSpec, *data, 0, 12.0);
+  ASSERT_EQ(columns.cols(), 4);
   const auto& q = motion.log.vectors["actual_q"];
   for (Eigen::Index k = 0; k < q.rows(); k += 101) {
     EXPECT_NEAR(columns(k, 0), std::cos(12.0 * q(k, 0)), 1e-12);
@@ -183,8 +174,8 @@ TEST_F(CatalogueOnSyntheticLog, PositionRippleIsACosineAndSineSeriesInTheJointAn
 TEST_F(CatalogueOnSyntheticLog, RigidBodyAndPayloadColumnsComeFromTheUr10eDynamics) {
   const auto& model = arcplan::robot::ur10e();
   arcplan::robot::DynamicsData dynamics(model);
-  const auto rigid = columnsOf("rigid_body", *data, 1);
-  const auto payload = columnsOf("payload", *data, 1);
+  const auto rigid = regressorColumns("rigid_body", *data, 1);
+  const auto payload = regressorColumns("payload", *data, 1);
   const Eigen::Index k = 777;
   Eigen::VectorXd q(6), qd(6), qdd(6);
   for (int j = 0; j < 6; ++j) {

@@ -20,26 +20,11 @@
 namespace {
 
 using namespace arcplan::model;
+using arcplan::testing::pathDataset;
+using arcplan::testing::regressorColumns;
 
 ModelSpec model(const std::string& effects) {
   return parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: [" + effects + "]\n", "m.yaml");
-}
-
-// A run whose joint 0 follows `path` (rad, then rests at its last value), `samples` long at 100 Hz.
-Dataset run(const std::vector<double>& path, int samples) {
-  auto motion = arcplan::testing::makeMotionLog(samples, 100.0);
-  for (int k = 0; k < samples; ++k)
-    motion.log.vectors["actual_q"](k, 0) = path[std::min<std::size_t>(k, path.size() - 1)];
-  return makeJointDataset(motion.log, model(""));
-}
-
-Eigen::MatrixXd columnsOf(const std::string& id, const Dataset& data, double nonlinear = 0.0) {
-  EffectSpec spec;
-  spec.id = id;
-  const auto effect = createEffect(spec);
-  Eigen::MatrixXd columns(data.samples(0), static_cast<Eigen::Index>(effect->parameterNames().size()));
-  effect->regressor(data, 0, nonlinear, columns);
-  return columns;
 }
 
 // Dahl's state along one run from z = 0: dz/du = s·ρ·(1 − z·s) over the path length u of each
@@ -75,13 +60,13 @@ TEST(MemoryStates, StartAfreshAtEveryRunAndAfterEveryGap) {
   std::vector<double> up, down;
   for (int k = 0; k < 50; ++k) up.push_back(2e-4 * k);
   for (int k = 0; k < 30; ++k) down.push_back(0.5 - 1e-4 * k);
-  const Dataset first = run(up, 120), second = run(down, 80);
+  const Dataset first = pathDataset(up, 120), second = pathDataset(down, 80);
   const Dataset joined = joinRuns({first, second});
   ASSERT_EQ(joined.runStarts(), (std::vector<Eigen::Index>{0, 120}));
   const double rate = 500.0;
   std::vector<double> expected = dahlByHand(first.signal("q", 0), rate);
   for (double z : dahlByHand(second.signal("q", 0), rate)) expected.push_back(z);
-  const Eigen::MatrixXd dahl = columnsOf("dahl_friction", joined, rate);
+  const Eigen::MatrixXd dahl = regressorColumns("dahl_friction", joined, 0, rate);
   for (int k = 0; k < 200; ++k) ASSERT_NEAR(dahl(k, 0), expected[k], 1e-9) << "sample " << k;
   // Carried across the boundary, the 0.49 rad jump would have set the state to +1, not 0, and run
   // 2's 2.9 mrad descent would end at -1 + 2·exp(-500·0.0029) = -0.53 instead of -1 + exp(..) = -0.77.
@@ -91,7 +76,7 @@ TEST(MemoryStates, StartAfreshAtEveryRunAndAfterEveryGap) {
 
   std::vector<double> element = firstElementByHand(first.signal("q", 0));
   for (double z : firstElementByHand(second.signal("q", 0))) element.push_back(z);
-  const Eigen::MatrixXd maxwell = columnsOf("maxwell_slip", joined);
+  const Eigen::MatrixXd maxwell = regressorColumns("maxwell_slip", joined);
   for (int k = 0; k < 200; ++k) ASSERT_NEAR(maxwell(k, 0), element[k], 1e-12) << "sample " << k;
 
   // Samples 30–59 left out (an event): a run starts where the kept samples resume.
@@ -104,7 +89,7 @@ TEST(MemoryStates, StartAfreshAtEveryRunAndAfterEveryGap) {
   for (auto [begin, end] : {std::pair<int, int>{0, 30}, {30, 90}, {90, 170}}) {
     for (double z : dahlByHand(q.segment(begin, end - begin), rate)) pieces.push_back(z);
   }
-  const Eigen::MatrixXd afterGap = columnsOf("dahl_friction", gapped, rate);
+  const Eigen::MatrixXd afterGap = regressorColumns("dahl_friction", gapped, 0, rate);
   for (int k = 0; k < 170; ++k) ASSERT_NEAR(afterGap(k, 0), pieces[k], 1e-9) << "sample " << k;
 }
 

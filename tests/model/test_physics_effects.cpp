@@ -15,6 +15,8 @@
 namespace {
 
 using namespace arcplan::model;
+using arcplan::testing::pathDataset;
+using arcplan::testing::regressorColumns;
 
 const std::string kHeader = "kind: joint_current\nload_torque: target_moment\n";
 const std::string kBase = "drive_gain, offset, coulomb, viscous";
@@ -127,11 +129,8 @@ TEST(DahlFriction, StateFollowsTheDahlEquationAndHoldsAtRest) {
   }
   const Dataset data = makeJointDataset(motion.log, model(""));
   const double rate = 40.0;
-  EffectSpec spec;
-  spec.id = "dahl_friction";
-  const auto effect = createEffect(spec);
-  Eigen::MatrixXd column(600, 1);
-  effect->regressor(data, 0, rate, column);
+  const Eigen::MatrixXd column = regressorColumns("dahl_friction", data, 0, rate);
+  ASSERT_EQ(column.rows(), 600);
   double z = 0.0;
   for (int k = 1; k < 600; ++k) {
     const double dq = q(k, 0) - q(k - 1, 0), direction = dq > 0 ? 1.0 : (dq < 0 ? -1.0 : 0.0);
@@ -150,21 +149,6 @@ TEST(DahlFriction, StateFollowsTheDahlEquationAndHoldsAtRest) {
   EXPECT_EQ(column(599, 0), column(320, 0));  // at rest it keeps the value it stopped with
 }
 
-// A log whose joint 0 follows `path` (rad) and then rests at its last value.
-Dataset pathDataset(const std::vector<double>& path, int samples = 200) {
-  auto motion = arcplan::testing::makeMotionLog(samples, 100.0);
-  Eigen::MatrixXd& q = motion.log.vectors["actual_q"];
-  for (int k = 0; k < samples; ++k) q(k, 0) = path[std::min<std::size_t>(k, path.size() - 1)];
-  return makeJointDataset(motion.log, model(""));
-}
-
-Eigen::MatrixXd columnsOf(const EffectSpec& spec, const Dataset& data, double nonlinear = 0.0) {
-  const auto effect = createEffect(spec);
-  Eigen::MatrixXd columns(data.samples(0), static_cast<Eigen::Index>(effect->parameterNames().size()));
-  effect->regressor(data, 0, nonlinear, columns);
-  return columns;
-}
-
 // Two elements with breakaway displacements 1 and 3 mrad, driven through a known displacement
 // sequence; their deflections worked out by hand (δ ← clamp(δ + Δq, ±Δ), z = δ/Δ).
 TEST(MaxwellSlipFriction, ElementsFollowAHandSimulatedDisplacementSequence) {
@@ -181,11 +165,11 @@ TEST(MaxwellSlipFriction, ElementsFollowAHandSimulatedDisplacementSequence) {
       {-1.0, -0.001 / 0.003},  // back 3.5 mrad: the first slips the other way
       {0.5, 0.0005 / 0.003},   // forward 1.5 mrad
   };
-  const Dataset data = pathDataset(path);
+  const Dataset data = pathDataset(path, 200);
   EffectSpec spec;
   spec.id = "maxwell_slip";
   spec.options = {{"elements", 2.0}, {"breakaway_rad", 0.001}};
-  const Eigen::MatrixXd columns = columnsOf(spec, data);
+  const Eigen::MatrixXd columns = regressorColumns(spec, data);
   ASSERT_EQ(columns.cols(), 2);
   for (std::size_t k = 0; k < expected.size(); ++k) {
     EXPECT_NEAR(columns(k, 0), expected[k].first, 1e-12) << "sample " << k;
@@ -195,7 +179,7 @@ TEST(MaxwellSlipFriction, ElementsFollowAHandSimulatedDisplacementSequence) {
 
   // With the level scaled by the load, the second half of the columns is z·|tau|.
   spec.options["load_scaled"] = 1.0;
-  const Eigen::MatrixXd loaded = columnsOf(spec, data);
+  const Eigen::MatrixXd loaded = regressorColumns(spec, data);
   ASSERT_EQ(loaded.cols(), 4);
   const auto& tau = data.signal("tau", 0);
   for (std::size_t k = 0; k < expected.size(); ++k) {
@@ -211,15 +195,15 @@ TEST(MaxwellSlipFriction, KeepsItsMemoryThroughEncoderStepsThatDahlForgets) {
   std::vector<double> path;
   for (int k = 0; k <= 50; ++k) path.push_back(0.001 * k);                         // 50 mrad forward
   for (int k = 0; k < 100; ++k) path.push_back(path[50] + (k % 2 ? 0.0 : -1e-4));  // one-count steps
-  const Dataset data = pathDataset(path);
+  const Dataset data = pathDataset(path, 200);
   EffectSpec maxwell;
   maxwell.id = "maxwell_slip";
-  const Eigen::MatrixXd elements = columnsOf(maxwell, data);
+  const Eigen::MatrixXd elements = regressorColumns(maxwell, data);
   // The same deflections after 50 steps back and forth.
   EXPECT_LT((elements.row(50) - elements.row(150)).cwiseAbs().maxCoeff(), 1e-9);
   EffectSpec dahl;
   dahl.id = "dahl_friction";
-  const Eigen::MatrixXd state = columnsOf(dahl, data, 3000.0);
+  const Eigen::MatrixXd state = regressorColumns(dahl, data, 0, 3000.0);
   // After the first step back z = -1 + 2·exp(-0.3) = 0.48; every pair of steps pulls it towards 0.
   EXPECT_NEAR(state(50, 0), 1.0, 1e-6);
   EXPECT_NEAR(state(51, 0), -1.0 + 2.0 * std::exp(-0.3), 1e-9);
