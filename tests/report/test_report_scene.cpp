@@ -16,6 +16,7 @@
 #include "arcplan/robot/robot_model.h"
 #include "support/base64_decoding.h"
 #include "support/command.h"
+#include "support/robot_files.h"
 
 namespace {
 
@@ -29,10 +30,7 @@ std::filesystem::path write(const std::filesystem::path& dir, const std::string&
 
 // arcplan's UR10e with a gripper beyond the flange: a box body on tool0 and a finger 0.1 m further.
 std::filesystem::path gripperUrdf(const std::filesystem::path& dir) {
-  std::ifstream in(arcplan::robot::ur10eUrdfPath());
-  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string meshes = (arcplan::robot::ur10eUrdfPath().parent_path() / "meshes/").string();
-  urdf = std::regex_replace(urdf, std::regex("filename=\"meshes/"), "filename=\"" + meshes);
+  std::string urdf = arcplan::testing::ur10eUrdfText();
   const std::string gripper =
       "<link name=\"gripper\"><collision><origin xyz=\"0 0 0.05\"/><geometry><box size=\"0.08 0.06 0.08\"/>"
       "</geometry></collision></link>"
@@ -324,8 +322,7 @@ TEST(RobotMeshes, MbmUr5EveryLinkWithGeometryIsDrawn) {
   ASSERT_FALSE(shared.empty()) << "ARCPLAN_SHARED_DATA (the MBM UR5) is needed";
   const auto urdfFile = shared / "mbm_ur5" / "ur5.urdf";
   // Links with a <collision> element, read from the URDF text.
-  std::ifstream in(urdfFile);
-  const std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string urdf = arcplan::testing::readFile(urdfFile);
   std::set<std::string> expected;
   const std::regex link("<link name=\"([^\"]+)\">([\\s\\S]*?)</link>");
   for (auto it = std::sregex_iterator(urdf.begin(), urdf.end(), link); it != std::sregex_iterator(); ++it) {

@@ -1,7 +1,5 @@
 // The 3D view's data: base64 encoding, link meshes, link-pose frames along a trajectory.
 #include <cmath>
-#include <fstream>
-#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +9,7 @@
 #include "base64.h"
 #include "support/base64_decoding.h"
 #include "support/error_message.h"
+#include "support/robot_files.h"
 
 namespace {
 
@@ -72,8 +71,7 @@ TEST(RobotMeshes, EveryMeshedLinkWithItsStlTriangles) {
 // A URDF may give a primitive no volume (urdfdom takes a zero radius or length): the link is listed
 // with nothing to draw instead of the report ending; the primitives beside it are still drawn.
 TEST(RobotMeshes, APrimitiveWithoutVolumeDrawsNothing) {
-  std::ifstream in(arcplan::robot::ur10eUrdfPath());
-  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string urdf = arcplan::testing::ur10eUrdfText();
   urdf.insert(urdf.rfind("</robot>"),
               "<link name=\"flat\"><collision><geometry><cylinder radius=\"0.05\" length=\"0\"/></geometry></collision>"
               "<collision><geometry><sphere radius=\"0\"/></geometry></collision></link>"
@@ -81,7 +79,7 @@ TEST(RobotMeshes, APrimitiveWithoutVolumeDrawsNothing) {
               "<link name=\"tip\"><collision><geometry><box size=\"0.02 0.02 0\"/></geometry></collision>"
               "<collision><geometry><sphere radius=\"0.01\"/></geometry></collision></link>"
               "<joint name=\"flat-tip\" type=\"fixed\"><parent link=\"flat\"/><child link=\"tip\"/></joint>");
-  const auto robot = arcplan::robot::parseRobotModel(urdf, arcplan::robot::ur10eUrdfPath());
+  const auto robot = arcplan::robot::parseRobotModel(urdf, "flat_primitives.urdf");
   const auto meshes = robotMeshesJson(robot);
   ASSERT_EQ(meshes.size(), 9u);  // the seven STL links, flat and tip
   EXPECT_EQ(meshes[7]["link"], "flat");
