@@ -1,5 +1,8 @@
 // The 3D view's data: base64 encoding, link meshes, link-pose frames along a trajectory.
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -19,32 +22,27 @@ using arcplan::report::detail::base64;
 using arcplan::testing::decodeBase64;
 using arcplan::testing::decodeBase64Array;
 
+// RFC 4648 §10 test vectors: text and its base64.
+const std::vector<std::pair<std::string, std::string>> kRfcVectors{{"", ""},
+                                                                   {"f", "Zg=="},
+                                                                   {"fo", "Zm8="},
+                                                                   {"foo", "Zm9v"},
+                                                                   {"foob", "Zm9vYg=="},
+                                                                   {"fooba", "Zm9vYmE="},
+                                                                   {"foobar", "Zm9vYmFy"}};
+
 TEST(Base64, MatchesTheRfcVectors) {
-  const auto encode = [](const std::string& text) {
-    return base64(reinterpret_cast<const unsigned char*>(text.data()), text.size());
-  };
-  EXPECT_EQ(encode(""), "");
-  EXPECT_EQ(encode("f"), "Zg==");
-  EXPECT_EQ(encode("fo"), "Zm8=");
-  EXPECT_EQ(encode("foo"), "Zm9v");
-  EXPECT_EQ(encode("foob"), "Zm9vYg==");
-  EXPECT_EQ(encode("fooba"), "Zm9vYmE=");
-  EXPECT_EQ(encode("foobar"), "Zm9vYmFy");
+  for (const auto& [text, encoded] : kRfcVectors) {
+    EXPECT_EQ(base64(reinterpret_cast<const unsigned char*>(text.data()), text.size()), encoded) << text;
+  }
 }
 
 // The tests' own decoder (support/base64_decoding.h), which every check of the report's arrays relies on.
 TEST(Base64, TheTestDecoderInvertsTheRfcVectors) {
-  const auto decoded = [](const std::string& text) {
-    const auto bytes = decodeBase64(text);
-    return std::string(bytes.begin(), bytes.end());
-  };
-  EXPECT_EQ(decoded(""), "");
-  EXPECT_EQ(decoded("Zg=="), "f");
-  EXPECT_EQ(decoded("Zm8="), "fo");
-  EXPECT_EQ(decoded("Zm9v"), "foo");
-  EXPECT_EQ(decoded("Zm9vYg=="), "foob");
-  EXPECT_EQ(decoded("Zm9vYmE="), "fooba");
-  EXPECT_EQ(decoded("Zm9vYmFy"), "foobar");
+  for (const auto& [text, encoded] : kRfcVectors) {
+    const auto bytes = decodeBase64(encoded);
+    EXPECT_EQ(std::string(bytes.begin(), bytes.end()), text) << encoded;
+  }
 }
 
 TEST(RobotMeshes, EveryMeshedLinkWithItsStlTriangles) {
