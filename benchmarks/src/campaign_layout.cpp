@@ -34,7 +34,10 @@ nlohmann::json manifestOf(const Suite& suite) {
       {"vmax_mps", suite.vMax},
       {"generator_seed", suite.generator ? nlohmann::json(suite.generator->seed) : nlohmann::json(nullptr)},
       {"problems", problems},
-      {"planners", planners}};
+      {"planners", planners},
+      // Campaigns from before have no such field and are not resumed: their finished jobs drew from
+      // seeds per planner, the rest would draw from seeds per problem (docs/reproducibility.md).
+      {"seeding", "per problem"}};
 }
 
 }  // namespace

@@ -32,6 +32,7 @@
 #include "arcplan/common/text_formatting.h"
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/planning_problem.h"
+#include "arcplan/planners/seeded_sampling.h"
 #include "arcplan/trajectory/metric_descriptors.h"
 #include "arcplan/trajectory/path_measurement.h"
 #include "run_properties.h"
@@ -246,8 +247,8 @@ private:
 
 }  // namespace
 
-std::uint32_t jobSeed(const Suite& suite, const Problem& problem, const PlannerConfiguration& planner) {
-  return toSeed(stableHash(suite.name + "/" + problem.name + "/" + planner.label));
+std::uint32_t jobSeed(const Suite& suite, const Problem& problem) {
+  return toSeed(stableHash(suite.name + "/" + problem.name));
 }
 
 std::uint32_t runSeed(std::uint32_t job, unsigned run) {
@@ -272,7 +273,7 @@ void checkPlannerConfigurations(const Suite& suite) {
 JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfiguration& configuration,
                   const JobFiles& files, const std::function<void(unsigned run, bool solved)>& onRunFinished) {
   const OmplOutputScope output;
-  const std::uint32_t seed = jobSeed(suite, problem, configuration);
+  const std::uint32_t seed = jobSeed(suite, problem);
   reseedQuietly(seed);  // before the SimpleSetup and the planner create their random generators
 
   const auto planning = setUpProblem(suite, problem);
@@ -287,6 +288,7 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   if (suite.iterationBudget && !configuration.parameters.count("deadline") && planner->params().hasParam("deadline")) {
     planner->params().setParam("deadline", "0");
   }
+  const bool seededByRun = planner->params().hasParam("seed") && !configuration.parameters.count("seed");
   std::shared_ptr<IterationBudgetPlanner> budgeted;
   if (suite.iterationBudget) {
     budgeted = std::make_shared<IterationBudgetPlanner>(planner, *suite.iterationBudget);
@@ -339,11 +341,14 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   std::uint32_t currentSeed = 0;
   std::vector<RecordedRun> recorded;
 
-  benchmark.setPreRunEvent([&](const ob::PlannerPtr&) {
+  benchmark.setPreRunEvent([&](const ob::PlannerPtr& running) {
     if (interruptRequested()) throw JobInterrupted();
     ++currentRun;
     currentSeed = runSeed(seed, currentRun);
     ompl::RNG::setSeed(currentSeed);  // OMPL's output is off inside benchmark()
+    // Samplers, simplifier and the arc planner's `seed` (unless the suite sets it) follow the run seed too.
+    planners::seedSampling(setup, currentSeed);
+    if (seededByRun) running->params().setParam("seed", std::to_string(currentSeed));
   });
   benchmark.setPostRunEvent([&](const ob::PlannerPtr&, ompl::tools::Benchmark::RunProperties& run) {
     run["run seed INTEGER"] = std::to_string(currentSeed);

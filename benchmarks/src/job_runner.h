@@ -35,8 +35,11 @@ struct OutputWriteError : Error {
 };
 
 // OMPL's seed generator is reseeded with this before the job's planner and SimpleSetup exist, and
-// with runSeed before every run, so a job repeats exactly whatever ran before it in the process.
-std::uint32_t jobSeed(const Suite& suite, const Problem& problem, const PlannerConfiguration& planner);
+// with runSeed before every run, so a job repeats exactly whatever ran before it in the process. One
+// per problem, not per planner: run k of every planner of a problem has the same run seed, from which
+// its samplers and simplifier draw (planners/seeded_sampling.h) — the arc planner's fallback computes
+// the path RRTConnect + simplifier computes in the same run.
+std::uint32_t jobSeed(const Suite& suite, const Problem& problem);
 std::uint32_t runSeed(std::uint32_t jobSeed, unsigned run);
 
 // Allocates every planner configuration once on the suite's first problem so that unknown planners

@@ -160,12 +160,12 @@ ob::PlannerStatus ArcPlanner::solve(const ob::PlannerTerminationCondition& ptc) 
 detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc, const robot::Vector6& start,
                                       const robot::Vector6& goal) {
   const collision::MotionCheckOptions motionCheck = motionCheckOptions();
-  const double margin = planningMargin(motionCheck, start, goal);
+  const collision::EndpointClearance required = requiredClearance(motionCheck, start, goal);
   // The search's own deadline: past it the search gives up (a fence-like cell can keep it busy for
   // seconds), leaving the rest of the caller's time to the fallback.
   const ob::PlannerTerminationCondition searchEnds =
       deadline_ > 0.0 ? ob::plannerOrTerminationCondition(ptc, ob::timedPlannerTerminationCondition(deadline_)) : ptc;
-  detail::ArcOutcome outcome = withQuery(searchEnds, margin, start, goal, [&](const detail::ArcQuery& query) {
+  detail::ArcOutcome outcome = withQuery(searchEnds, required, start, goal, [&](const detail::ArcQuery& query) {
     if (ik_.branchOf(start) != ik_.branchOf(goal)) {
       // No TCP path joins two IK branches without passing a singularity: only the fallback can help.
       return detail::failure("branch change: start and goal are on different IK branches: " +
@@ -181,13 +181,11 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
     outcome.reason.replace(0, timeLimit.size(), deadline.str());
   }
   if (outcome.solved() || !getAuto() || !fallback_ || ptc()) return outcome;
-  // Its own SpaceInformation, whose states and motions keep this planner's margin (the problem's may
-  // be smaller).
-  detail::ArcOutcome fallback = withQuery(ptc, margin, start, goal, [&](const detail::ArcQuery& query) {
+  detail::ArcOutcome fallback = withQuery(ptc, required, start, goal, [&](const detail::ArcQuery& query) {
     trajectory::TimeScalingOptions timing;
     timing.maxTcpSpeed = speedLimit_;
     return detail::planInJointSpace(
-        query, collision::makeSpaceInformation(collisionModel_, motionCheck, margin), seed_,
+        query, fallbackSpace(motionCheck, required, start, goal), seed_,
         [&](const std::vector<robot::Vector6>& joints) {
           return trajectory::scaleToTcpSpeed(collisionModel_->robot(), joints, timing).duration();
         });
@@ -199,8 +197,9 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
   return fallback;
 }
 
-detail::ArcOutcome ArcPlanner::withQuery(const ob::PlannerTerminationCondition& ptc, double margin,
-                                         const robot::Vector6& start, const robot::Vector6& goal,
+detail::ArcOutcome ArcPlanner::withQuery(const ob::PlannerTerminationCondition& ptc,
+                                         const collision::EndpointClearance& required, const robot::Vector6& start,
+                                         const robot::Vector6& goal,
                                          const std::function<detail::ArcOutcome(const detail::ArcQuery&)>& strategy) {
   ob::ScopedState<> scratch(si_);
   const auto waypointValid = [&](const robot::Vector6& q) {
@@ -208,7 +207,7 @@ detail::ArcOutcome ArcPlanner::withQuery(const ob::PlannerTerminationCondition& 
     return si_->isValid(scratch.get());
   };
   // The auto mode's routes pass close to obstacles: their motions are always certified.
-  PathValidator validator(*collisionModel_, ik_, conversion_, margin, checkMotions_ || getAuto(), waypointValid,
+  PathValidator validator(*collisionModel_, ik_, conversion_, required, checkMotions_ || getAuto(), waypointValid,
                           [&ptc] { return ptc(); });
   const robot::RobotModel& robot = collisionModel_->robot();
   const detail::ArcQuery query{*collisionModel_,
@@ -230,15 +229,32 @@ collision::MotionCheckOptions ArcPlanner::motionCheckOptions() const {
   return validator != nullptr ? validator->options() : collision::MotionCheckOptions{};
 }
 
-double ArcPlanner::planningMargin(const collision::MotionCheckOptions& motionCheck, const robot::Vector6& start,
-                                  const robot::Vector6& goal) const {
-  // The planner's clearance or the motion validator's, the larger; lowered to what a start or goal
-  // closer to an obstacle has itself (else nothing could leave it).
-  double margin = std::max(clearance_, motionCheck.minimumClearance);
-  collision::CollisionData data(*collisionModel_);
-  for (const robot::Vector6& end : {start, goal})
-    margin = std::min(margin, collision::distance(*collisionModel_, data, end).minimum());
-  return margin;
+collision::EndpointClearance ArcPlanner::requiredClearance(const collision::MotionCheckOptions& motionCheck,
+                                                           const robot::Vector6& start,
+                                                           const robot::Vector6& goal) const {
+  const double margin = std::max(clearance_, motionCheck.minimumClearance);
+  return collision::EndpointClearance(*collisionModel_, margin, margin,
+                                      {robot::JointVector(start), robot::JointVector(goal)});
+}
+
+ob::SpaceInformationPtr ArcPlanner::fallbackSpace(const collision::MotionCheckOptions& motionCheck,
+                                                  const collision::EndpointClearance& required,
+                                                  const robot::Vector6& start, const robot::Vector6& goal) const {
+  const auto* checker =
+      dynamic_cast<const collision::CollisionStateValidityChecker*>(si_->getStateValidityChecker().get());
+  if (checker != nullptr) {
+    const collision::EndpointClearance& problem = checker->requiredClearance();
+    const auto sameZone = [](const collision::ApproachZone& a, const collision::ApproachZone& b) {
+      return a.endpoint == b.endpoint && a.stateClearance == b.stateClearance && a.motionClearance == b.motionClearance;
+    };
+    if (problem.clearance() == required.clearance() && problem.motionClearance() == required.motionClearance() &&
+        std::equal(problem.zones().begin(), problem.zones().end(), required.zones().begin(), required.zones().end(),
+                   sameZone)) {
+      return si_;
+    }
+  }
+  return collision::makeSpaceInformation(collisionModel_, motionCheck, required.clearance(),
+                                         {robot::JointVector(start), robot::JointVector(goal)});
 }
 
 ob::PlannerStatus ArcPlanner::finish(detail::ArcOutcome outcome, ob::PlannerStatus status,

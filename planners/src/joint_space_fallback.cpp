@@ -9,7 +9,6 @@
 // else ran before in the process.
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/ScopedState.h>
-#include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
@@ -21,6 +20,7 @@
 
 #include "arc_planning.h"
 #include "arcplan/collision/joint_states.h"
+#include "arcplan/planners/seeded_sampling.h"
 #include "arcplan/robot/kinematics.h"
 
 namespace arcplan::planners::detail {
@@ -50,46 +50,26 @@ double tcpLengthOf(const robot::RobotModel& robot, const robot::Vector6& from, c
   return length;
 }
 
-// OMPL's uniform sampler of the joint box, drawing from its own seeded generator.
-class SeededJointSampler : public ob::RealVectorStateSampler {
-public:
-  SeededJointSampler(const ob::StateSpace* space, std::uint_fast32_t seed) : RealVectorStateSampler(space) {
-    rng_.setLocalSeed(seed);
-  }
-};
-
-// RRTConnect whose samples (and any other draw) come from seeded generators. RRTConnect allocates
-// its sampler in solve() only when it has none, so the seeded one set after setup() is used.
+// RRTConnect whose samples come from the shared seeded sampler (seeded_sampling.h), as a campaign run's
+// RRTConnect draws them. RRTConnect allocates its sampler in solve() only when it has none, so the
+// seeded one set after setup() is used.
 class SeededRRTConnect : public og::RRTConnect {
 public:
-  SeededRRTConnect(const ob::SpaceInformationPtr& si, std::uint_fast32_t seed) : RRTConnect(si), seed_(seed) {
-    rng_.setLocalSeed(seed);
-  }
+  SeededRRTConnect(const ob::SpaceInformationPtr& si, std::uint32_t seed) : RRTConnect(si), seed_(seed) {}
   void setup() override {
     RRTConnect::setup();
-    sampler_ = std::make_shared<SeededJointSampler>(si_->getStateSpace().get(), seed_);
+    sampler_ = makeSeededSampler(si_->getStateSpace().get(), seed_);
   }
 
 private:
-  std::uint_fast32_t seed_;
+  std::uint32_t seed_;
 };
 
-// OMPL's simplifier (shortcuts between random points) drawing from a seeded generator; made as
-// SimpleSetup::setup makes it (with the problem's goal and objective).
-class SeededSimplifier : public og::PathSimplifier {
-public:
-  SeededSimplifier(const ob::SpaceInformationPtr& si, const ob::ProblemDefinition& problem, std::uint_fast32_t seed)
-      : PathSimplifier(si, problem.getGoal(), problem.getOptimizationObjective()) {
-    rng_.setLocalSeed(seed);
-  }
-};
-
-// RRTConnect's path from start to goal, simplified, drawing from generators seeded with `seed`: what
-// `arcplan plan` and the benchmark campaigns compute for RRTConnect (solve, then
+// RRTConnect's path from start to goal, simplified, drawing from the streams `seed` fixes
+// (seeded_sampling.h): what a benchmark run seeded with `seed` computes for RRTConnect (solve, then
 // SimpleSetup::simplifySolution(), i.e. PathSimplifier::simplifyMax with the problem's goal; here
-// stopped by the caller's termination condition, identical until it fires), on a
-// SpaceInformation with the same validity (the campaign's clearance is the planner's margin). Only
-// where the random numbers come from differs: here from `seed`, there from OMPL's process-wide seed.
+// stopped by the caller's termination condition, identical until it fires) on the same
+// SpaceInformation.
 std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& query, const ob::SpaceInformationPtr& si,
                                                                std::uint_fast32_t seed) {
   auto problem = std::make_shared<ob::ProblemDefinition>(si);
@@ -97,12 +77,14 @@ std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& q
   collision::setJoints(start.get(), query.start);
   collision::setJoints(goal.get(), query.goal);
   problem->setStartAndGoalStates(start, goal);
-  SeededRRTConnect sampler(si, seed);
-  sampler.setProblemDefinition(problem);
-  sampler.setup();
-  if (sampler.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) return std::nullopt;
+  const SamplingSeeds seeds = samplingSeeds(seed);
+  SeededRRTConnect planner(si, seeds.sampler);
+  planner.setProblemDefinition(problem);
+  planner.setup();
+  if (planner.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) return std::nullopt;
   og::PathGeometric path(*problem->getSolutionPath()->as<og::PathGeometric>());
-  SeededSimplifier(si, *problem, seed).simplify(path, query.ptc);  // simplifyMax, but within the caller's time
+  // simplifyMax, but within the caller's time
+  makeSeededSimplifier(si, *problem, seeds.simplifier)->simplify(path, query.ptc);
   return collision::waypointsOf(path);
 }
 

@@ -32,27 +32,46 @@ std::string Rejection::describe(double margin) const {
 }
 
 PathValidator::PathValidator(const collision::CollisionModel& model, const robot::UrInverseKinematics& ik,
-                             JointConversionOptions conversion, double margin, bool certify, StateCheck waypointValid,
-                             StopRequest stop)
+                             JointConversionOptions conversion, collision::EndpointClearance required, bool certify,
+                             StateCheck waypointValid, StopRequest stop)
     : model_(model),
       ik_(ik),
       conversion_(conversion),
-      margin_(margin),
+      required_(std::move(required)),
       certify_(certify),
       waypointValid_(std::move(waypointValid)),
       stop_(std::move(stop)),
       data_(model) {}
 
+PathValidator::PathValidator(const collision::CollisionModel& model, const robot::UrInverseKinematics& ik,
+                             JointConversionOptions conversion, double margin, bool certify, StateCheck waypointValid,
+                             StopRequest stop)
+    : PathValidator(model, ik, conversion, collision::EndpointClearance(margin, margin), certify,
+                    std::move(waypointValid), std::move(stop)) {}
+
 Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefix,
                          const std::optional<robot::Vector6>& goal) {
-  // One certifier per walk, started at the walk's first configuration: it reuses a waypoint's
-  // measured clearance for the following motions, so it must never carry over from another path.
+  // One certifier per walk and clearance, started at the motion's first configuration: it reuses a
+  // waypoint's measured clearance for the following motions, so it must never carry over from another
+  // path, nor to a motion that must keep another clearance (entering or leaving an approach zone).
   std::optional<collision::PathCertifier> certifier;
-  if (certify_) certifier.emplace(model_, data_, margin_);
-  const bool started = certifier && certifier->start(prefix.joints.back());
-  const WaypointCheck check = [&](const robot::Vector6&, const robot::Vector6& q, double) {
+  double certifierClearance = 0.0;
+  const WaypointCheck check = [&](const robot::Vector6& from, const robot::Vector6& q, double) {
     if (stop_ && stop_()) return false;
-    return certifier ? started && certifier->extend(q) : waypointValid_(q);
+    if (!certify_) return waypointValid_(q);
+    const double clearance = required_.motionClearanceAlong(from, q);
+    if (!certifier || clearance != certifierClearance) {
+      certifier.emplace(model_, data_, clearance);
+      certifierClearance = clearance;
+      if (!certifier->start(from)) {
+        certifier.reset();
+        return false;
+      }
+    }
+    if (!certifier->extend(q)) return false;
+    // A motion certified for a zone's smaller clearance: its end keeps what a state there must.
+    const double state = required_.stateClearanceAt(q);
+    return state <= clearance || collision::PathCertifier(model_, data_, state).start(q);
   };
   const JointConversionResult continuation =
       convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_, prefix.arcLengths.back(),
@@ -74,7 +93,7 @@ Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefi
 bool PathValidator::keepsMargin(const robot::Vector6& q) {
   // A certifier's start: the same test as a walk's first waypoint, with pairs far apart settled by
   // their bounding capsules (cheaper than measuring the smallest distance).
-  return collision::PathCertifier(model_, data_, margin_).start(q);
+  return collision::PathCertifier(model_, data_, required_.motionClearanceAlong(q, q)).start(q);
 }
 
 Rejection PathValidator::explain(const RejectedMotion& motion) {
@@ -90,7 +109,7 @@ Rejection PathValidator::explain(const RejectedMotion& motion) {
   const collision::DistanceReport atWaypoint = collision::distance(model_, data_, motion.to);
   result.closest = atWaypoint.minimum();
   result.pairs.collisions = {closestPair(atWaypoint)};
-  if (result.closest < margin_) return result;
+  if (result.closest < required_.motionClearanceAlong(motion.to, motion.to)) return result;
   // The waypoint keeps the margin but the motion to it could not be certified: 16 states along it.
   constexpr int kSteps = 16;
   const auto along = [&](int k) -> robot::Vector6 {

@@ -1,7 +1,9 @@
 #pragma once
 // Validating a TCP path for the whole robot while converting it to joints (cartesian_to_joint.h):
-// certified, every motion between consecutive waypoints proven to keep `margin` from obstacles and
-// between links (collision::PathCertifier, the check of the SpaceInformation's motion validator), or
+// certified, every motion between consecutive waypoints proven to keep the clearance the endpoint rule
+// asks of it (collision::EndpointClearance::motionClearanceAlong: the margin, or an approach zone's
+// less near a start or goal closer than that; collision::PathCertifier, the check of the
+// SpaceInformation's motion validator), or
 // only the waypoints themselves (a caller's state check, as MoveIt's Cartesian paths do). A walk
 // stops at the first waypoint that fails and returns the motion it refused; explain() names the
 // bodies behind it. Internal to the arc planner.
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/endpoint_clearance.h"
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/planners/cartesian_to_joint.h"
 
@@ -47,8 +50,13 @@ class PathValidator {
 public:
   using StateCheck = std::function<bool(const robot::Vector6&)>;
   using StopRequest = std::function<bool()>;
-  // Certified with `margin` when `certify`, else every waypoint by `waypointValid`. `stop` (the
-  // planner's termination condition) rejects the next waypoint once it returns true.
+  // Certified by `required` (every motion its motionClearanceAlong; a motion in an approach zone also
+  // checks that its end keeps stateClearanceAt) when `certify`, else every waypoint by `waypointValid`.
+  // `stop` (the planner's termination condition) rejects the next waypoint once it returns true.
+  PathValidator(const collision::CollisionModel& model, const robot::UrInverseKinematics& ik,
+                JointConversionOptions conversion, collision::EndpointClearance required, bool certify,
+                StateCheck waypointValid, StopRequest stop);
+  // The same with `margin` for every state and motion (no approach zones).
   PathValidator(const collision::CollisionModel& model, const robot::UrInverseKinematics& ik,
                 JointConversionOptions conversion, double margin, bool certify, StateCheck waypointValid,
                 StopRequest stop);
@@ -57,20 +65,21 @@ public:
   // where `goal` (if given) must be met; stops at the first waypoint that fails. Returns prefix +
   // continuation, with the status and reason of the conversion and the motion it refused.
   Walk walk(const TcpPath& path, const JointConversionResult& prefix, const std::optional<robot::Vector6>& goal);
-  // One configuration tested on its own, without a walk up to it: false when it is closer than the
-  // margin to an obstacle or between links (explain({q, q}) says why). A cheap test of where a path
-  // is likely to fail before the walk; a configuration that passes proves nothing about the motions
-  // around it.
+  // One configuration tested on its own, without a walk up to it: false when it is closer than a
+  // motion from it must keep (the margin, or its approach zone's) to an obstacle or between links (explain({q, q}) says
+  // why). A cheap test of where a path is likely to fail before the walk; a configuration that passes proves nothing
+  // about the motions around it.
   bool keepsMargin(const robot::Vector6& q);
   // The bodies behind a refused motion (collision and distance queries: asked only when needed).
   Rejection explain(const RejectedMotion& motion);
-  double margin() const { return margin_; }
+  // The clearance of motions away from the endpoints' approach zones.
+  double margin() const { return required_.motionClearance(); }
 
 private:
   const collision::CollisionModel& model_;
   const robot::UrInverseKinematics& ik_;
   JointConversionOptions conversion_;
-  double margin_;
+  collision::EndpointClearance required_;
   bool certify_;
   StateCheck waypointValid_;
   StopRequest stop_;

@@ -1,13 +1,13 @@
-// The arc planner's joint-space fallback: RRTConnect (seeded by the planner) + OMPL's simplifier, then the
-// fastest at the speed limit of that joint path, its segments as TCP lines where they validate, and
-// mixes of the two; valid, repeatable, and never slower to execute than its own joint path.
+// The arc planner's joint-space fallback: RRTConnect (seeded by the planner as a benchmark run seeds
+// RRTConnect) + OMPL's simplifier, then the fastest at the speed limit of that joint path, its segments
+// as TCP lines where they validate, and mixes of the two; valid, repeatable, and never slower to execute
+// than RRTConnect + simplifier of the same seed.
 #include <gtest/gtest.h>
 #include <ompl/base/PlannerStatus.h>
-#include <ompl/base/spaces/RealVectorStateSpace.h>
-#include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -15,7 +15,9 @@
 #include <vector>
 
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/endpoint_clearance.h"
 #include "arcplan/planners/arc_planner.h"
+#include "arcplan/planners/seeded_sampling.h"
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "arcplan/trajectory/time_scaling.h"
@@ -47,6 +49,14 @@ arcplan::planners::PlanningProblem goalOnAnotherBranchProblem() {
   return arcplan::planners::makePlanningProblem(scene);
 }
 
+// The problem of `scene` at a benchmark suite's 1 cm clearance (the arc planner's own): its fallback
+// then plans on the problem's SpaceInformation, as plain RRTConnect does.
+arcplan::planners::PlanningProblem centimetreProblem(const std::shared_ptr<arcplan::collision::Scene>& scene) {
+  arcplan::planners::PlanningProblemOptions options;
+  options.clearance = 0.01;
+  return arcplan::planners::makePlanningProblem(scene, "", options);
+}
+
 std::vector<arcplan::robot::Vector6> solutionJoints(const arcplan::planners::PlanningProblem& problem) {
   return arcplan::collision::waypointsOf(
       *problem.setup->getProblemDefinition()->getSolutionPath()->as<ompl::geometric::PathGeometric>());
@@ -74,6 +84,54 @@ TEST(ArcPlannerFallback, JoinsTwoIkBranchesWithAValidPath) {
     EXPECT_TRUE(si->checkMotion(path->getState(i - 1), path->getState(i))) << "motion " << i;
   }
   EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);
+}
+
+// A goal 5 mm from a block (a grasp): near it, in its approach zone, paths may come as close as half
+// that; everywhere else they keep the 1 cm the benchmark judges them by (collision/endpoint_clearance.h).
+// The fallback plans with that rule, not with the goal's 5 mm along the whole path.
+TEST(ArcPlannerFallback, KeepsTheClearanceOutsideTheGoalsApproachZone) {
+  auto problem = goalOnAnotherBranchProblem();
+  auto scene = std::make_shared<arcplan::collision::Scene>(*problem.scene);
+  const arcplan::robot::Vector6 goal = problem.goal;
+  const Eigen::Isometry3d tip = arcplan::robot::tipPose(arcplan::robot::ur10e(), goal);
+  // A 4 cm block on the tool's axis beyond the TCP, moved until the goal is 5 mm from it.
+  double offset = 0.04, clearance = 0.0;
+  for (int attempt = 0; attempt < 8 && std::abs(clearance - 0.005) > 2e-4; ++attempt) {
+    scene->obstacles.push_back(box("block", tip * Eigen::Vector3d(0.0, 0.0, offset), {0.04, 0.04, 0.04}));
+    const auto model = arcplan::planners::makePlanningProblem(scene).collisionModel;
+    arcplan::collision::CollisionData data(*model);
+    clearance = arcplan::collision::distance(*model, data, goal).minimum();
+    offset -= clearance - 0.005;
+    if (std::abs(clearance - 0.005) > 2e-4) scene->obstacles.pop_back();
+  }
+  ASSERT_NEAR(clearance, 0.005, 2e-4);
+  scene->queries[0].goal = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, goal};
+  arcplan::planners::PlanningProblemOptions options;
+  options.clearance = 0.01;
+  auto blocked = arcplan::planners::makePlanningProblem(scene, "", options);
+  const auto [planner, status] = solve(blocked, "arc", {}, 20.0);
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << arcOf(planner).lastResult().reason;
+  ASSERT_EQ(arcOf(planner).lastResult().mode(), "fallback");
+  // Judged as `bench` judges it: every state at 2 mrad steps along each motion keeps what the rule asks
+  // of that motion's states (1 cm, the zone's 2.5 mm only for motions that touch the goal's zone).
+  const arcplan::collision::EndpointClearance rule(
+      *blocked.collisionModel, 0.01, 0.01,
+      {arcplan::robot::JointVector(blocked.start), arcplan::robot::JointVector(blocked.goal)});
+  ASSERT_EQ(rule.zones().size(), 1u);
+  const auto joints = solutionJoints(blocked);
+  arcplan::collision::CollisionData data(*blocked.collisionModel);
+  int outsideTheZone = 0;
+  for (std::size_t i = 1; i < joints.size(); ++i) {
+    const double required = rule.stateClearanceAlong(joints[i - 1], joints[i]);
+    outsideTheZone += required == 0.01 ? 1 : 0;
+    const int samples = static_cast<int>(std::ceil((joints[i] - joints[i - 1]).cwiseAbs().maxCoeff() / 2e-3)) + 1;
+    for (int k = 0; k <= samples; ++k) {
+      const arcplan::robot::Vector6 q = joints[i - 1] + (joints[i] - joints[i - 1]) * (double(k) / samples);
+      EXPECT_GE(arcplan::collision::distance(*blocked.collisionModel, data, q).minimum(), required - 1e-6)
+          << "motion " << i << " of " << joints.size() - 1 << ", step " << k;
+    }
+  }
+  EXPECT_GT(outsideTheZone, 0) << "every motion touched the goal's zone: nothing was judged at 1 cm";
 }
 
 TEST(ArcPlannerFallback, GivesTheSamePathWhateverRanBefore) {
@@ -159,55 +217,38 @@ std::shared_ptr<arcplan::collision::Scene> elbowBeamScene() {
   return scene;
 }
 
-// Samplers and simplifiers drawing from a local seed instead of OMPL's process-wide one.
-class LocallySeededSampler : public ompl::base::RealVectorStateSampler {
-public:
-  LocallySeededSampler(const ompl::base::StateSpace* space, std::uint32_t seed) : RealVectorStateSampler(space) {
-    rng_.setLocalSeed(seed);
-  }
-};
-class LocallySeededSimplifier : public ompl::geometric::PathSimplifier {
-public:
-  LocallySeededSimplifier(const ompl::base::SpaceInformationPtr& si, const ompl::base::ProblemDefinitionPtr& problem,
-                          std::uint32_t seed)
-      : PathSimplifier(si, problem->getGoal(), problem->getOptimizationObjective()) {
-    rng_.setLocalSeed(seed);
-  }
-};
-
-// Execution time at 0.25 m/s of RRTConnect + simplifier as `arcplan plan` and the benchmark campaigns run
-// them (SimpleSetup::solve, then SimpleSetup::simplifySolution(), at the suite's 1 cm clearance), the
-// sampler and the simplifier seeded with `seed`.
+// Execution time at 0.25 m/s of plain RRTConnect + simplifier as a benchmark run seeded with `seed`
+// computes it (SimpleSetup::solve, then SimpleSetup::simplifySolution(), at the suite's 1 cm clearance,
+// its sampler and simplifier seeded by the campaign's planners::seedSampling).
 double rrtConnectAndSimplifier(const std::shared_ptr<arcplan::collision::Scene>& scene, std::uint32_t seed) {
-  arcplan::planners::PlanningProblemOptions options;
-  options.clearance = 0.01;
-  auto problem = arcplan::planners::makePlanningProblem(scene, "", options);
+  auto problem = centimetreProblem(scene);
   const auto si = problem.setup->getSpaceInformation();
-  si->getStateSpace()->setStateSamplerAllocator(
-      [seed](const ompl::base::StateSpace* space) { return std::make_shared<LocallySeededSampler>(space, seed); });
   problem.setup->setPlanner(std::make_shared<ompl::geometric::RRTConnect>(si));
   problem.setup->setup();
-  problem.setup->getPathSimplifier() =
-      std::make_shared<LocallySeededSimplifier>(si, problem.setup->getProblemDefinition(), seed);
+  arcplan::planners::seedSampling(*problem.setup, seed);
   if (problem.setup->solve(20.0) != ob::PlannerStatus::EXACT_SOLUTION) throw std::runtime_error("RRTConnect failed");
   problem.setup->simplifySolution();
   return arcplan::trajectory::scaleToTcpSpeed(arcplan::robot::ur10e(), solutionJoints(problem)).duration();
 }
 
-TEST(ArcPlannerFallback, OneOfItsCandidatesIsRRTConnectAndSimplifierWithTheSameSeeds) {
+TEST(ArcPlannerFallback, ItsFirstPlanIsRRTConnectAndSimplifierOfTheSameSeed) {
   const auto scene = elbowBeamScene();
-  auto problem = arcplan::planners::makePlanningProblem(scene);
-  const auto [planner, status] = solve(problem, "arc", {{"seed", "5"}}, 30.0);
+  auto problem = centimetreProblem(scene);
+  constexpr std::uint32_t kSeed = 5;
+  const auto [planner, status] = solve(problem, "arc", {{"seed", std::to_string(kSeed)}}, 30.0);
   const ArcPlannerResult& result = arcOf(planner).lastResult();
   ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << result.reason;
   ASSERT_EQ(result.mode(), "fallback") << result.reason;
-  // Its joint-space plans draw from seeds 5..8: each is RRTConnect + simplifier with that seed, computed
-  // here the way `plan` and `bench` compute it; the fastest is the one the fallback compares ...
-  double fastest = INFINITY;
-  for (std::uint32_t seed = 5; seed <= 8; ++seed) fastest = std::min(fastest, rrtConnectAndSimplifier(scene, seed));
+  // Its joint-space plans draw from seeds 5..8, the first from what a benchmark run with run seed 5
+  // gives plain RRTConnect: each is recomputed here the way the campaign computes it, on the same
+  // problem; the fastest is the one the fallback compares ...
+  const double sameSeed = rrtConnectAndSimplifier(scene, kSeed);
+  double fastest = sameSeed;
+  for (std::uint32_t seed = kSeed + 1; seed <= kSeed + 3; ++seed)
+    fastest = std::min(fastest, rrtConnectAndSimplifier(scene, seed));
   EXPECT_NEAR(result.fallbackTimes.jointPath, fastest, 1e-9);
-  // ... so what it keeps executes no slower than RRTConnect + simplifier with any of those seeds.
-  EXPECT_LE(result.fallbackTimes.kept, fastest);
+  // ... so what it keeps executes no slower than RRTConnect + simplifier of the same seed.
+  EXPECT_LE(result.fallbackTimes.kept, sameSeed);
   EXPECT_NEAR(arcplan::trajectory::scaleToTcpSpeed(arcplan::robot::ur10e(), solutionJoints(problem)).duration(),
               result.fallbackTimes.kept, 1e-9);
   EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);

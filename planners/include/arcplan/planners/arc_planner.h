@@ -11,15 +11,17 @@
 //     thesis' three-arc detour with exactly the given h, r, R2, R3 and plane angle (arc_path.h);
 //   - auto (default): lines through via points with blended corners (blended_path.h), the via points
 //     from the obstacles' geometry (via_points.h), the fastest route found by a lazy search
-//     (route_search.h); where no such route exists, the joint-space fallback: RRTConnect on a
-//     SpaceInformation keeping the planner's margin, its random draws seeded by `seed`, simplified
-//     as `plan` and `bench` simplify RRTConnect's path, then shortcut for the TCP where that pays
+//     (route_search.h); where no such route exists, the joint-space fallback: RRTConnect on the
+//     problem's SpaceInformation (one keeping the planner's margin if that is larger), its random
+//     draws from `seed` as a benchmark run's RRTConnect draws from the run seed (seeded_sampling.h),
+//     simplified as `plan` and `bench` simplify RRTConnect's path, then shortcut for the TCP where that pays
 //     (up to 4 plans, the fastest kept); then of that path, its segments as straight TCP lines where
 //     they validate, and mixes of the two, the one that executes fastest at `speed_limit` (reason
 //     says which). lastResult().mode says which
 //     ("arc" or "fallback"), cartesianFraction how much of the TCP path is lines and arcs.
-// A path keeps `clearance` (or the motion validator's margin if larger) everywhere, except that a
-// start or goal closer than that to an obstacle lowers it to its own clearance.
+// A path keeps `clearance` (or the motion validator's margin if larger) everywhere, except in the
+// approach zone of a start or goal closer than that to an obstacle (collision/endpoint_clearance.h:
+// the rule the problem's validity checker and motion validator apply).
 // The line-and-arc search has its own `deadline` (default 50 ms of wall-clock time): past it, it gives
 // up and the fallback gets the rest of the termination condition's time (without fallback the planner
 // fails at once, its reason naming the deadline).
@@ -35,6 +37,7 @@
 #include <vector>
 
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/endpoint_clearance.h"
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/planners/arc_path.h"
 #include "arcplan/planners/cartesian_to_joint.h"
@@ -138,13 +141,22 @@ private:
   // One query answered by the mode's strategy and, in auto mode, the fallback after it.
   detail::ArcOutcome answer(const ompl::base::PlannerTerminationCondition& ptc, const robot::Vector6& start,
                             const robot::Vector6& goal);
-  // Runs `strategy` on the query of start and goal, its walks validated with `margin` and stopped by `ptc`.
-  detail::ArcOutcome withQuery(const ompl::base::PlannerTerminationCondition& ptc, double margin,
-                               const robot::Vector6& start, const robot::Vector6& goal,
+  // Runs `strategy` on the query of start and goal, its walks validated by `required` and stopped by `ptc`.
+  detail::ArcOutcome withQuery(const ompl::base::PlannerTerminationCondition& ptc,
+                               const collision::EndpointClearance& required, const robot::Vector6& start,
+                               const robot::Vector6& goal,
                                const std::function<detail::ArcOutcome(const detail::ArcQuery&)>& strategy);
   collision::MotionCheckOptions motionCheckOptions() const;
-  double planningMargin(const collision::MotionCheckOptions& motionCheck, const robot::Vector6& start,
-                        const robot::Vector6& goal) const;
+  // The planner's clearance or the motion validator's, the larger, with approach zones around a start
+  // or goal closer than that (the one endpoint rule, collision/endpoint_clearance.h).
+  collision::EndpointClearance requiredClearance(const collision::MotionCheckOptions& motionCheck,
+                                                 const robot::Vector6& start, const robot::Vector6& goal) const;
+  // The SpaceInformation the fallback plans on: the problem's own when it asks what `required` asks
+  // (then the fallback's RRTConnect solves exactly the problem a plain RRTConnect solves), else one
+  // with `required`'s clearances and zones.
+  ompl::base::SpaceInformationPtr fallbackSpace(const collision::MotionCheckOptions& motionCheck,
+                                                const collision::EndpointClearance& required,
+                                                const robot::Vector6& start, const robot::Vector6& goal) const;
   // The outcome becomes lastResult() (and the solution path when there is one).
   ompl::base::PlannerStatus finish(detail::ArcOutcome outcome, ompl::base::PlannerStatus status,
                                    std::chrono::steady_clock::time_point clockStart);
