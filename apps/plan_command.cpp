@@ -3,7 +3,6 @@
 #include <ompl/util/Console.h>
 
 #include <algorithm>
-#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -39,6 +38,7 @@ struct PlanOptions {
   double time = 5.0;
   std::optional<std::uint32_t> seed;
   std::optional<double> maxTcpSpeed;
+  double clearance = 0.0;
   std::string json;
   std::string pathCsv;
   bool allowApproximate = false;
@@ -102,6 +102,10 @@ void printSummary(const nlohmann::json& document, const benchmarks::PlannedQuery
     if (!metricOf(document, &M::minClearance).is_null()) {
       std::cout << "min clearance       " << metricOf(document, &M::minClearance).get<double>() << " m\n";
     }
+    if (planned.options.clearance > 0.0) {
+      std::cout << "clearance           " << planned.options.clearance << " m "
+                << (document["clearance_kept"].get<bool>() ? "kept" : "NOT kept") << " (approach zones as bench)\n";
+    }
     if (planned.options.maxTcpSpeed) {
       std::cout << "execution time      " << metricOf(document, &M::executionTime).get<double>() << " s at vmax "
                 << *planned.options.maxTcpSpeed << " m/s (peak TCP speed "
@@ -110,26 +114,25 @@ void printSummary(const nlohmann::json& document, const benchmarks::PlannedQuery
   }
 }
 
-// The scene and query to plan: --scene (and --query), or a MoveIt scene + request read against --urdf.
+// The scene and query to plan: --scene (and --query), or a MoveIt scene + request read against --urdf
+// or --ur-type.
 std::shared_ptr<const collision::Scene> loadPlanScene(const PlanOptions& options) {
   const bool moveit = !options.moveitScene.empty() || !options.moveitRequest.empty();
   if (moveit == !options.scene.empty())
-    throw UsageError("give either --scene or --moveit-scene with --moveit-request (and --urdf)");
+    throw UsageError("give either --scene or --moveit-scene with --moveit-request (and --urdf or --ur-type)");
   if (!moveit) {
     if (options.robot.given() || !options.srdf.empty())
       throw UsageError("the robot options and --srdf go with --moveit-scene (a scene file names its robot)");
     return std::make_shared<const collision::Scene>(collision::loadScene(resolveDataPath(options.scene)));
   }
-  if (options.moveitScene.empty() || options.moveitRequest.empty() || options.robot.urdf.empty())
-    throw UsageError("--moveit-scene needs --moveit-request and --urdf");
-  if (!options.robot.urType.empty()) {
-    throw UsageError(
-        "--ur-type: MoveIt problems are read against the URDF their joint and link names come from; "
-        "give --urdf");
-  }
+  if (options.moveitScene.empty() || options.moveitRequest.empty() ||
+      (options.robot.urdf.empty() && options.robot.urType.empty()))
+    throw UsageError("--moveit-scene needs --moveit-request and --urdf or --ur-type");
   if (!options.query.empty()) throw UsageError("--query names a query of --scene; a MoveIt request is one query");
   const robot::RobotSource source = robotSourceFrom(options.robot);
-  auto problem = collision::loadMoveItProblem(options.moveitScene, options.moveitRequest, {source.urdf, options.srdf});
+  auto problem =
+      collision::loadMoveItProblem(options.moveitScene, options.moveitRequest,
+                                   {source.urdf, options.srdf, {source.urType, source.description, source.kinematics}});
   problem.scene.robot.chain = source.chain;  // the TCP the arc planner moves along lines
   for (const auto& name : problem.ignoredMatrixNames) {
     std::cerr
@@ -166,11 +169,6 @@ void checkMoveItEndpoints(const collision::Scene& scene, const PlanOptions& opti
 void runPlan(const PlanOptions& options) {
   const DropStdout quiet(options.json == "-");
   ompl::msg::setLogLevel(options.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
-  if (!(options.time > 0.0) || !std::isfinite(options.time))
-    throw UsageError("--time must be a positive number of seconds");
-  if (options.maxTcpSpeed && (!(*options.maxTcpSpeed > 0.0) || !std::isfinite(*options.maxTcpSpeed))) {
-    throw UsageError("--vmax must be a positive TCP speed in m/s");
-  }
   benchmarks::PlanQueryOptions request;
   for (const std::string& text : options.parameters)
     request.parameters.push_back(planners::parseParameterAssignment(text));
@@ -178,6 +176,12 @@ void runPlan(const PlanOptions& options) {
   request.timeLimit = options.time;
   request.seed = options.seed;
   request.maxTcpSpeed = options.maxTcpSpeed;
+  request.clearance = options.clearance;
+  try {  // the library's check, before anything is read: a bad value is a wrong command line
+    benchmarks::checkPlanQueryOptions(request, {"--time", "--vmax", "--clearance"});
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
 
   const auto scene = loadPlanScene(options);
   nlohmann::json validity;
@@ -222,7 +226,7 @@ void registerPlanCommand(CLI::App& app) {
                       "scene YAML (a path, or a name under data/, e.g. scenes/thesis_obstacle.yaml)");
   command->add_option("--moveit-scene", options->moveitScene,
                       "instead of --scene: a moveit_msgs/PlanningScene YAML or an RViz .scene file (with "
-                      "--moveit-request and --urdf)");
+                      "--moveit-request and --urdf or --ur-type)");
   command->add_option("--moveit-request", options->moveitRequest,
                       "the moveit_msgs/MotionPlanRequest YAML to plan in --moveit-scene");
   addRobotSourceOptions(*command, options->robot, "the robot of the MoveIt problem (URDF; joint and link names)");
@@ -241,6 +245,11 @@ void registerPlanCommand(CLI::App& app) {
   command->add_option(
       "--vmax", options->maxTcpSpeed,
       "also time-scale the path (PCHIP) under this TCP speed limit [m/s] and report the scaled metrics");
+  command
+      ->add_option("--clearance", options->clearance,
+                   "distance every state and motion keeps from obstacles [m], relaxed near a start or goal closer "
+                   "than that as bench does (docs/collision.md); the JSON says whether the path kept it")
+      ->capture_default_str();
   command->add_option("--json", options->json, "write the result as JSON to this file ('-' for stdout)");
   command->add_option("--path-csv", options->pathCsv, "write the joint path (q0..q5 per waypoint) as CSV");
   command->add_flag("--allow-approximate", options->allowApproximate,

@@ -95,9 +95,8 @@ ProblemValidity checkEndpoints(const collision::Scene& scene, const std::string&
 }
 
 void addMoveItProblems(const MoveItProblemSource& source, Suite& suite) {
-  const collision::MoveItRobot robot{source.urdf, source.srdf};
   for (const auto& files : listMoveItProblems(source.folder)) {
-    collision::MoveItProblem loaded = collision::loadMoveItProblem(files.scene, files.request, robot);
+    collision::MoveItProblem loaded = collision::loadMoveItProblem(files.scene, files.request, source.robot);
     Problem problem;
     problem.name = files.name;
     problem.kind = files.family;
@@ -190,9 +189,20 @@ std::filesystem::path entryPath(const YamlReader& yaml, const YAML::Node& entry,
 }  // namespace
 
 void addMoveItSuiteEntry(const YamlReader& yaml, const YAML::Node& entry, Suite& suite) {
-  yaml.checkKeys(entry, "moveit_problems", {"folder", "urdf", "srdf"});
-  const MoveItProblemSource source{entryPath(yaml, entry, "folder", true), entryPath(yaml, entry, "urdf", true),
-                                   entryPath(yaml, entry, "srdf", false)};
+  yaml.checkKeys(entry, "moveit_problems", {"folder", "urdf", "ur_type", "description", "kinematics", "srdf"});
+  if (static_cast<bool>(entry["urdf"]) == static_cast<bool>(entry["ur_type"]))
+    yaml.fail(entry, "moveit_problems", "expected either 'urdf' or 'ur_type'");
+  MoveItProblemSource source;
+  source.folder = entryPath(yaml, entry, "folder", true);
+  source.robot.urdf = entryPath(yaml, entry, "urdf", false);
+  source.robot.srdf = entryPath(yaml, entry, "srdf", false);
+  if (const auto type = entry["ur_type"]) {
+    source.robot.urDescription = {yaml.text(type, "moveit_problems.ur_type"),
+                                  entryPath(yaml, entry, "description", false),
+                                  entryPath(yaml, entry, "kinematics", false)};
+  } else if (entry["description"] || entry["kinematics"]) {
+    yaml.fail(entry, "moveit_problems", "'description' and 'kinematics' go with 'ur_type'");
+  }
   try {
     addMoveItProblems(source, suite);
   } catch (const Error& e) {

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "arcplan/benchmarks/solution_measurement.h"
 #include "arcplan/benchmarks/solution_policy.h"
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/joint_states.h"
@@ -65,29 +66,16 @@ nlohmann::json arcDetails(const planners::ArcPlannerResult& result) {
           {"routes_tried", result.routesTried}};
 }
 
-void checkOptions(const PlanQueryOptions& options) {
-  if (!(options.timeLimit > 0.0) || !std::isfinite(options.timeLimit))
-    throw Error("plan: the time limit must be a positive number of seconds");
-  if (options.maxTcpSpeed && (!(*options.maxTcpSpeed > 0.0) || !std::isfinite(*options.maxTcpSpeed)))
-    throw Error("plan: vmax must be a positive TCP speed in m/s");
-}
-
-// The solution path measured as `bench` measures its runs; clearance from the scene's obstacles.
-trajectory::PathMeasurement measure(const collision::CollisionModel& model, const trajectory::JointPath& path,
-                                    const std::optional<double>& maxTcpSpeed) {
-  collision::CollisionData data(model);
-  const trajectory::ClearanceFunction clearance = [&](const robot::Vector6& q) {
-    return collision::distance(model, data, q).obstacleDistance;
-  };
-  std::optional<trajectory::TimeScalingOptions> scaling;
-  if (maxTcpSpeed) {
-    scaling.emplace();
-    scaling->maxTcpSpeed = *maxTcpSpeed;
-  }
-  return trajectory::measurePath(model.robot(), path, scaling, clearance);
-}
-
 }  // namespace
+
+void checkPlanQueryOptions(const PlanQueryOptions& options, const PlanOptionNames& names) {
+  if (!(options.timeLimit > 0.0) || !std::isfinite(options.timeLimit))
+    throw Error(names.timeLimit + " must be a positive number of seconds");
+  if (options.maxTcpSpeed && (!(*options.maxTcpSpeed > 0.0) || !std::isfinite(*options.maxTcpSpeed)))
+    throw Error(names.maxTcpSpeed + " must be a positive TCP speed in m/s");
+  if (!(options.clearance >= 0.0) || !std::isfinite(options.clearance))
+    throw Error(names.clearance + " must be a distance >= 0 m");
+}
 
 const char* toString(PlanStatus status) {
   switch (status) {
@@ -103,7 +91,7 @@ const char* toString(PlanStatus status) {
 
 PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std::string& queryName,
                        const PlanQueryOptions& options) {
-  checkOptions(options);
+  checkPlanQueryOptions(options);
   // OMPL's seed must be set before anything random exists. Set again in a process that has planned
   // before (Python), OMPL re-seeds its seed generator, so every RNG made from here on draws the same
   // as in a fresh process, but logs an error saying it would not be deterministic: kept quiet.
@@ -123,7 +111,9 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
   const std::string& plannerName = planned.options.planner;
   planned.sceneName = scene->name;
 
-  planners::PlanningProblem problem = planners::makePlanningProblem(std::move(scene), queryName);
+  planners::PlanningProblemOptions problemOptions;
+  problemOptions.clearance = options.clearance;
+  planners::PlanningProblem problem = planners::makePlanningProblem(std::move(scene), queryName, problemOptions);
   planned.queryName = problem.queryName;
   ompl::geometric::SimpleSetup& setup = *problem.setup;
   const ompl::base::PlannerPtr planner =
@@ -147,7 +137,14 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
   if (arc) planned.arc = arc->lastResult();
   if (havePath) {
     planned.path = collision::waypointsOf(setup.getSolutionPath());
-    planned.measurement = measure(*problem.collisionModel, planned.path, options.maxTcpSpeed);
+    std::optional<trajectory::TimeScalingOptions> scaling;
+    if (options.maxTcpSpeed) {
+      scaling.emplace();
+      scaling->maxTcpSpeed = *options.maxTcpSpeed;
+    }
+    MeasuredSolution measured = measureSolution(problem, planned.path, scaling);
+    planned.measurement = std::move(measured.measurement);
+    planned.clearanceMargin = measured.clearanceMargin;
   }
   return planned;
 }
@@ -173,6 +170,8 @@ nlohmann::json toJson(const PlannedQuery& planned) {
     document["waypoints"] = planned.path.size();
     if (planned.options.maxTcpSpeed) document["vmax_mps"] = *planned.options.maxTcpSpeed;
     document.update(trajectory::toJson(*planned.measurement));
+    document["clearance_m"] = planned.options.clearance;
+    document["clearance_kept"] = !(planned.clearanceMargin < 0.0);
   }
   return document;
 }

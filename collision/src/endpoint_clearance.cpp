@@ -5,7 +5,7 @@
 #include <string>
 
 #include "arcplan/common/error.h"
-#include "motion_bounds.h"
+#include "model_implementation.h"
 
 namespace arcplan::collision {
 namespace {
@@ -32,14 +32,9 @@ EndpointClearance::EndpointClearance(const CollisionModel& model, double clearan
                                      const std::vector<robot::JointVector>& endpoints)
     : EndpointClearance(clearance, motionClearance) {
   const int dof = model.robot().dof();
-  const auto bodies = static_cast<Eigen::Index>(model.linkNames().size());
-  // Σ_j |Δq_j|·D_jL is linear in |Δq|: a unit step of joint j gives row L, column j.
-  reach_.setZero(bodies, dof);
-  const robot::JointVector zero = robot::JointVector::Zero(dof);
-  for (int j = 0; j < dof; ++j) {
-    const robot::JointVector step = robot::JointVector::Unit(dof, j);
-    for (Eigen::Index b = 0; b < bodies; ++b) reach_(b, j) = motionBound(model, static_cast<int>(b), zero, step);
-  }
+  // The certified motion check's own per-body, per-joint reach (the D_jL of motionBound), built with
+  // the model: the zones bound displacements exactly as the motion check does.
+  reach_ = detail::implementationOf(model).jointReach;
   CollisionData data(model);
   for (const robot::JointVector& endpoint : endpoints) {
     if (endpoint.size() != dof) {

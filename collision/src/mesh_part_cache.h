@@ -4,6 +4,7 @@
 // MotionBenchMaker UR5 + Robotiq 85 meshes: ~1.2 s per model, docs/benchmarks.md), and a benchmark
 // builds one model per problem and job for the same robot. Parts are immutable once built (their FCL
 // geometries are only read by queries), so models share them.
+#include <cstddef>
 #include <filesystem>
 #include <vector>
 
@@ -13,10 +14,19 @@
 
 namespace arcplan::collision::detail {
 
-// meshParts(robot::loadMesh(file, scale), options), from the cache when the same file (same size and
-// modification time), scale and narrow-phase options were built before. Thread-safe. Throws as
-// robot::loadMesh does (nothing is cached then).
+// At most this many meshes (file content × scale × options) are kept, the least recently used dropped
+// first: a robot has a few dozen mesh files, and a long Python session that loads one description
+// after another must not keep every mesh it ever saw. Models already built keep their parts.
+inline constexpr std::size_t kMeshPartCacheEntries = 64;
+
+// meshParts(robot::loadMesh(file, scale), options), from the cache when a file with the same content
+// (a hash of its bytes and its size: a file rewritten in place, even within the same second, is a new
+// entry), scale and narrow-phase options was built before. Thread-safe. Throws as robot::loadMesh
+// does (nothing is cached then).
 std::vector<Part> cachedMeshParts(const std::filesystem::path& file, const Eigen::Vector3d& scale,
                                   const CollisionModelOptions& options);
+
+// How many meshes the cache holds now (for tests of its bound).
+std::size_t meshPartCacheSize();
 
 }  // namespace arcplan::collision::detail

@@ -10,6 +10,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "arcplan/common/error.h"
+#include "arcplan/robot/ur_description.h"
 
 namespace arcplan::collision::detail {
 namespace {
@@ -36,6 +37,7 @@ UrdfFrames::UrdfFrames(const std::filesystem::path& urdf) {
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(text.str());
   console_bridge::restorePreviousOutputHandler();
   if (!model || !model->getRoot()) throw Error(urdf.string() + ": not a URDF robot description");
+  description_ = "the URDF " + urdf.string();
   root_ = model->getRoot()->name;
   for (const auto& [name, joint] : model->joints_) {
     JointInfo info;
@@ -65,23 +67,63 @@ UrdfFrames::UrdfFrames(const std::filesystem::path& urdf) {
   }
 }
 
+UrdfFrames::UrdfFrames(const robot::RobotModel& model) : description_("the robot '" + model.name() + "'") {
+  const auto& links = model.links();
+  root_ = links[model.baseLink()].name;
+  for (const robot::Link& link : links) {
+    if (!link.collisions.empty()) collisionLinks_.insert(link.name);
+    if (link.parent < 0) continue;
+    JointInfo info;
+    info.parent = links[link.parent].name;
+    info.child = link.name;
+    info.origin = link.originInParent;
+    info.axis = link.axis;
+    info.kind = link.joint >= 0 ? JointInfo::Kind::Revolute : JointInfo::Kind::Fixed;
+    // A fixed joint has no name in the model; this one cannot be a ROS name, so no message matches it.
+    const std::string name = link.joint >= 0 ? model.joints()[link.joint].name : "(fixed) " + link.name;
+    parentJoint_[info.child] = name;
+    joints_[name] = info;
+  }
+}
+
 namespace {
 
-// Keyed by path and modification time, so a file changed on disk is read again.
+// What a description is, as a cache key: its files and their modification times, so a file changed
+// on disk is read again.
+std::string descriptionKey(const MoveItRobot& robot) {
+  const auto stamped = [](const std::filesystem::path& file) {
+    if (file.empty()) return std::string("-");
+    std::error_code ignored;
+    return std::filesystem::absolute(file).string() + "@" +
+           std::to_string(std::filesystem::last_write_time(file, ignored).time_since_epoch().count());
+  };
+  if (!robot.urdf.empty() || robot.urDescription.type.empty()) return "urdf\n" + stamped(robot.urdf);
+  const auto& ur = robot.urDescription;
+  const auto folder = ur.folder.empty() ? robot::defaultUrDescriptionFolder() : ur.folder;
+  const auto kinematics =
+      ur.kinematics.empty() ? folder / "config" / ur.type / "default_kinematics.yaml" : ur.kinematics;
+  return "ur\n" + ur.type + "\n" + std::filesystem::absolute(folder).string() + "\n" + stamped(kinematics);
+}
+
+robot::RobotModel loadModel(const MoveItRobot& robot) {
+  if (!robot.urdf.empty() || robot.urDescription.type.empty()) return robot::loadRobotModel(robot.urdf);
+  return robot::loadUrDescription(robot.urDescription);
+}
+
 template <typename Value>
-std::shared_ptr<const Value> cached(const std::filesystem::path& urdf) {
+std::shared_ptr<const Value> cached(const MoveItRobot& robot) {
   static std::mutex mutex;
-  static std::map<std::pair<std::string, std::filesystem::file_time_type>, std::shared_ptr<const Value>> cache;
-  std::error_code ignored;
-  const auto key =
-      std::make_pair(std::filesystem::absolute(urdf).string(), std::filesystem::last_write_time(urdf, ignored));
+  static std::map<std::string, std::shared_ptr<const Value>> cache;
+  const std::string key = descriptionKey(robot);
   const std::lock_guard<std::mutex> lock(mutex);
   auto& entry = cache[key];
   if (!entry) {
     if constexpr (std::is_same_v<Value, robot::RobotModel>) {
-      entry = std::make_shared<const robot::RobotModel>(robot::loadRobotModel(urdf));
+      entry = std::make_shared<const robot::RobotModel>(loadModel(robot));
+    } else if (!robot.urdf.empty() || robot.urDescription.type.empty()) {
+      entry = std::make_shared<const UrdfFrames>(robot.urdf);
     } else {
-      entry = std::make_shared<const UrdfFrames>(urdf);
+      entry = std::make_shared<const UrdfFrames>(*cached<robot::RobotModel>(robot));
     }
   }
   return entry;
@@ -89,12 +131,10 @@ std::shared_ptr<const Value> cached(const std::filesystem::path& urdf) {
 
 }  // namespace
 
-std::shared_ptr<const robot::RobotModel> sharedRobotModel(const std::filesystem::path& urdf) {
-  return cached<robot::RobotModel>(urdf);
+std::shared_ptr<const robot::RobotModel> sharedRobotModel(const MoveItRobot& robot) {
+  return cached<robot::RobotModel>(robot);
 }
-std::shared_ptr<const UrdfFrames> sharedUrdfFrames(const std::filesystem::path& urdf) {
-  return cached<UrdfFrames>(urdf);
-}
+std::shared_ptr<const UrdfFrames> sharedUrdfFrames(const MoveItRobot& robot) { return cached<UrdfFrames>(robot); }
 
 double UrdfFrames::jointValue(const std::string& joint, const std::map<std::string, double>& joints) const {
   if (const auto mimic = mimics_.find(joint); mimic != mimics_.end()) {

@@ -11,16 +11,22 @@
 
 #include <Eigen/Geometry>
 
+#include "arcplan/collision/moveit_scene.h"
 #include "arcplan/collision/scene.h"
 #include "arcplan/common/yaml_reading.h"
 #include "arcplan/robot/robot_model.h"
 
 namespace arcplan::collision::detail {
 
-// The URDF tree (urdfdom): link poses in the root frame for given joint values (missing joints at 0).
+// The robot's link tree as MoveIt sees it: link poses in the root frame for given joint values (missing
+// joints at 0). From a URDF (urdfdom: every link, gripper fingers and mimic joints included), or from
+// a robot built without one (a UR type from UR's description: its links are the whole robot).
 class UrdfFrames {
 public:
   explicit UrdfFrames(const std::filesystem::path& urdf);
+  explicit UrdfFrames(const robot::RobotModel& model);
+  // What the names are checked against, for messages: "the URDF <file>", "UR description type ur5e".
+  const std::string& description() const { return description_; }
   const std::string& root() const { return root_; }
   bool hasLink(const std::string& link) const { return parentJoint_.count(link) != 0 || link == root_; }
   bool hasJoint(const std::string& joint) const { return joints_.count(joint) != 0; }
@@ -41,6 +47,7 @@ private:
   };
   // A mimic joint follows its master (gripper fingers) when the master is given.
   double jointValue(const std::string& joint, const std::map<std::string, double>& joints) const;
+  std::string description_;
   std::string root_;
   std::map<std::string, JointInfo> joints_;
   std::map<std::string, Mimic> mimics_;
@@ -48,10 +55,11 @@ private:
   std::set<std::string> collisionLinks_;
 };
 
-// The robot model of a URDF, loaded once per process and file: a benchmark folder reads hundreds of
-// scenes and requests against the same robot, and loading its meshes dominates reading a message.
-std::shared_ptr<const robot::RobotModel> sharedRobotModel(const std::filesystem::path& urdf);
-std::shared_ptr<const UrdfFrames> sharedUrdfFrames(const std::filesystem::path& urdf);
+// The robot model (base_link -> tool0) and frames of a URDF or UR type, loaded once per process and
+// description: a benchmark folder reads hundreds of scenes and requests against the same robot, and
+// loading its meshes dominates reading a message.
+std::shared_ptr<const robot::RobotModel> sharedRobotModel(const MoveItRobot& robot);
+std::shared_ptr<const UrdfFrames> sharedUrdfFrames(const MoveItRobot& robot);
 
 // A cone along its local z (tip at +height/2, base disc at -height/2), as a closed triangle mesh whose
 // side polygon is circumscribed, so it contains the true cone.

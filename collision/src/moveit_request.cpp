@@ -48,7 +48,7 @@ private:
       for (const auto& [name, value] : message_.jointState(state["joint_state"], "start_state.joint_state")) {
         if (!frames_.hasJoint(name))
           message_.yaml.fail(state["joint_state"], "start_state.joint_state",
-                             "joint '" + name + "' is no joint of the URDF");
+                             "joint '" + name + "' is no joint of " + frames_.description());
         joints[name] = value;
       }
       if (state["joint_state"]) where = state["joint_state"];
@@ -95,7 +95,7 @@ private:
       const YAML::Node nameNode = message_.yaml.required(list[i], "joint_name", where);
       const std::string name = message_.yaml.text(nameNode, where + ".joint_name");
       if (!frames_.hasJoint(name))
-        message_.yaml.fail(nameNode, where + ".joint_name", "no joint '" + name + "' in the URDF");
+        message_.yaml.fail(nameNode, where + ".joint_name", "no joint '" + name + "' in " + frames_.description());
       values[name] = message_.yaml.number(message_.yaml.required(list[i], "position", where), where + ".position");
     }
     robot::Vector6 q;
@@ -152,10 +152,13 @@ private:
   }
 
   Eigen::Isometry3d frameOf(const YAML::Node& header, const std::string& field) const {
-    if (!header || header.IsNull() || !header["frame_id"] || header["frame_id"].Scalar().empty() ||
-        header["frame_id"].Scalar() == frames_.root() || header["frame_id"].Scalar() == "world")
-      return Eigen::Isometry3d::Identity();
-    message_.yaml.fail(header["frame_id"], field + ".frame_id",
+    if (!header || header.IsNull()) return Eigen::Isometry3d::Identity();
+    message_.yaml.checkKeys(header, field, {"seq", "stamp", "frame_id"});
+    const YAML::Node frame = header["frame_id"];
+    if (!frame || frame.IsNull()) return Eigen::Isometry3d::Identity();
+    const std::string name = message_.yaml.text(frame, field + ".frame_id");
+    if (name.empty() || name == frames_.root() || name == "world") return Eigen::Isometry3d::Identity();
+    message_.yaml.fail(frame, field + ".frame_id",
                        "a goal is read in the planning frame '" + frames_.root() + "' (or 'world')");
   }
 
@@ -187,8 +190,7 @@ MoveItProblem loadMoveItProblem(const std::filesystem::path& sceneFile, const st
   // RViz's `.scene` text export or a PlanningScene YAML, told apart by the extension as MoveIt does.
   MoveItProblem problem =
       sceneFile.extension() == ".scene" ? loadMoveItTextScene(sceneFile, robot) : loadMoveItScene(sceneFile, robot);
-  RequestReader(requestFile, *detail::sharedRobotModel(robot.urdf), *detail::sharedUrdfFrames(robot.urdf), problem)
-      .read();
+  RequestReader(requestFile, *detail::sharedRobotModel(robot), *detail::sharedUrdfFrames(robot), problem).read();
   return problem;
 }
 

@@ -55,7 +55,7 @@ private:
     auto joints = message_.jointState(node, field);
     for (const auto& [name, value] : joints) {
       if (!builder_.frames().hasJoint(name))
-        message_.yaml.fail(node, field, "joint '" + name + "' is no joint of the URDF " + builder_.urdf().string());
+        message_.yaml.fail(node, field, "joint '" + name + "' is no joint of " + builder_.frames().description());
     }
     return joints;
   }
@@ -90,7 +90,7 @@ private:
     if (!pose) {
       message_.yaml.fail(frame, field + ".frame_id",
                          "unknown frame '" + frame.Scalar() + "': expected the planning frame '" +
-                             builder_.frames().root() + "', 'world', a fixed frame or a link of the URDF");
+                             builder_.frames().root() + "', 'world', a fixed frame or a link of the robot");
     }
     return *pose;
   }
@@ -206,7 +206,7 @@ private:
       message_.yaml.fail(matrix["entry_names"][unknown.front()],
                          "allowed_collision_matrix.entry_names[" + std::to_string(unknown.front()) + "]",
                          list + (unknown.size() == 1 ? " is" : " are") +
-                             " no link of the URDF and no collision object (links not named: " + missing + ")");
+                             " no link of the robot and no collision object (links not named: " + missing + ")");
     }
     for (const std::size_t i : unknown) builder_.ignoreMatrixName(names[i]);
     for (std::size_t i = 0; i < names.size(); ++i) {
@@ -227,11 +227,11 @@ private:
   void readDefaultEntries(const YAML::Node& matrix) {
     const auto names = textList(matrix["default_entry_names"], "allowed_collision_matrix.default_entry_names");
     const auto values =
-        booleans(matrix["default_entry_values"], "allowed_collision_matrix.default_entry_values", names.size());
+        booleans(matrix["default_entry_values"], "allowed_collision_matrix.default_entry_values", names.size(), matrix);
     for (std::size_t i = 0; i < names.size(); ++i) {
       if (!builder_.isKnownName(names[i])) {
         message_.yaml.fail(matrix["default_entry_names"][i], "allowed_collision_matrix.default_entry_names",
-                           "'" + names[i] + "' is no link of the URDF and no collision object");
+                           "'" + names[i] + "' is no link of the robot and no collision object");
       }
       if (values[i]) builder_.allowWithEverything(names[i]);
     }
@@ -246,10 +246,13 @@ private:
     return values;
   }
 
-  std::vector<bool> booleans(const YAML::Node& node, const std::string& field, std::size_t count) const {
+  // `parent` holds the list: an absent list (which has no position) is reported where its parent is.
+  std::vector<bool> booleans(const YAML::Node& node, const std::string& field, std::size_t count,
+                             const YAML::Node& parent = {}) const {
     if (count == 0 && (!node || node.IsNull())) return {};
     if (!node || !node.IsSequence() || node.size() != count)
-      message_.yaml.fail(node, field, "expected a list of " + std::to_string(count) + " true/false values");
+      message_.yaml.fail(node ? node : parent, field,
+                         "expected a list of " + std::to_string(count) + " true/false values");
     std::vector<bool> values;
     for (std::size_t i = 0; i < count; ++i) {
       bool value = false;

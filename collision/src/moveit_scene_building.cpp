@@ -7,11 +7,10 @@
 namespace arcplan::collision::detail {
 
 SceneBuilder::SceneBuilder(const MoveItRobot& robot, const std::filesystem::path& sourceFile)
-    : urdf_(robot.urdf),
-      srdf_(robot.srdf),
+    : robot_(robot),
       sourceFile_(sourceFile),
-      model_(sharedRobotModel(robot.urdf)),
-      frames_(sharedUrdfFrames(robot.urdf)),
+      model_(sharedRobotModel(robot)),
+      frames_(sharedUrdfFrames(robot)),
       name_(sourceFile.stem().string()) {}
 
 void SceneBuilder::addFixedFrame(const std::string& name, const Eigen::Isometry3d& poseInPlanningFrame) {
@@ -86,8 +85,13 @@ MoveItProblem SceneBuilder::finish() {
   Scene& scene = problem.scene;
   scene.name = name_;
   scene.sourceFile = sourceFile_;
-  scene.robot.urdf = urdf_;
-  scene.robot.srdf = srdf_;
+  scene.robot.urdf = robot_.urdf;
+  scene.robot.srdf = robot_.srdf;
+  if (robot_.urdf.empty()) {
+    scene.robot.urType = robot_.urDescription.type;
+    scene.robot.description = robot_.urDescription.folder;
+    scene.robot.kinematics = robot_.urDescription.kinematics;
+  }
   for (const auto& id : objectOrder_) {
     const Object& object = objects_.at(id);
     for (std::size_t k = 0; k < object.shapes.size(); ++k) {

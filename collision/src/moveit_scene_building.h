@@ -23,7 +23,6 @@ public:
 
   const UrdfFrames& frames() const { return *frames_; }
   const robot::RobotModel& model() const { return *model_; }
-  const std::filesystem::path& urdf() const { return urdf_; }
   const std::map<std::string, double>& joints() const { return joints_; }
 
   void setName(const std::string& name) { name_ = name; }
@@ -49,7 +48,8 @@ public:
 private:
   std::vector<std::string> bodiesOf(const std::string& name) const;  // object parts, or the link itself
 
-  std::filesystem::path urdf_, srdf_, sourceFile_;
+  MoveItRobot robot_;
+  std::filesystem::path sourceFile_;
   std::shared_ptr<const robot::RobotModel> model_;
   std::shared_ptr<const UrdfFrames> frames_;
   std::string name_;

@@ -145,6 +145,7 @@ TEST(ArcplanExitCodes, PlanOptionValuesOutOfRangeAreUsageErrors) {
   } cases[] = {
       {{"plan", "--scene", kScene, "--time", "0"}, "--time must be a positive number of seconds"},
       {{"plan", "--scene", kScene, "--vmax", "-1"}, "--vmax must be a positive TCP speed in m/s"},
+      {{"plan", "--scene", kScene, "--clearance", "-0.01"}, "--clearance must be a distance >= 0 m"},
   };
   for (const auto& c : cases) {
     auto arguments = c.arguments;

@@ -13,11 +13,13 @@
 // x in [0.3, 0.8], y in [-0.2, 0.2]: 3 mm above the sphere wherever the sphere is under it.
 #include <cmath>
 #include <fstream>
+#include <random>
 
 #include <gtest/gtest.h>
 #include <ompl/base/ScopedState.h>
 
 #include "arcplan/collision/endpoint_clearance.h"
+#include "motion_bounds.h"
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "support/command.h"
@@ -172,6 +174,26 @@ TEST(EndpointClearance, AClearEndpointChangesNothing) {
   EXPECT_TRUE(rule.zones().empty());
   EXPECT_DOUBLE_EQ(rule.motionClearance(), 0.002);
   EXPECT_DOUBLE_EQ(rule.stateClearanceAt(joints(0, 0)), 0.002);
+}
+
+// The zones bound a displacement with the certified motion check's own reach (shared, not rebuilt):
+// on the UR10e, for seeded random motions, the largest body bound of motionBound (motion_bounds.h).
+TEST(EndpointClearance, DisplacementIsTheMotionChecksLargestBodyBound) {
+  const auto model = makeCollisionModel(Scene{});
+  const EndpointClearance rule(*model, kClearance, 0.0, {});
+  std::mt19937_64 random(20);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0);
+  for (int sample = 0; sample < 200; ++sample) {
+    arcplan::robot::Vector6 a, b;
+    for (int j = 0; j < 6; ++j) {
+      a[j] = angle(random);
+      b[j] = angle(random);
+    }
+    double largest = 0.0;
+    for (std::size_t body = 0; body < model->linkNames().size(); ++body)
+      largest = std::max(largest, motionBound(*model, static_cast<int>(body), a, b));
+    EXPECT_NEAR(rule.displacement(a, b), largest, 1e-12 * largest);
+  }
 }
 
 }  // namespace

@@ -34,11 +34,13 @@ struct ProblemValidity {
 };
 ProblemValidity checkEndpoints(const collision::Scene& scene, const std::string& query = "");
 
-// Suite entries `moveit_problems: {folder, urdf, srdf}`: every problem loaded; the valid ones
-// appended to suite.problems (kind = family), the others to suite.excludedProblems. Paths relative to
-// the suite file, else under ARCPLAN_SHARED_DATA. Throws arcplan::Error naming the problem's file.
+// Suite entries `moveit_problems: {folder, urdf | ur_type [description] [kinematics], srdf}`: every
+// problem loaded; the valid ones appended to suite.problems (kind = family), the others to
+// suite.excludedProblems. Paths relative to the suite file, else under ARCPLAN_SHARED_DATA. Throws
+// arcplan::Error naming the problem's file.
 struct MoveItProblemSource {
-  std::filesystem::path folder, urdf, srdf;
+  std::filesystem::path folder;
+  collision::MoveItRobot robot;  // a URDF, or a UR type from UR's description
 };
 void addMoveItProblems(const MoveItProblemSource& source, Suite& suite);
 

@@ -2,9 +2,9 @@
 // One scene query planned once and measured: what `arcplan plan` and the Python module's
 // `arcplan.plan` both compute, so that they give the same numbers for the same inputs. The planner
 // comes from the registry with its parameters; its path is simplified as simplifiesSolution says
-// (solution_policy.h) and measured by trajectory::measurePath (time-scaled when a TCP speed limit is
-// given, the obstacle clearance at every dense waypoint).
+// (solution_policy.h) and measured and judged by measureSolution as bench does (solution_measurement.h).
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -28,6 +28,7 @@ struct PlanQueryOptions {
   // OMPL's seed is process-global: it is set before the problem exists (planning_problem.h).
   std::optional<std::uint32_t> seed;
   std::optional<double> maxTcpSpeed;  // m/s: also time-scale the path (PCHIP) and measure the scaled metrics
+  double clearance = 0.0;             // m every state and motion keeps (a suite's `clearance`); 0: no contact
 };
 
 enum class PlanStatus { Exact, Approximate, Failed };
@@ -45,16 +46,30 @@ struct PlannedQuery {
   std::optional<planners::ArcPlannerResult> arc;       // the arc planner's details
   trajectory::JointPath path;  // the (simplified) solution path, exact or approximate; empty without one
   std::optional<trajectory::PathMeasurement> measurement;  // when there is a path
+  // With a path: its smallest (measured − required) clearance, as bench judges it (solution_measurement.h).
+  double clearanceMargin = std::numeric_limits<double>::infinity();
 };
 
-// Throws arcplan::Error for a bad option (non-positive or non-finite time limit or speed), an unknown
+// How the caller names the options in its messages: Python's keywords by default, the command line
+// its options ("--time", "--vmax", "--clearance").
+struct PlanOptionNames {
+  std::string timeLimit = "plan: the time limit";
+  std::string maxTcpSpeed = "plan: vmax";
+  std::string clearance = "plan: the clearance";
+};
+// The one check of the options (planQuery calls it first): throws arcplan::Error "<name> must be ...".
+void checkPlanQueryOptions(const PlanQueryOptions& options, const PlanOptionNames& names = {});
+
+// Throws arcplan::Error for a bad option (non-positive or non-finite time limit or speed, a negative or
+// non-finite clearance), an unknown
 // planner or parameter, and as planners::makePlanningProblem does; a planner that finds no path is a
 // result (status Failed with its reason), not an error.
 PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std::string& queryName,
                        const PlanQueryOptions& options);
 
 // The result document of `plan --json` (docs/cli.md): scene, query, planner, status, solve time,
-// time limit, parameters, seed, reason, the arc planner's details, waypoints, vmax and the metrics.
+// time limit, parameters, seed, reason, the arc planner's details, waypoints, vmax, the metrics, the
+// clearance asked for and whether the path kept it (clearance_m, clearance_kept).
 nlohmann::json toJson(const PlannedQuery& planned);
 
 }  // namespace arcplan::benchmarks

@@ -12,14 +12,19 @@
 #include <Eigen/Geometry>
 
 #include "arcplan/collision/scene.h"
+#include "arcplan/robot/ur_description.h"
 
 namespace arcplan::collision {
 
-// What the messages are read against: poses are given in the URDF's root frame (MoveIt's planning
-// frame) or relative to one of its links, and joint and link names must be the URDF's.
+// What the messages are read against: poses are given in the robot's root frame (MoveIt's planning
+// frame) or relative to one of its links, and joint and link names must be the robot's. The robot is
+// a URDF, or (urDescription.type given, urdf empty) a UR type built from Universal Robots'
+// description parameters, whose names are those of UR's xacro (base_link ... tool0,
+// shoulder_pan_joint ... wrist_3_joint).
 struct MoveItRobot {
   std::filesystem::path urdf;
   std::filesystem::path srdf;  // optional: its disabled collision pairs (empty: none)
+  robot::UrDescriptionSelection urDescription;
 };
 
 struct MoveItProblem {

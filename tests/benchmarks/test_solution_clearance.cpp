@@ -1,0 +1,70 @@
+// One judgement of a solution's clearance (benchmarks/solution_measurement.h) for `plan` and `bench`:
+// on a MotionBenchMaker problem whose goal is a grasp closer than 1 cm to the object, both ask for 1 cm,
+// both relax it in the goal's approach zone (collision/endpoint_clearance.h), so both say the path kept
+// its clearance although it comes closer than 1 cm. A plain 1 cm rule would call that path a failure.
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/moveit_scene.h"
+#include "support/command.h"
+#include "support/database_rows.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path mbm() { return arcplan::testing::sharedDataDirectory() / "mbm_ur5"; }
+
+// table_pick 0002: the suite's plotted table problem; its goal is a grasp ~5 mm from the can.
+const char* kFamily = "table_pick_ur5";
+const char* kNumber = "0002";
+
+fs::path problemFile(const std::string& kind) { return mbm() / "problems" / kFamily / (kind + kNumber + ".yaml"); }
+
+TEST(SolutionClearance, PlanAndBenchJudgeAGoalInsideTheClearanceAlike) {
+  // Precondition, measured independently of the planners: the goal is closer than 1 cm to an obstacle.
+  const auto problem = arcplan::collision::loadMoveItProblem(problemFile("scene"), problemFile("request"),
+                                                             {mbm() / "ur5.urdf", mbm() / "ur5.srdf", {}});
+  const auto model = arcplan::collision::makeCollisionModel(problem.scene);
+  arcplan::collision::CollisionData data(*model);
+  const double goalClearance =
+      arcplan::collision::distance(*model, data, *problem.scene.queries.front().goal.joints).obstacleDistance;
+  ASSERT_GT(goalClearance, 0.0);
+  ASSERT_LT(goalClearance, 0.01);
+
+  const auto dir = arcplan::testing::freshTempDirectory("solution_clearance");
+  const auto json = dir / "plan.json";
+  const auto planned = arcplan::testing::runArcplan(
+      {"plan", "--moveit-scene", problemFile("scene").string(), "--moveit-request", problemFile("request").string(),
+       "--urdf", (mbm() / "ur5.urdf").string(), "--srdf", (mbm() / "ur5.srdf").string(), "--planner", "RRTConnect",
+       "--seed", "1", "--time", "10", "--clearance", "0.01", "--json", json.string()});
+  ASSERT_EQ(planned.exitCode, 0) << planned.err;
+  const auto document = nlohmann::json::parse(arcplan::testing::readFile(json));
+  EXPECT_EQ(document["clearance_m"], 0.01);
+  EXPECT_EQ(document["clearance_kept"], true);
+  // The path ends at the goal, so it comes closer than 1 cm: kept only by the approach-zone rule.
+  EXPECT_LT(document["min_clearance_m"].get<double>(), 0.01);
+
+  fs::create_directories(dir / "problems" / kFamily);
+  for (const char* kind : {"scene", "request"})
+    fs::copy_file(problemFile(kind), dir / "problems" / kFamily / (std::string(kind) + kNumber + ".yaml"));
+  std::ofstream(dir / "suite.yaml") << "name: one-grasp\nruns: 1\ntime_limit: 10\nv_max: 0.25\nclearance: 0.01\n"
+                                       "moveit_problems: {folder: problems, urdf: "
+                                    << (mbm() / "ur5.urdf").string() << ", srdf: " << (mbm() / "ur5.srdf").string()
+                                    << "}\nplanners: [RRTConnect]\n";
+  const auto out = dir / "campaign";
+  const auto bench = arcplan::testing::runArcplan(
+      {"bench", "--suite", (dir / "suite.yaml").string(), "--no-plots", "--out", out.string()});
+  ASSERT_EQ(bench.exitCode, 0) << bench.err;
+  const auto rows =
+      arcplan::testing::databaseRows(out / "benchmark.db", "SELECT clearance_kept, solved, min_clearance FROM runs");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0][0], "1");
+  EXPECT_EQ(rows[0][1], "1");
+  EXPECT_LT(std::stod(rows[0][2]), 0.01);
+}
+
+}  // namespace

@@ -1,0 +1,157 @@
+// MoveIt problems read against a UR type built from Universal Robots' description parameters (no URDF):
+// `plan --moveit-scene ... --ur-type T`, suites' `moveit_problems: {ur_type: T}`, and the hand-written
+// problem families in tests/collision/moveit_problems (every shape and field the readers claim, family
+// names MBM does not have). Expected poses come from the message definitions and UR's xacro
+// convention (base_link_inertia is base_link turned by pi about z), names from the description files.
+#include <fstream>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "arcplan/benchmarks/moveit_problems.h"
+#include "arcplan/benchmarks/plan_query.h"
+#include "arcplan/benchmarks/suite.h"
+#include "arcplan/collision/collision_model.h"
+#include "arcplan/collision/moveit_scene.h"
+#include "arcplan/robot/ur_description.h"
+#include "support/command.h"
+#include "support/error_message.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using arcplan::collision::MoveItProblem;
+using arcplan::collision::MoveItRobot;
+using arcplan::collision::Obstacle;
+
+const fs::path kProblems = ARCPLAN_MOVEIT_TEST_PROBLEMS;
+
+MoveItRobot urType(const std::string& type) { return {{}, {}, {type, {}, {}}}; }
+
+const Obstacle& named(const arcplan::collision::Scene& scene, const std::string& name) {
+  for (const auto& obstacle : scene.obstacles) {
+    if (obstacle.name == name) return obstacle;
+  }
+  throw std::runtime_error("no obstacle " + name);
+}
+
+std::set<std::string> linkNamesOf(const arcplan::robot::RobotModel& model) {
+  std::set<std::string> names;
+  for (const auto& link : model.links()) names.insert(link.name);
+  return names;
+}
+
+TEST(MoveItUrType, FramesAndNamesAreTheDescriptionsOwn) {
+  const MoveItProblem problem = arcplan::collision::loadMoveItProblem(
+      kProblems / "cage_ur5e" / "scene0001.yaml", kProblems / "cage_ur5e" / "request0001.yaml", urType("ur5e"));
+  const arcplan::collision::Scene& scene = problem.scene;
+  EXPECT_EQ(scene.robot.urType, "ur5e");
+  EXPECT_TRUE(scene.robot.urdf.empty());
+  // The ball is given in base_link_inertia at (-0.4, -0.45, 0.45): turned by pi about z, (0.4, 0.45, 0.45).
+  EXPECT_NEAR((named(scene, "ball").pose.translation() - Eigen::Vector3d(0.4, 0.45, 0.45)).norm(), 0.0, 1e-12);
+  // The floor: fixed frame "cell" 0.02 m below the root, box centre 0.01 m below that.
+  EXPECT_NEAR((named(scene, "floor").pose.translation() - Eigen::Vector3d(0, 0, -0.03)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(named(scene, "post").length, 1.0);  // [height, radius]
+  EXPECT_EQ(named(scene, "post").radius, 0.05);
+  EXPECT_EQ(named(scene, "wedge").shape, Obstacle::Shape::Mesh);
+  ASSERT_EQ(scene.attachedObstacles.size(), 1u);
+  EXPECT_EQ(scene.attachedObstacles[0].link, "tool0");
+  // Every name the scene's pairs and attached bodies use is a link of the model UR's files make, or an object.
+  const auto links = linkNamesOf(arcplan::robot::loadUrDescription({"ur5e", {}, {}}));
+  const std::set<std::string> objects{"floor", "post", "ball", "wedge", "probe"};
+  for (const auto& [a, b] : scene.allowedCollisions) {
+    for (const auto& name : {a, b}) EXPECT_TRUE(links.count(name) + objects.count(name) == 1) << name;
+  }
+  const std::pair<std::string, std::string> probeWrist{"probe", "wrist_3_link"};
+  EXPECT_NE(std::find(scene.allowedCollisions.begin(), scene.allowedCollisions.end(), probeWrist),
+            scene.allowedCollisions.end());
+  EXPECT_EQ(problem.startState.size(), 6u);
+  EXPECT_EQ(problem.startState.count("shoulder_pan_joint"), 1u);
+}
+
+TEST(MoveItUrType, NamesNotInTheDescriptionAreErrorsNamingIt) {
+  const auto dir = arcplan::testing::freshTempDirectory("moveit_ur_type_names");
+  std::ofstream(dir / "gripper.yaml") << "robot_state:\n  joint_state:\n    name: [robotiq_85_left_knuckle_joint]\n"
+                                         "    position: [0]\n";
+  const std::string joint = arcplan::testing::errorMessageOf(
+      [&] { arcplan::collision::loadMoveItScene(dir / "gripper.yaml", urType("ur5e")); });
+  EXPECT_NE(joint.find("gripper.yaml:3:"), std::string::npos) << joint;
+  EXPECT_NE(joint.find("'robotiq_85_left_knuckle_joint' is no joint of the robot 'ur5e'"), std::string::npos) << joint;
+  std::ofstream(dir / "frame.yaml") << "world:\n  collision_objects:\n    - id: a\n      header: {frame_id: ee_link}\n"
+                                       "      primitives: [{type: sphere, dimensions: [0.1]}]\n"
+                                       "      primitive_poses: [{}]\n";
+  const std::string frame = arcplan::testing::errorMessageOf(
+      [&] { arcplan::collision::loadMoveItScene(dir / "frame.yaml", urType("ur5e")); });
+  EXPECT_NE(frame.find("frame.yaml:4:"), std::string::npos) << frame;
+  EXPECT_NE(frame.find("unknown frame 'ee_link'"), std::string::npos) << frame;
+}
+
+TEST(MoveItUrType, PlanTakesTheUrTypeOnTheMoveItPath) {
+  const auto dir = arcplan::testing::freshTempDirectory("moveit_ur_type_plan");
+  const auto json = dir / "plan.json";
+  const auto result = arcplan::testing::runArcplan(
+      {"plan", "--moveit-scene", (kProblems / "cage_ur5e" / "scene0001.yaml").string(), "--moveit-request",
+       (kProblems / "cage_ur5e" / "request0001.yaml").string(), "--ur-type", "ur5e", "--planner", "RRTConnect",
+       "--seed", "1", "--json", json.string()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto document = nlohmann::json::parse(arcplan::testing::readFile(json));
+  EXPECT_EQ(document["status"], "exact");
+  EXPECT_EQ(document["start_valid"], true);
+  EXPECT_EQ(document["goal_valid"], true);
+  // --kinematics without --ur-type is still a usage error.
+  EXPECT_EQ(
+      arcplan::testing::runArcplan({"plan", "--moveit-scene", (kProblems / "cage_ur5e" / "scene0001.yaml").string(),
+                                    "--moveit-request", (kProblems / "cage_ur5e" / "request0001.yaml").string(),
+                                    "--urdf", arcplan::robot::ur10eUrdfPath().string(), "--kinematics", json.string()})
+          .exitCode,
+      2);
+}
+
+TEST(MoveItUrType, EveryFamilyOfASuiteLoadsValidAndPlans) {
+  const auto dir = arcplan::testing::freshTempDirectory("moveit_ur_type_suite");
+  std::ofstream(dir / "suite.yaml") << "name: families\nmoveit_problems: {folder: " << kProblems.string()
+                                    << ", ur_type: ur5e}\nplanners: [RRTConnect]\n";
+  const arcplan::benchmarks::Suite suite = arcplan::benchmarks::loadSuite(dir / "suite.yaml");
+  ASSERT_EQ(suite.problems.size(), 2u);
+  EXPECT_TRUE(suite.excludedProblems.empty());
+  std::set<std::string> families;
+  for (const auto& problem : suite.problems) {
+    families.insert(problem.kind);
+    EXPECT_EQ(problem.scene.robot.urType, "ur5e");
+    for (const std::string planner : {"RRTConnect", "arc"}) {
+      arcplan::benchmarks::PlanQueryOptions options;
+      options.planner = planner;
+      options.seed = 1;
+      options.clearance = 0.01;
+      const auto planned = arcplan::benchmarks::planQuery(
+          std::make_shared<const arcplan::collision::Scene>(problem.scene), problem.query, options);
+      EXPECT_EQ(planned.status, arcplan::benchmarks::PlanStatus::Exact) << problem.name << " " << planner;
+      EXPECT_GE(planned.clearanceMargin, 0.0) << problem.name << " " << planner;
+    }
+  }
+  EXPECT_EQ(families, (std::set<std::string>{"cage_ur5e", "shelf_pick_ur5e"}));
+}
+
+// Every type in the description folder reads a MoveIt problem and plans it: the cage's request in a
+// scene with only the floor (the cage is sized for the UR5e).
+TEST(MoveItUrType, EveryDescriptionTypePlansAMoveItProblem) {
+  const auto dir = arcplan::testing::freshTempDirectory("moveit_ur_types");
+  std::ofstream(dir / "floor.yaml")
+      << "world:\n  collision_objects:\n    - id: floor\n      primitives: [{type: box, "
+         "dimensions: [3, 3, 0.02]}]\n      primitive_poses: [{position: [0, 0, -0.03]}]\n";
+  const auto types = arcplan::robot::urTypesIn(arcplan::robot::defaultUrDescriptionFolder());
+  ASSERT_GE(types.size(), 7u);
+  for (const auto& type : types) {
+    const MoveItProblem problem = arcplan::collision::loadMoveItProblem(
+        dir / "floor.yaml", kProblems / "cage_ur5e" / "request0001.yaml", urType(type));
+    arcplan::benchmarks::PlanQueryOptions options;
+    options.planner = "RRTConnect";
+    options.seed = 1;
+    const auto planned =
+        arcplan::benchmarks::planQuery(std::make_shared<const arcplan::collision::Scene>(problem.scene), "", options);
+    EXPECT_EQ(planned.status, arcplan::benchmarks::PlanStatus::Exact) << type << ": " << planned.reason;
+  }
+}
+
+}  // namespace
