@@ -22,6 +22,7 @@
 #include "arcplan/benchmarks/campaign.h"
 #include "arcplan/benchmarks/interrupt.h"
 #include "arcplan/benchmarks/median_run.h"
+#include "arcplan/benchmarks/solution_measurement.h"
 #include "arcplan/benchmarks/solution_policy.h"
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/endpoint_clearance.h"
@@ -323,16 +324,6 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   benchmark.addExperimentParameter("arcplan version", "TEXT", ARCPLAN_VERSION);
   benchmark.addPlanner(planner);
 
-  const auto& collisionModel = *planning.collisionModel;
-  collision::CollisionData collisionData(collisionModel);
-  // Along the measured path: how far below its required clearance the path came (< 0: it did not keep it).
-  double clearanceShortfall = 0.0;
-  std::optional<collision::PathClearance> pathClearance;
-  const trajectory::ClearanceFunction clearanceOf = [&](const robot::Vector6& q) {
-    const double clearance = collision::distance(collisionModel, collisionData, q).obstacleDistance;
-    clearanceShortfall = std::min(clearanceShortfall, clearance - pathClearance->next(q));
-    return clearance;
-  };
   trajectory::TimeScalingOptions scaling;
   scaling.maxTcpSpeed = suite.vMax;
 
@@ -363,18 +354,17 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
     if (setup.haveExactSolutionPath()) {
       try {
         const trajectory::JointPath path = collision::waypointsOf(setup.getSolutionPath());
-        clearanceShortfall = 0.0;
-        pathClearance.emplace(required, path);
-        const auto measured = trajectory::measurePath(collisionModel.robot(), path, scaling, clearanceOf);
-        recordMetrics(measured.metrics, run);
+        const MeasuredSolution measured = measureSolution(planning, path, scaling);  // as `plan` measures
+        recordMetrics(measured.measurement.metrics, run);
         // A path that comes closer than the suite's clearance (in an approach zone: the zone's) is not a
         // success, whatever validated it: OMPL's "solved" is withdrawn, which is what the ranking and
         // ompl_benchmark_statistics count.
-        const bool keptClearance = !(clearanceShortfall < 0.0);
+        const bool keptClearance = measured.keptClearance();
         run["clearance kept BOOLEAN"] = keptClearance ? "1" : "0";
         if (!keptClearance) run["solved BOOLEAN"] = "0";
         success = keptClearance;
-        if (success && !files.medianRun.empty()) recorded.push_back(recordProfile(currentRun, *measured.timed));
+        if (success && !files.medianRun.empty())
+          recorded.push_back(recordProfile(currentRun, *measured.measurement.timed));
       } catch (const Error&) {
         // A path that cannot be time-scaled is a failed run: it has no execution time.
       }
