@@ -27,71 +27,14 @@ echo "campaign report: $size bytes"
 browser_test --report "$work/campaign/report.html" --kind campaign --planners 3 --speed-problems 2 --arm
 
 echo "== campaign with a gripper and every obstacle kind: a MoveIt scene (box, cylinder, sphere, mesh, a held sphere) and an STL"
-# arcplan's UR10e with a box body on tool0 and a cylinder finger beyond it (links past the flange).
-mkdir -p "$work/drawn/moveit"
-sed -e "s|filename=\"meshes/|filename=\"$source_dir/data/ur10e/meshes/|" \
-    -e 's|</robot>|<link name="gripper"><collision><origin xyz="0 0 0.05"/><geometry><box size="0.08 0.06 0.08"/></geometry></collision></link><joint name="tool0-gripper" type="fixed"><parent link="tool0"/><child link="gripper"/></joint><link name="finger"><collision><origin xyz="0 0 0.02"/><geometry><cylinder radius="0.01" length="0.04"/></geometry></collision></link><joint name="gripper-finger" type="fixed"><parent link="gripper"/><child link="finger"/><origin xyz="0 0 0.1"/></joint></robot>|' \
-    "$source_dir/data/ur10e/ur10e.urdf" > "$work/drawn/gripper.urdf"
-cat > "$work/drawn/moveit/scene0001.yaml" <<'YAML'
-world:
-  collision_objects:
-    - {id: crate, pose: {position: [-0.8, 0.2, 0.3], orientation: [0, 0, 0.7071067811865476, 0.7071067811865476]},
-       primitives: [{type: box, dimensions: [0.1, 0.2, 0.3]}], primitive_poses: [{position: [0.1, 0, 0]}]}
-    - {id: can, pose: {position: [-0.8, -0.3, 0.2]}, primitives: [{type: cylinder, dimensions: [0.4, 0.05]}],
-       primitive_poses: [{orientation: [0.7071067811865476, 0, 0, 0.7071067811865476]}]}
-    - {id: ball, pose: {position: [-0.6, -0.6, 0.5]}, primitives: [{type: sphere, dimensions: [0.07]}], primitive_poses: [{}]}
-    - {id: wedge, meshes: [{vertices: [[0, 0, 0], [0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]],
-                            triangles: [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]}],
-       mesh_poses: [{position: [-0.7, 0.6, 0.1]}]}
-robot_state:
-  attached_collision_objects:
-    - {link_name: tool0, object: {id: held, primitives: [{type: sphere, dimensions: [0.02]}],
-                                  primitive_poses: [{position: [0, 0, 0.3]}]}}
-YAML
-joints='[0, -1.57, 1.57, -1.57, -1.57, 0]'
-cat > "$work/drawn/moveit/request0001.yaml" <<YAML
-start_state: {joint_state: {name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint], position: $joints}}
-goal_constraints:
-  - joint_constraints: [{joint_name: shoulder_pan_joint, position: 0.5}, {joint_name: shoulder_lift_joint, position: -1.57},
-                        {joint_name: elbow_joint, position: 1.57}, {joint_name: wrist_1_joint, position: -1.57},
-                        {joint_name: wrist_2_joint, position: -1.57}, {joint_name: wrist_3_joint, position: 0}]
-YAML
-cat > "$work/drawn/part.stl" <<'STL'
-solid part
-facet normal 0 0 -1
-outer loop
-vertex 0 0 0
-vertex 0 0.1 0
-vertex 0.1 0 0
-endloop
-endfacet
-facet normal 1 1 1
-outer loop
-vertex 0.1 0 0
-vertex 0 0.1 0
-vertex 0 0 0.1
-endloop
-endfacet
-endsolid part
-STL
-cat > "$work/drawn/stl_scene.yaml" <<YAML
-name: stl_scene
-robot: {urdf: gripper.urdf}
-obstacles:
-  - {name: part, mesh: {file: part.stl, scale: [2, 2, 2]}, position: [-0.7, -0.5, 0.3]}
-queries:
-  - {name: q, start: {joints: $joints}, goal: {joints: [0.5, -1.57, 1.57, -1.57, -1.57, 0]}}
-YAML
-cat > "$work/drawn/suite.yaml" <<'YAML'
-name: drawn
-runs: 1
-time_limit: 0.3
-clearance: 0
-problems: [{name: stl, scene: stl_scene.yaml, query: q}]
-moveit_problems: {folder: moveit, urdf: gripper.urdf}
-planners: [RRTConnect]
-plots: [stl, moveit-0001]
-YAML
+# The files of tests/report/drawn_campaign (shared with test_report_scene.cpp) and arcplan's UR10e with
+# the box body and cylinder finger of gripper_links.xml beyond the flange.
+cp -r "$source_dir/tests/report/drawn_campaign" "$work/drawn"
+{
+  sed -e "s|filename=\"meshes/|filename=\"$source_dir/data/ur10e/meshes/|" -e 's|</robot>||' "$source_dir/data/ur10e/ur10e.urdf"
+  cat "$work/drawn/gripper_links.xml"
+  echo "</robot>"
+} > "$work/drawn/gripper.urdf"
 "$arcplan" bench --suite "$work/drawn/suite.yaml" -j 1 --no-plots --quiet --out "$work/drawn/campaign" \
   --html "$work/drawn/report.html" > /dev/null
 # 5 obstacles (4 MoveIt shapes + the STL part), 2 of them meshes; a held sphere; 7 UR10e links + gripper + finger.

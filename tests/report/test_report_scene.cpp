@@ -1,7 +1,8 @@
 // What the campaign report's 3D view gets from a real campaign (`arcplan bench`): every obstacle of a
 // MoveIt scene (box, cylinder [height, radius], sphere, mesh; object pose · primitive pose with
 // quaternions [x, y, z, w]) and of a scene file (an STL mesh), a body the robot holds, and every link
-// of a robot with a gripper beyond the flange. Expected poses and sizes are worked out by hand from the input files.
+// of a robot with a gripper beyond the flange. Expected poses and sizes are worked out by hand from the input
+// files (tests/report/drawn_campaign).
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -23,126 +24,21 @@ namespace {
 using arcplan::testing::decodeBase64Array;
 using Json = nlohmann::json;
 
-std::filesystem::path write(const std::filesystem::path& dir, const std::string& name, const std::string& text) {
-  std::ofstream(dir / name) << text;
-  return dir / name;
-}
-
-// arcplan's UR10e with a gripper beyond the flange: a box body on tool0 and a finger 0.1 m further.
-std::filesystem::path gripperUrdf(const std::filesystem::path& dir) {
+// The campaign's files (tests/report/drawn_campaign, shared with browser_reports.sh) copied to `dir`,
+// and beside them gripper.urdf: arcplan's UR10e with a box body on tool0 and a finger 0.1 m further.
+void writeDrawnCampaign(const std::filesystem::path& dir) {
+  const std::filesystem::path fixture = ARCPLAN_DRAWN_CAMPAIGN_DIR;
+  std::filesystem::copy(fixture, dir, std::filesystem::copy_options::recursive);
   std::string urdf = arcplan::testing::ur10eUrdfText();
-  const std::string gripper =
-      "<link name=\"gripper\"><collision><origin xyz=\"0 0 0.05\"/><geometry><box size=\"0.08 0.06 0.08\"/>"
-      "</geometry></collision></link>"
-      "<joint name=\"tool0-gripper\" type=\"fixed\"><parent link=\"tool0\"/><child link=\"gripper\"/></joint>"
-      "<link name=\"finger\"><collision><origin xyz=\"0 0 0.02\"/><geometry><cylinder radius=\"0.01\" "
-      "length=\"0.04\"/></geometry></collision></link>"
-      "<joint name=\"gripper-finger\" type=\"fixed\"><parent link=\"gripper\"/><child link=\"finger\"/>"
-      "<origin xyz=\"0 0 0.1\"/></joint>";
-  urdf.insert(urdf.rfind("</robot>"), gripper);
-  return write(dir, "gripper.urdf", urdf);
-}
-
-const std::string kJoints = "[0, -1.57, 1.57, -1.57, -1.57, 0]";
-
-// A MoveIt problem with one object per shape kind (all behind the robot, away from its motion).
-void writeMoveItProblem(const std::filesystem::path& folder) {
-  std::filesystem::create_directories(folder);
-  write(folder, "scene0001.yaml", R"(
-world:
-  collision_objects:
-    - id: crate
-      pose: {position: [-0.8, 0.2, 0.3], orientation: [0, 0, 0.7071067811865476, 0.7071067811865476]}
-      primitives: [{type: box, dimensions: [0.1, 0.2, 0.3]}]
-      primitive_poses: [{position: [0.1, 0, 0], orientation: [0, 0, 0, 1]}]
-    - id: can
-      pose: {position: [-0.8, -0.3, 0.2], orientation: [0, 0, 0, 1]}
-      primitives: [{type: cylinder, dimensions: [0.4, 0.05]}]
-      primitive_poses: [{position: [0, 0, 0], orientation: [0.7071067811865476, 0, 0, 0.7071067811865476]}]
-    - id: ball
-      pose: {position: [-0.6, -0.6, 0.5], orientation: [0, 0, 0, 1]}
-      primitives: [{type: sphere, dimensions: [0.07]}]
-      primitive_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]
-    - id: wedge
-      pose: {position: [0, 0, 0], orientation: [0, 0, 0, 1]}
-      meshes:
-        - vertices: [[0, 0, 0], [0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]
-          triangles: [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
-      mesh_poses: [{position: [-0.7, 0.6, 0.1], orientation: [0, 0, 0, 1]}]
-robot_state:
-  attached_collision_objects:
-    - link_name: tool0
-      object:
-        id: held
-        primitives: [{type: sphere, dimensions: [0.02]}]
-        primitive_poses: [{position: [0, 0, 0.3], orientation: [0, 0, 0, 1]}]
-)");
-  write(folder, "request0001.yaml",
-        "start_state:\n  joint_state:\n    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, "
-        "wrist_1_joint, wrist_2_joint, wrist_3_joint]\n    position: " +
-            kJoints +
-            "\ngoal_constraints:\n  - joint_constraints:\n"
-            "      - {joint_name: shoulder_pan_joint, position: 0.5}\n"
-            "      - {joint_name: shoulder_lift_joint, position: -1.57}\n"
-            "      - {joint_name: elbow_joint, position: 1.57}\n"
-            "      - {joint_name: wrist_1_joint, position: -1.57}\n"
-            "      - {joint_name: wrist_2_joint, position: -1.57}\n"
-            "      - {joint_name: wrist_3_joint, position: 0}\n");
-}
-
-// A scene file with an STL obstacle: a tetrahedron of 0.1 m legs, scaled 2x, turned 90° about z.
-void writeStlScene(const std::filesystem::path& dir) {
-  write(dir, "part.stl", R"(solid part
-facet normal 0 0 -1
-outer loop
-vertex 0 0 0
-vertex 0 0.1 0
-vertex 0.1 0 0
-endloop
-endfacet
-facet normal 0 -1 0
-outer loop
-vertex 0 0 0
-vertex 0.1 0 0
-vertex 0 0 0.1
-endloop
-endfacet
-facet normal -1 0 0
-outer loop
-vertex 0 0 0
-vertex 0 0 0.1
-vertex 0 0.1 0
-endloop
-endfacet
-facet normal 1 1 1
-outer loop
-vertex 0.1 0 0
-vertex 0 0.1 0
-vertex 0 0 0.1
-endloop
-endfacet
-endsolid part
-)");
-  write(dir, "stl_scene.yaml",
-        "name: stl_scene\nrobot: {urdf: gripper.urdf}\nobstacles:\n"
-        "  - {name: part, mesh: {file: part.stl, scale: [2, 2, 2]}, position: [-0.7, -0.5, 0.3], rpy: [0, 0, "
-        "1.5707963267948966]}\n"
-        "queries:\n  - {name: q, start: {joints: " +
-            kJoints + "}, goal: {joints: [0.5, -1.57, 1.57, -1.57, -1.57, 0]}}\n");
+  urdf.insert(urdf.rfind("</robot>"), arcplan::testing::readFile(fixture / "gripper_links.xml"));
+  std::ofstream(dir / "gripper.urdf") << urdf;
 }
 
 class ReportScene : public ::testing::Test {
 protected:
   static void SetUpTestSuite() {
     const auto dir = arcplan::testing::freshTempDirectory("report_scene");
-    gripperUrdf(dir);
-    writeMoveItProblem(dir / "moveit");
-    writeStlScene(dir);
-    write(dir, "suite.yaml",
-          "name: drawn\nruns: 1\ntime_limit: 0.3\nclearance: 0\n"
-          "problems: [{name: stl, scene: stl_scene.yaml, query: q}]\n"
-          "moveit_problems: {folder: moveit, urdf: gripper.urdf}\n"
-          "planners: [RRTConnect]\nplots: [stl, moveit-0001]\n");
+    writeDrawnCampaign(dir);
     const auto result = arcplan::testing::runArcplan({"bench", "--suite", (dir / "suite.yaml").string(), "--out",
                                                       (dir / "campaign").string(), "--no-plots", "--quiet", "-j", "1"});
     ASSERT_EQ(result.exitCode, 0) << result.err;
