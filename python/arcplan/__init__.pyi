@@ -85,6 +85,8 @@ class PlanResult:
     seed: Optional[int]
     time_limit_s: float
     vmax_mps: Optional[float]
+    clearance_m: float
+    clearance_kept: Optional[bool]
     solve_time_s: float
     mode: Optional[str]
     path: FloatArray
@@ -103,5 +105,5 @@ class PlanResult:
 
 def plan(scene_file: Union[PathLike, Scene], query: Optional[str] = None, planner: str = "arc",
          params: Mapping[str, Any] = {}, seed: Optional[int] = None, time_limit: float = 1.0,
-         vmax: Optional[float] = None) -> PlanResult: ...
+         vmax: Optional[float] = None, clearance: float = 0.0) -> PlanResult: ...
 def planner_names() -> List[str]: ...

@@ -54,13 +54,14 @@ std::vector<std::pair<std::string, std::string>> parameterTexts(const py::dict& 
 std::shared_ptr<Planned> plan(const py::handle& scene, const std::optional<std::string>& query,
                               const std::string& planner, const py::dict& parameters,
                               const std::optional<std::uint32_t>& seed, double timeLimit,
-                              const std::optional<double>& maxTcpSpeed) {
+                              const std::optional<double>& maxTcpSpeed, double clearance) {
   benchmarks::PlanQueryOptions options;
   options.planner = planner;
   options.parameters = parameterTexts(parameters);
   options.seed = seed;
   options.timeLimit = timeLimit;
   options.maxTcpSpeed = maxTcpSpeed;
+  options.clearance = clearance;
   const auto loaded = sceneOf(scene);
   py::gil_scoped_release release;
   return std::make_shared<Planned>(benchmarks::planQuery(loaded, query.value_or(""), options));
@@ -90,6 +91,12 @@ void bindPlanning(py::module_& module) {
       .def_property_readonly("seed", [](const Planned& p) { return p.options.seed; })
       .def_property_readonly("time_limit_s", [](const Planned& p) { return p.options.timeLimit; })
       .def_property_readonly("vmax_mps", [](const Planned& p) { return p.options.maxTcpSpeed; })
+      .def_property_readonly("clearance_m", [](const Planned& p) { return p.options.clearance; })
+      .def_property_readonly("clearance_kept",
+                             [](const Planned& p) -> std::optional<bool> {
+                               if (!p.measurement) return std::nullopt;
+                               return !(p.clearanceMargin < 0.0);
+                             })
       .def_property_readonly(trajectory::solveTimeDescriptor().key.c_str(),
                              [](const Planned& p) { return p.solveTime; })
       .def_property_readonly("mode",
@@ -121,11 +128,12 @@ void bindPlanning(py::module_& module) {
 
   module.def("plan", &plan, py::arg("scene_file"), py::arg("query") = py::none(), py::arg("planner") = "arc",
              py::arg("params") = py::dict(), py::arg("seed") = py::none(), py::arg("time_limit") = 1.0,
-             py::arg("vmax") = py::none(),
+             py::arg("vmax") = py::none(), py::arg("clearance") = 0.0,
              "Plans a scene query as `arcplan plan` does: scene_file a path, a data name or a Scene; query "
              "the query name (default: the first); planner any registry name (arc, RRTConnect, ...) with "
              "params {name: value}; seed OMPL's process-wide seed; vmax a TCP speed limit (m/s) to also "
-             "time-scale the path. A planner that finds no path gives status 'failed' and a reason.");
+             "time-scale the path; clearance (m) what states and motions keep, judged as bench does. A planner that "
+             "finds no path gives status 'failed' and a reason.");
   module.def("planner_names", &planners::plannerNames, "Every planner name the registry knows, 'arc' first.");
 }
 

@@ -36,6 +36,17 @@ def test_plan_equals_cli_on_the_thesis_scene(cli, tmp_path, case):
             assert document[key] == pytest.approx(value, abs=1e-9), key
 
 
+def test_clearance_is_asked_and_judged_as_the_cli_does(cli):
+    # The thesis endpoints are farther than 5 cm from the obstacle: no approach zone, so a kept clearance
+    # means every dense waypoint at least 5 cm away.
+    expected = cli("plan", "--scene", THESIS_SCENE, "--planner", "RRTConnect", "--seed", 1, "--clearance", 0.05)
+    result = arcplan.plan(str(THESIS_SCENE), planner="RRTConnect", seed=1, clearance=0.05)
+    assert result.clearance_m == expected["clearance_m"] == 0.05
+    assert result.clearance_kept is True and expected["clearance_kept"] is True
+    assert result.to_dict()["clearance_kept"] is True
+    assert result.min_clearance_m >= 0.05
+
+
 def test_thesis_arc_path_length_is_the_analytic_one():
     # README / docs/planners.md: with sagitta h = 0.5 r = 0.1 m the TCP path is the three-arc detour of
     # the thesis, 0.8825 m (its published measurement: 0.8816 m from sampled waypoints).
@@ -98,6 +109,7 @@ def test_planner_names_come_from_the_registry():
     ({"time_limit": 0.0}, "plan: the time limit must be a positive number of seconds"),
     ({"time_limit": float("nan")}, "plan: the time limit must be a positive number of seconds"),
     ({"vmax": -1.0}, "plan: vmax must be a positive TCP speed in m/s"),
+    ({"clearance": -0.01}, "plan: the clearance must be a distance >= 0 m"),
     ({"query": "no_such_query"}, "no_such_query"),
 ])
 def test_bad_requests_raise_arcplan_error(arguments, message):
