@@ -49,14 +49,20 @@ inline MotionLog makeMotionLog(int samples, double rate, double phase = 0.0) {
   return motion;
 }
 
+// A joint_current model (load torque: target_moment) with `effects`, the inside of the YAML list of
+// a model file ("drive_gain, {id: coulomb}"; empty for none), parsed as the file m.yaml.
+inline model::ModelSpec jointCurrentModel(const std::string& effects = "") {
+  return model::parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: [" + effects + "]\n",
+                               "m.yaml");
+}
+
 // makeMotionLog at 100 Hz, `samples` long, with joint 0 following `path` (rad) and then resting at its
 // last value: a dataset of a joint_current model without effects.
 inline model::Dataset pathDataset(const std::vector<double>& path, int samples) {
   auto motion = makeMotionLog(samples, 100.0);
   Eigen::MatrixXd& q = motion.log.vectors["actual_q"];
   for (int k = 0; k < samples; ++k) q(k, 0) = path[std::min<std::size_t>(static_cast<std::size_t>(k), path.size() - 1)];
-  const auto spec = model::parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: []\n", "m.yaml");
-  return model::makeJointDataset(motion.log, spec);
+  return model::makeJointDataset(motion.log, jointCurrentModel());
 }
 
 // The regressor columns (one per parameter) of `spec`'s effect on channel `channel` of `data`, with

@@ -15,10 +15,7 @@
 namespace {
 
 using namespace arcplan::model;
-
-ModelSpec modelWithoutEffects() {
-  return parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: []\n", "m.yaml");
-}
+using arcplan::testing::jointCurrentModel;
 
 Dataset syntheticDataset(int samples, double rate) {
   auto motion = arcplan::testing::makeMotionLog(samples, rate);
@@ -28,7 +25,7 @@ Dataset syntheticDataset(int samples, double rate) {
   for (Eigen::Index k = 0; k < current.rows(); ++k) {
     for (int j = 0; j < 6; ++j) current(k, j) = std::sin(0.3 * k + j) + 0.1 * noise(random);
   }
-  return makeJointDataset(motion.log, modelWithoutEffects());
+  return makeJointDataset(motion.log, jointCurrentModel());
 }
 
 TEST(Compare, ErrorMetricsMatchTheirDefinitions) {
@@ -136,7 +133,7 @@ TEST(Compare, SeriesOfALongLogIsWrittenAsEveryKthSample) {
   // 20 001 samples are more than a plot can show (20 000 per channel): every 2nd sample is written,
   // ceil(20001 / 2) = 10 001 rows per channel, each with its own sample index 0, 2, ..., 20 000.
   const Dataset data = syntheticDataset(20001, 500.0);
-  const auto model = fitModel(modelWithoutEffects(), data);
+  const auto model = fitModel(jointCurrentModel(), data);
   const auto directory = arcplan::testing::freshTempDirectory("compare_long_series");
   plotComparison(model, data, directory, "compare_data");
   std::ifstream series(directory / "compare_data_series.csv");

@@ -18,14 +18,11 @@
 namespace {
 
 using arcplan::testing::errorMessageOf;
+using arcplan::testing::jointCurrentModel;
 using arcplan::testing::regressorColumns;
 
 using namespace arcplan::model;
 using arcplan::Error;
-
-ModelSpec currentModel(const std::string& effects) {
-  return parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: " + effects + "\n", "test.yaml");
-}
 
 TEST(ModelFile, ParsesTheBaseModelOfTheIssue) {
   const auto spec = parseModelYaml(
@@ -82,10 +79,10 @@ TEST(ModelFile, TheRobotIsArcplansUr10eOrTheUrdfItNames) {
 }
 
 TEST(ModelFile, BadFilesNameTheFieldAndWhatWasExpected) {
-  const auto unknownEffect = errorMessageOf([] { currentModel("[drive_gain, frobnication]"); });
+  const auto unknownEffect = errorMessageOf([] { jointCurrentModel("drive_gain, frobnication"); });
   EXPECT_NE(unknownEffect.find("unknown effect 'frobnication'"), std::string::npos) << unknownEffect;
   EXPECT_NE(unknownEffect.find("load_friction"), std::string::npos);  // lists the known ones
-  EXPECT_NE(unknownEffect.find("test.yaml"), std::string::npos);
+  EXPECT_NE(unknownEffect.find("m.yaml"), std::string::npos);
   EXPECT_NE(errorMessageOf([] {
               parseModelYaml("kind: joint_torque\neffects: []\n", "k.yaml");
             }).find("unknown kind 'joint_torque'"),
@@ -98,9 +95,9 @@ TEST(ModelFile, BadFilesNameTheFieldAndWhatWasExpected) {
               parseModelYaml("kind: joint_tracking\neffects: [coulomb]\n", "k.yaml");
             }).find("does not apply to kind joint_tracking"),
             std::string::npos);
-  EXPECT_NE(errorMessageOf([] { currentModel("[{id: stribeck, width: 2}]"); }).find("unknown option 'width'"),
+  EXPECT_NE(errorMessageOf([] { jointCurrentModel("{id: stribeck, width: 2}"); }).find("unknown option 'width'"),
             std::string::npos);
-  EXPECT_NE(errorMessageOf([] { currentModel("[coulomb, coulomb]"); }).find("listed twice"), std::string::npos);
+  EXPECT_NE(errorMessageOf([] { jointCurrentModel("coulomb, coulomb"); }).find("listed twice"), std::string::npos);
   EXPECT_NE(errorMessageOf([] { parseModelYaml("kind: [\n", "bad.yaml"); }).find("bad.yaml:"), std::string::npos);
   EXPECT_NE(errorMessageOf([] { parseEffectArgument("coulomb:1,x"); }).find("not a finite number"), std::string::npos);
 }
@@ -109,7 +106,7 @@ class CatalogueOnSyntheticLog : public ::testing::Test {
 protected:
   void SetUp() override {
     motion = arcplan::testing::makeMotionLog(2000, 200.0);
-    spec = currentModel("[]");
+    spec = jointCurrentModel("");
     data = std::make_unique<Dataset>(makeJointDataset(motion.log, spec));
   }
   arcplan::testing::MotionLog motion;
@@ -195,7 +192,7 @@ TEST_F(CatalogueOnSyntheticLog, RigidBodyAndPayloadColumnsComeFromTheUr10eDynami
 
 TEST(NonlinearSearch, FindsTheRippleFrequencyTheStribeckVelocityAndTheDelay) {
   auto motion = arcplan::testing::makeMotionLog(6000, 250.0);
-  const auto spec = currentModel("[]");
+  const auto spec = jointCurrentModel("");
   const Dataset data = makeJointDataset(motion.log, spec);
   std::mt19937 random(3);
   std::normal_distribution<double> noise(0.0, 0.02);
@@ -259,7 +256,7 @@ TEST(UserEffects, RegisteredClassAndExpressionAreFittedLikeCatalogueEffects) {
       current(k, j) = 0.3 * std::pow(qd(k, j), 3) - 0.2 * qd(k, j) * std::abs(qd(k, j)) + 0.1 * q(k, 1);
   }
   const auto spec =
-      currentModel("[cubic_drag, {id: drag, expression: \"qd*abs(qd)\"}, {id: coupling, expression: \"q_1\"}]");
+      jointCurrentModel("cubic_drag, {id: drag, expression: \"qd*abs(qd)\"}, {id: coupling, expression: \"q_1\"}");
   const Dataset data = makeJointDataset(motion.log, spec);
   const auto fitted = fitModel(spec, data);
   for (int j = 0; j < 6; ++j) {
@@ -268,12 +265,12 @@ TEST(UserEffects, RegisteredClassAndExpressionAreFittedLikeCatalogueEffects) {
     EXPECT_NEAR(fitted.effects[2].values[j][0], 0.1, 1e-9);
   }
   const auto unknown = errorMessageOf([&] {
-    const auto bad = currentModel("[{id: broken, expression: \"qd*torque\"}]");
+    const auto bad = jointCurrentModel("{id: broken, expression: \"qd*torque\"}");
     fitModel(bad, makeJointDataset(motion.log, bad));
   });
   EXPECT_NE(unknown.find("synthetic: effect 'broken': expression 'qd*torque' needs signal 'torque'"), std::string::npos)
       << unknown;
-  EXPECT_NE(errorMessageOf([] { currentModel("[{id: bad, expression: \"qd*(\"}]"); }).find("expression"),
+  EXPECT_NE(errorMessageOf([] { jointCurrentModel("{id: bad, expression: \"qd*(\"}"); }).find("expression"),
             std::string::npos);
 }
 
@@ -293,7 +290,7 @@ TEST(Fitting, RecoversParametersWithHonestStandardErrors) {
       current(i, j) = k * tau(i, j) + c + fc * s + fv * qd(i, j) + mu2 * tau(i, j) * tau(i, j) * s + noise(random);
     }
   }
-  const auto spec = currentModel("[drive_gain, offset, coulomb, viscous, load_friction]");
+  const auto spec = jointCurrentModel("drive_gain, offset, coulomb, viscous, load_friction");
   const Dataset data = makeJointDataset(motion.log, spec);
   const auto fitted = fitModel(spec, data);
   const std::vector<std::pair<int, double>> truth{{0, k}, {1, c}, {2, fc}, {3, fv}};
@@ -318,13 +315,13 @@ TEST(Fitting, RecoversParametersWithHonestStandardErrors) {
 TEST(Fitting, EffectsOnMissingSignalsOrJointsAreErrors) {
   auto motion = arcplan::testing::makeMotionLog(500, 100.0);
   motion.log.vectors.erase("joint_temperatures");
-  const auto warm = currentModel("[temperature_friction]");
+  const auto warm = jointCurrentModel("temperature_friction");
   const auto message = errorMessageOf([&] { fitModel(warm, makeJointDataset(motion.log, warm)); });
   EXPECT_NE(message.find("temperature"), std::string::npos) << message;
-  const auto far = currentModel("[coulomb:7]");
+  const auto far = jointCurrentModel("coulomb:7");
   EXPECT_NE(errorMessageOf([&] { fitModel(far, makeJointDataset(motion.log, far)); }).find("joint 7 does not exist"),
             std::string::npos);
-  auto spec = currentModel("[offset]");
+  auto spec = jointCurrentModel("offset");
   spec.joints = 7;
   EXPECT_NE(errorMessageOf([&] { fitModel(spec, makeJointDataset(motion.log, spec)); }).find("mismatched joint count"),
             std::string::npos);

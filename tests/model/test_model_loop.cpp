@@ -20,12 +20,9 @@
 namespace {
 
 using namespace arcplan::model;
+using arcplan::testing::jointCurrentModel;
 using arcplan::testing::pathDataset;
 using arcplan::testing::regressorColumns;
-
-ModelSpec model(const std::string& effects) {
-  return parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: [" + effects + "]\n", "m.yaml");
-}
 
 // Dahl's state along one run from z = 0: dz/du = s·ρ·(1 − z·s) over the path length u of each
 // step (direction s), integrated with 200 Runge–Kutta steps per sample.
@@ -94,9 +91,10 @@ TEST(MemoryStates, StartAfreshAtEveryRunAndAfterEveryGap) {
 }
 
 TEST(ModelLoop, AStepKeepsTheSearchedParametersOfTheEffectsAlreadyInTheModel) {
-  const auto pair =
-      arcplan::testing::simulatePair(model("drive_gain, offset, coulomb, viscous, position_ripple"), model(""), 0.05);
-  const FittedModel before = fitModel(model("drive_gain, offset, coulomb, viscous, position_ripple"), pair.data);
+  const auto pair = arcplan::testing::simulatePair(
+      jointCurrentModel("drive_gain, offset, coulomb, viscous, position_ripple"), jointCurrentModel(), 0.05);
+  const FittedModel before =
+      fitModel(jointCurrentModel("drive_gain, offset, coulomb, viscous, position_ripple"), pair.data);
   EffectSpec dahl;
   dahl.id = "dahl_friction";
   const FittedModel after = extendModel(before, {dahl}, pair.data);
@@ -112,7 +110,7 @@ TEST(ModelLoop, AStepKeepsTheSearchedParametersOfTheEffectsAlreadyInTheModel) {
 // validation log: rotor_inertia fitted on the fit log helps joint 1 and hurts joint 0 held out.
 Dataset inertiaLog(double joint0Inertia, double phase, unsigned seed) {
   auto motion = arcplan::testing::makeMotionLog(3000, 100.0, phase);
-  const Dataset prepared = makeJointDataset(motion.log, model(""));
+  const Dataset prepared = makeJointDataset(motion.log, jointCurrentModel());
   std::mt19937 random(seed);
   std::normal_distribution<double> noise(0.0, 0.02);
   auto& current = motion.log.vectors["actual_current"];
@@ -124,7 +122,7 @@ Dataset inertiaLog(double joint0Inertia, double phase, unsigned seed) {
                       inertia * prepared.signal("qdd", j)[k] + noise(random);
     }
   }
-  return makeJointDataset(motion.log, model(""));
+  return makeJointDataset(motion.log, jointCurrentModel());
 }
 
 // Held-out RMSE of joint j with the base columns (and qdd), fitted by QR on `fit`.
@@ -150,7 +148,7 @@ TEST(ModelLoop, AStepThatHelpsOneJointAndHurtsAnotherIsProposedOnlyWhereItHelps)
   ASSERT_GT(with0, 1.1 * without0);  // the case is what it should be: joint 0 hurt, joint 1 helped
   ASSERT_LT(with1, 0.9 * without1);
 
-  const ModelSpec base = model("drive_gain, offset, coulomb, viscous");
+  const ModelSpec base = jointCurrentModel("drive_gain, offset, coulomb, viscous");
   DiagnoseOptions options;
   options.discover = false;
   options.candidates = {"rotor_inertia"};

@@ -15,6 +15,7 @@
 namespace {
 
 using namespace arcplan::model;
+using arcplan::testing::jointCurrentModel;
 using arcplan::testing::pathDataset;
 using arcplan::testing::regressorColumns;
 
@@ -25,10 +26,6 @@ const std::string kPayload =
 const Eigen::Vector3d kCenter(0.03, -0.02, 0.08);
 constexpr double kMass = 2.5, kNoise = 0.05;
 
-ModelSpec model(const std::string& effects) {
-  return parseModelYaml(kHeader + "effects: [" + effects + "]\n", "m.yaml");
-}
-
 double quantity(const std::vector<PhysicalQuantity>& quantities, const std::string& name, std::size_t i = 0) {
   for (const auto& q : quantities) {
     if (q.name == name) return q.values.at(i);
@@ -38,8 +35,9 @@ double quantity(const std::vector<PhysicalQuantity>& quantities, const std::stri
 }
 
 TEST(Payload, OneMassAndCentreOfMassAreFittedAcrossJoints) {
-  const auto [data, validation] = arcplan::testing::simulatePair(model(kBase + ", " + kPayload), model(kBase), kNoise);
-  const FittedModel fitted = fitModel(model(kBase + ", payload"), data);
+  const auto [data, validation] =
+      arcplan::testing::simulatePair(jointCurrentModel(kBase + ", " + kPayload), jointCurrentModel(kBase), kNoise);
+  const FittedModel fitted = fitModel(jointCurrentModel(kBase + ", payload"), data);
   const auto& fit = fitted.effects.back();
   const auto quantities = fit.effect->physicalQuantities(fit.shared, fit.sharedCovariance);
   const double mass = quantity(quantities, "mass_kg");
@@ -64,16 +62,19 @@ TEST(Payload, OneMassAndCentreOfMassAreFittedAcrossJoints) {
 }
 
 TEST(Payload, NeedsTheDriveGainToBeOneMass) {
-  const auto [data, validation] = arcplan::testing::simulatePair(model(kBase), model("offset, payload"), kNoise);
-  const std::string message = arcplan::testing::errorMessageOf([&] { fitModel(model("offset, payload"), data); });
+  const auto [data, validation] =
+      arcplan::testing::simulatePair(jointCurrentModel(kBase), jointCurrentModel("offset, payload"), kNoise);
+  const std::string message =
+      arcplan::testing::errorMessageOf([&] { fitModel(jointCurrentModel("offset, payload"), data); });
   EXPECT_NE(message.find("add drive_gain"), std::string::npos) << message;
 }
 
 TEST(KeptModel, WhatChangedIsThePayloadInKilograms) {
   // Fitted on a log without payload, then a 2.5 kg tool is mounted.
-  const auto unloaded = arcplan::testing::simulatePair(model(kBase), model(kBase), kNoise, 41);
-  const ModelSpec saved = specWithParameters(fitModel(model(kBase), unloaded.data));
-  const auto loaded = arcplan::testing::simulatePair(model(kBase + ", " + kPayload), model(kBase), kNoise, 51);
+  const auto unloaded = arcplan::testing::simulatePair(jointCurrentModel(kBase), jointCurrentModel(kBase), kNoise, 41);
+  const ModelSpec saved = specWithParameters(fitModel(jointCurrentModel(kBase), unloaded.data));
+  const auto loaded =
+      arcplan::testing::simulatePair(jointCurrentModel(kBase + ", " + kPayload), jointCurrentModel(kBase), kNoise, 51);
 
   DiagnoseOptions keep;
   keep.keepParameters = true;
@@ -110,11 +111,12 @@ TEST(KeptModel, WhatChangedIsThePayloadInKilograms) {
 }
 
 TEST(KeptModel, WithoutFittedParametersIsAnErrorNamingTheFileAndField) {
-  const auto [data, validation] = arcplan::testing::simulatePair(model(kBase), model(kBase), kNoise);
+  const auto [data, validation] =
+      arcplan::testing::simulatePair(jointCurrentModel(kBase), jointCurrentModel(kBase), kNoise);
   DiagnoseOptions keep;
   keep.keepParameters = true;
   const std::string message =
-      arcplan::testing::errorMessageOf([&] { diagnose(model(kBase), data, &validation, keep); });
+      arcplan::testing::errorMessageOf([&] { diagnose(jointCurrentModel(kBase), data, &validation, keep); });
   EXPECT_NE(message.find("m.yaml: effects[0] (drive_gain): parameters.per_torque: missing"), std::string::npos)
       << message;
 }
@@ -127,7 +129,7 @@ TEST(DahlFriction, StateFollowsTheDahlEquationAndHoldsAtRest) {
     const double t = k / 100.0;  // up 0.2 rad, back 0.05 rad, then rest
     q(k, 0) = t < 2.0 ? 0.1 * t : (t < 3.0 ? 0.2 - 0.05 * (t - 2.0) : 0.15);
   }
-  const Dataset data = makeJointDataset(motion.log, model(""));
+  const Dataset data = makeJointDataset(motion.log, jointCurrentModel());
   const double rate = 40.0;
   const Eigen::MatrixXd column = regressorColumns("dahl_friction", data, 0, rate);
   ASSERT_EQ(column.rows(), 600);
@@ -228,13 +230,14 @@ TEST(MaxwellSlipFriction, RejectsOptionsOutsideTheirRange) {
 // fit with `load_scaled: 1` brings every joint to the noise; without it the heavily loaded
 // shoulder keeps an error above it.
 TEST(MaxwellSlipFriction, LoadScaledLevelsAreFittedByLeastSquares) {
-  const ModelSpec truth = model(kBase + ", {id: maxwell_slip, load_scaled: 1}");
-  const auto [data, validation] = arcplan::testing::simulatePair(truth, model(kBase), kNoise);
+  const ModelSpec truth = jointCurrentModel(kBase + ", {id: maxwell_slip, load_scaled: 1}");
+  const auto [data, validation] = arcplan::testing::simulatePair(truth, jointCurrentModel(kBase), kNoise);
   EffectSpec scaled = parseModelYaml(kHeader + "effects: [{id: maxwell_slip, load_scaled: 1}]\n", "m.yaml").effects[0];
-  const FitStep withLoad = addEffectsAndFit(model(kBase), {scaled}, data, &validation);
+  const FitStep withLoad = addEffectsAndFit(jointCurrentModel(kBase), {scaled}, data, &validation);
   for (const auto& channel : withLoad.afterValidation->channels)
     EXPECT_LE(channel.rmse, 1.3 * kNoise) << channel.channel;
-  const FitStep plain = addEffectsAndFit(model(kBase), {parseEffectArgument("maxwell_slip")}, data, &validation);
+  const FitStep plain =
+      addEffectsAndFit(jointCurrentModel(kBase), {parseEffectArgument("maxwell_slip")}, data, &validation);
   EXPECT_GT(plain.afterValidation->channels[1].rmse, 1.3 * kNoise);
 }
 

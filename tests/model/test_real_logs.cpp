@@ -8,6 +8,7 @@
 #include "arcplan/model/diagnose.h"
 #include "arcplan/model/workflow.h"
 #include "arcplan/robot/dynamics.h"
+#include "model/model_test_support.h"
 #include "support/command.h"
 
 namespace {
@@ -35,7 +36,7 @@ DataFiles realFiles() {
 
 TEST(RealLogs, RigidBodyDynamicsIsCloseToTheControllersTargetMoment) {
   // Shoulder and elbow carry the arm's weight; their torques are what the URDF inertials decide.
-  const auto spec = parseModelYaml("kind: joint_current\nload_torque: target_moment\neffects: []\n", "m.yaml");
+  const auto spec = arcplan::testing::jointCurrentModel();
   LogReadOptions options;
   options.columns = parseColumnMap("ur10e_real");
   options.firstLine = 355;
