@@ -71,6 +71,15 @@ TEST(CampaignDeterminism, BudgetedRunsAreIdenticalAcrossShardLayoutsAndWorkerCou
   const auto other = runArcplan(benchArguments(suite, unsplit, {"--budget", "3000"}));
   EXPECT_EQ(other.exitCode, 1);
   EXPECT_NE(other.err.find("(iteration_budget differ from campaign.json)"), std::string::npos) << other.err;
+
+  // A campaign from before the run seeds were one per problem (no "seeding" in campaign.json) is not
+  // resumed: its finished jobs drew from other seeds than the rest would.
+  auto before = settings;
+  before.erase("seeding");
+  std::ofstream(unsplit / "campaign.json") << before.dump(2) << "\n";
+  const auto resumed = runArcplan(benchArguments(suite, unsplit, {"-j", "1"}));
+  EXPECT_EQ(resumed.exitCode, 1);
+  EXPECT_NE(resumed.err.find("(seeding differ from campaign.json)"), std::string::npos) << resumed.err;
 }
 
 TEST(CampaignDeterminism, BudgetOptionAndSuiteFieldAreChecked) {
