@@ -19,8 +19,8 @@
 namespace {
 
 using namespace arcplan::model;
+using arcplan::testing::jointCurrentModel;
 
-const std::string kHeader = "kind: joint_current\nload_torque: target_moment\n";
 const std::string kBase = "drive_gain, offset, coulomb, viscous";
 constexpr double kNoise = 0.05;  // A
 
@@ -54,11 +54,10 @@ TEST_P(OutsideTheCatalogue, DiscoveryProposesTheTermAndItReachesTheNoise) {
   std::string joints;
   for (int j : hidden.joints) joints += (joints.empty() ? "" : ", ") + std::to_string(j);
   const std::string baseEffects = kBase + (hidden.baseExtra.empty() ? "" : ", " + hidden.baseExtra);
-  const ModelSpec base = parseModelYaml(kHeader + "effects: [" + baseEffects + "]\n", "base.yaml");
+  const ModelSpec base = jointCurrentModel(baseEffects);
   const std::string truthEntry = "{id: hidden, expression: \"" + hidden.expression + "\", joints: [" + joints + "]";
-  const ModelSpec truth = parseModelYaml(kHeader + "effects: [" + baseEffects + ", " + truthEntry +
-                                             ", parameters: {c0: [" + hidden.coefficients + "]}}]\n",
-                                         "truth.yaml");
+  const ModelSpec truth =
+      jointCurrentModel(baseEffects + ", " + truthEntry + ", parameters: {c0: [" + hidden.coefficients + "]}}");
   const auto [data, validation] = arcplan::testing::simulatePair(truth, base, kNoise);
 
   // The catalogue against discovery (effects other tests of this executable register are left out).
@@ -74,8 +73,7 @@ TEST_P(OutsideTheCatalogue, DiscoveryProposesTheTermAndItReachesTheNoise) {
   if (!hidden.picture.empty()) EXPECT_NE(top.explanation.find(hidden.picture), std::string::npos) << top.explanation;
   // At least 0.8x of what the true term itself removes from the held-out residual (fitted alone on
   // the training log, scored on the validation log).
-  const FitStep truthStep = addEffectsAndFit(
-      base, {parseModelYaml(kHeader + "effects: [" + truthEntry + "}]\n", "t.yaml").effects[0]}, data, &validation);
+  const FitStep truthStep = addEffectsAndFit(base, {jointCurrentModel(truthEntry + "}").effects[0]}, data, &validation);
   RecordProperty("truth_gain", std::to_string(pooledGain(truthStep)));
   EXPECT_GE(top.heldoutReduction, 0.8 * pooledGain(truthStep)) << diagnosis.summary;
   for (int j : hidden.joints) {
@@ -83,8 +81,7 @@ TEST_P(OutsideTheCatalogue, DiscoveryProposesTheTermAndItReachesTheNoise) {
   }
   // The ready-to-paste entry parses as a model-file effect and names the expression.
   EXPECT_NE(top.modelEntry.find("expression: \"" + hidden.expression + "\""), std::string::npos) << top.modelEntry;
-  const ModelSpec pasted =
-      parseModelYaml(kHeader + "effects: [" + baseEffects + ", " + top.modelEntry + "]\n", "pasted.yaml");
+  const ModelSpec pasted = jointCurrentModel(baseEffects + ", " + top.modelEntry);
   EXPECT_EQ(pasted.effects.back().expressions, top.entry.expressions);
 
   const FitStep step = addEffectsAndFit(base, {pasted.effects.back()}, data, &validation);
@@ -135,7 +132,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return info.param.name; });
 
 TEST(Discovery, ProposesNothingOnCleanLogs) {
-  const ModelSpec base = parseModelYaml(kHeader + "effects: [" + kBase + "]\n", "base.yaml");
+  const ModelSpec base = jointCurrentModel(kBase);
   for (unsigned seed : {21u, 31u}) {
     const auto [data, validation] = arcplan::testing::simulatePair(base, base, kNoise, seed);
     for (const Dataset* held : {static_cast<const Dataset*>(&validation), static_cast<const Dataset*>(nullptr)}) {
@@ -154,11 +151,9 @@ TEST(Discovery, ProposesNothingOnCleanLogs) {
 TEST(Discovery, ExplainableShareSeesTheHiddenTermAndTheCatalogueMissingIt) {
   // qd_1 on joint 2 at 0.3 A·s/rad: most of joint 2's held-out residual is explainable, and no
   // catalogue effect explains much of it.
-  const ModelSpec base = parseModelYaml(kHeader + "effects: [" + kBase + "]\n", "base.yaml");
+  const ModelSpec base = jointCurrentModel(kBase);
   const ModelSpec truth =
-      parseModelYaml(kHeader + "effects: [" + kBase +
-                         ", {id: hose, expression: qd_1, joints: [2], parameters: {c0: [0, 0, 0.3, 0, 0, 0]}}]\n",
-                     "truth.yaml");
+      jointCurrentModel(kBase + ", {id: hose, expression: qd_1, joints: [2], parameters: {c0: [0, 0, 0.3, 0, 0, 0]}}");
   const auto [data, validation] = arcplan::testing::simulatePair(truth, base, kNoise);
   const Diagnosis diagnosis = diagnose(base, data, &validation);
   // Expected share from the numbers themselves: pooled RMS of the held-out residual vs the noise.
@@ -175,7 +170,7 @@ TEST(Discovery, ExplainableShareSeesTheHiddenTermAndTheCatalogueMissingIt) {
 
 TEST(TermLibrary, EveryExpressionReproducesTheTermsValues) {
   auto motion = arcplan::testing::makeMotionLog(400, 100.0);
-  const ModelSpec spec = parseModelYaml(kHeader + "effects: []\n", "m.yaml");
+  const ModelSpec spec = jointCurrentModel();
   const Dataset data = makeJointDataset(motion.log, spec);
   const int channel = 2;
   const auto terms = candidateTerms(data, channel);
@@ -201,7 +196,7 @@ TEST(TermLibrary, EveryExpressionReproducesTheTermsValues) {
 
 TEST(Compare, ResidualCorrelationsLookAtEveryJoint) {
   auto motion = arcplan::testing::makeMotionLog(2000, 100.0);
-  const ModelSpec spec = parseModelYaml(kHeader + "effects: []\n", "m.yaml");
+  const ModelSpec spec = jointCurrentModel();
   const Dataset data = makeJointDataset(motion.log, spec);
   std::vector<Eigen::VectorXd> residuals(6, Eigen::VectorXd::Zero(2000));
   residuals[2] = 0.3 * data.signal("qd", 1);  // the elbow's residual follows the shoulder's speed

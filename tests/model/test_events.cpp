@@ -10,25 +10,21 @@
 #include "arcplan/model/events.h"
 #include "arcplan/model/fitting.h"
 #include "arcplan/model/simulate.h"
+#include "model/model_test_support.h"
 #include "model/push_simulation.h"
 
 namespace {
 
 using namespace arcplan::model;
+using arcplan::testing::jointCurrentModel;
 using arcplan::testing::Push;
-
-const std::string kHeader = "kind: joint_current\nload_torque: target_moment\n";
-
-ModelSpec model(const std::string& effects) {
-  return parseModelYaml(kHeader + "effects: [" + effects + "]\n", "m.yaml");
-}
 
 // The simulated arm's current per N·m (A/(N·m)), stated so the pushes go through the same gains.
 const Eigen::VectorXd kGains = (Eigen::VectorXd(6) << 0.085, 0.085, 0.1, 0.12, 0.12, 0.12).finished();
 const std::string kGainEntry = "{id: drive_gain, parameters: {per_torque: [0.085, 0.085, 0.1, 0.12, 0.12, 0.12]}}";
 
 // The truth: the model's effects with the stated gains (the others at typical UR10e values).
-ModelSpec truthOf(const std::string& effects) { return model(kGainEntry + ", " + effects); }
+ModelSpec truthOf(const std::string& effects) { return jointCurrentModel(kGainEntry + ", " + effects); }
 
 Log simulated(const ModelSpec& truth, unsigned seed) {
   ExcitationOptions excitation;
@@ -52,7 +48,7 @@ std::vector<Event> eventsOf(const ModelSpec& spec, const Log& fit, const Log& he
 }
 
 TEST(Events, SimulatedPushesAreFoundWithTheirTimesAndForce) {
-  const ModelSpec spec = model("drive_gain, offset, coulomb, viscous");
+  const ModelSpec spec = jointCurrentModel("drive_gain, offset, coulomb, viscous");
   const ModelSpec truth = truthOf("offset, coulomb, viscous");
   const Log fit = simulated(truth, 11);
   Log held = simulated(truth, 12);
@@ -73,7 +69,7 @@ TEST(Events, SimulatedPushesAreFoundWithTheirTimesAndForce) {
 }
 
 TEST(Events, CleanLogsHaveNone) {
-  const ModelSpec spec = model("drive_gain, offset, coulomb, viscous");
+  const ModelSpec spec = jointCurrentModel("drive_gain, offset, coulomb, viscous");
   EXPECT_TRUE(eventsOf(spec, simulated(truthOf("offset, coulomb, viscous"), 11),
                        simulated(truthOf("offset, coulomb, viscous"), 12))
                   .empty());
@@ -83,7 +79,7 @@ TEST(Events, CleanLogsHaveNone) {
 }
 
 TEST(Events, ALastingChangeIsNotAnEvent) {
-  const ModelSpec spec = model("drive_gain, offset, coulomb, viscous");
+  const ModelSpec spec = jointCurrentModel("drive_gain, offset, coulomb, viscous");
   Log held = simulated(spec, 12);
   // From 8 s on, joint 1 draws 1 A more (a payload picked up): the residual never comes back.
   auto& current = held.vectors.at("actual_current");
@@ -94,7 +90,7 @@ TEST(Events, ALastingChangeIsNotAnEvent) {
 }
 
 TEST(Events, TheDiagnosisLeavesPushesOutAndSaysSo) {
-  const ModelSpec base = model("drive_gain, offset, coulomb, viscous");
+  const ModelSpec base = jointCurrentModel("drive_gain, offset, coulomb, viscous");
   const ModelSpec truth = truthOf("offset, coulomb, viscous, load_friction");
   const Log fit = simulated(truth, 11), clean = simulated(truth, 12);
   Log pushed = clean;

@@ -19,7 +19,6 @@ using arcplan::testing::jointCurrentModel;
 using arcplan::testing::pathDataset;
 using arcplan::testing::regressorColumns;
 
-const std::string kHeader = "kind: joint_current\nload_torque: target_moment\n";
 const std::string kBase = "drive_gain, offset, coulomb, viscous";
 const std::string kPayload =
     "{id: payload, mass_kg: 2.5, center_of_mass_x: 0.03, center_of_mass_y: -0.02, center_of_mass_z: 0.08}";
@@ -218,10 +217,8 @@ TEST(MaxwellSlipFriction, RejectsOptionsOutsideTheirRange) {
            {"elements", 2.5, "option elements: expected a whole number from 1 to 20, got 2.5"},
            {"breakaway_rad", -1e-3, "option breakaway_rad: expected a positive angle in rad, got -0.001"},
            {"load_scaled", 2.0, "option load_scaled: expected 0 or 1, got 2"}}) {
-    const std::string message = arcplan::testing::errorMessageOf([&] {
-      parseModelYaml(kHeader + "effects: [{id: maxwell_slip, " + name + ": " + std::to_string(value) + "}]\n",
-                     "m.yaml");
-    });
+    const std::string message = arcplan::testing::errorMessageOf(
+        [&] { jointCurrentModel("{id: maxwell_slip, " + name + ": " + std::to_string(value) + "}"); });
     EXPECT_NE(message.find(expected), std::string::npos) << message;
   }
 }
@@ -232,7 +229,7 @@ TEST(MaxwellSlipFriction, RejectsOptionsOutsideTheirRange) {
 TEST(MaxwellSlipFriction, LoadScaledLevelsAreFittedByLeastSquares) {
   const ModelSpec truth = jointCurrentModel(kBase + ", {id: maxwell_slip, load_scaled: 1}");
   const auto [data, validation] = arcplan::testing::simulatePair(truth, jointCurrentModel(kBase), kNoise);
-  EffectSpec scaled = parseModelYaml(kHeader + "effects: [{id: maxwell_slip, load_scaled: 1}]\n", "m.yaml").effects[0];
+  EffectSpec scaled = jointCurrentModel("{id: maxwell_slip, load_scaled: 1}").effects[0];
   const FitStep withLoad = addEffectsAndFit(jointCurrentModel(kBase), {scaled}, data, &validation);
   for (const auto& channel : withLoad.afterValidation->channels)
     EXPECT_LE(channel.rmse, 1.3 * kNoise) << channel.channel;
