@@ -52,9 +52,7 @@ TEST(RealLogs, RigidBodyDynamicsIsCloseToTheControllersTargetMoment) {
 }
 
 TEST(RealLogs, EveryProposedEffectLowersTheHeldOutError) {
-  ModelSpec spec = parseModelYaml(
-      "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n",
-      "base.yaml");
+  ModelSpec spec = arcplan::testing::jointCurrentModel("drive_gain, offset, coulomb, viscous");
   const LoadedData loaded = loadData(spec, realFiles());
   ASSERT_TRUE(loaded.validation);
   int added = 0;
@@ -80,9 +78,7 @@ TEST(RealLogs, EveryProposedEffectLowersTheHeldOutError) {
 TEST(RealLogs, FrictionWithMemoryLowersTheWristsHeldOutError) {
   // The wrists stand still in the point-to-point log holding a current that depends on how they
   // stopped (docs/model-results.md: 0.105 / 0.125 A held-out with the base model).
-  const ModelSpec spec = parseModelYaml(
-      "kind: joint_current\nload_torque: target_moment\neffects: [drive_gain, offset, coulomb, viscous]\n",
-      "base.yaml");
+  const ModelSpec spec = arcplan::testing::jointCurrentModel("drive_gain, offset, coulomb, viscous");
   const LoadedData loaded = loadData(spec, realFiles());
   const auto step =
       addEffectsAndFit(spec, {parseEffectArgument("dahl_friction:4,5")}, loaded.data, loaded.validationOrNull());
