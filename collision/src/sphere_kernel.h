@@ -10,98 +10,21 @@
 // with -ffp-contract=off) and every operation below is done in the same order, so both paths
 // compute the same bits and take the same decisions. Everything is in an anonymous namespace:
 // each translation unit keeps its own copy, nothing is shared between them (see sphere_tables.h).
-#include "sphere_tables.h"
+#include "sphere_kernel_chain.h"
 
 namespace arcplan::collision::detail::prefilter {
 namespace {
 
-// pi/2 split into three floats (Cody-Waite): the high part has 8 significant bits and the
-// multiples used below are -4..4, so k * high is exact and x - k * pi/2 loses next to nothing.
-constexpr double kHalfPi = 1.57079632679489661923;
-constexpr float kHalfPiHigh = 1.5703125f;
-constexpr float kHalfPiMiddle = static_cast<float>(kHalfPi - 1.5703125);
-constexpr float kHalfPiLow = static_cast<float>(kHalfPi - 1.5703125 - static_cast<double>(kHalfPiMiddle));
-constexpr float kTwoOverPi = static_cast<float>(2.0 / 3.14159265358979323846);
 constexpr float kFar = 1e30f;  // "no pair measured": larger than any distance
 
-template <class V>
-struct Pose {
-  V r[9];  // row-major rotation
-  V t[3];
-};
-
-// sin and cos of x for |x| <= 2 pi + 1e-6: reduced to r in [-pi/4, pi/4] (x = r + k pi/2), Taylor
-// polynomials to degree 9 (sin) and 8 (cos) whose truncation errors there are below 2e-9 and 3e-8;
-// with rounding the results stay within 5e-7 of the true values (measured by the tests, 2e-6 assumed
-// by the margin).
-template <class V>
-void sinCos(V x, V& sine, V& cosine) {
-  using Mask = typename V::Mask;
-  const V k = roundNearest(x * broadcast<V>(kTwoOverPi));
-  const V r = ((x - k * broadcast<V>(kHalfPiHigh)) - k * broadcast<V>(kHalfPiMiddle)) - k * broadcast<V>(kHalfPiLow);
-  const V r2 = r * r;
-  const V s = r + (r * r2) * (broadcast<V>(-1.0f / 6.0f) +
-                              r2 * (broadcast<V>(1.0f / 120.0f) +
-                                    r2 * (broadcast<V>(-1.0f / 5040.0f) + r2 * broadcast<V>(1.0f / 362880.0f))));
-  const V c =
-      broadcast<V>(1.0f) +
-      r2 * (broadcast<V>(-0.5f) + r2 * (broadcast<V>(1.0f / 24.0f) +
-                                        r2 * (broadcast<V>(-1.0f / 720.0f) + r2 * broadcast<V>(1.0f / 40320.0f))));
-  const V quadrant = k - broadcast<V>(4.0f) * floorOf(k * broadcast<V>(0.25f));  // k mod 4, in 0..3
-  const Mask q1 = equal(quadrant, broadcast<V>(1.0f)), q2 = equal(quadrant, broadcast<V>(2.0f)),
-             q3 = equal(quadrant, broadcast<V>(3.0f));
-  sine = select(q1, c, select(q2, -s, select(q3, -c, s)));
-  cosine = select(q1, -s, select(q2, -c, select(q3, s, c)));
-}
-
-template <class V>
-void forwardKinematics(const Tables& tables, const float* q, Pose<V>* poses) {
-  for (int l = 0; l < tables.linkCount; ++l) {
-    const LinkRow& row = tables.links[l];
-    V local[9];
-    if (row.joint >= 0) {
-      V s, c;
-      sinCos(load<V>(q + row.joint * kLanes), s, c);
-      for (int i = 0; i < 9; ++i)
-        local[i] = (broadcast<V>(row.c0[i]) + c * broadcast<V>(row.c1[i])) + s * broadcast<V>(row.c2[i]);
-    } else {
-      for (int i = 0; i < 9; ++i) local[i] = broadcast<V>(row.c0[i]);
-    }
-    Pose<V>& pose = poses[l];
-    if (row.parent < 0) {
-      for (int i = 0; i < 9; ++i) pose.r[i] = local[i];
-      for (int i = 0; i < 3; ++i) pose.t[i] = broadcast<V>(row.t[i]);
-      continue;
-    }
-    const Pose<V>& parent = poses[row.parent];
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        // Terms of structurally zero entries (row.zero: all three coefficients 0) are left out.
-        V sum = broadcast<V>(0.0f);
-        for (int k = 0; k < 3; ++k) {
-          if (!((row.zero >> (3 * k + j)) & 1u)) sum = sum + parent.r[3 * i + k] * local[3 * k + j];
-        }
-        pose.r[3 * i + j] = sum;
-      }
-      pose.t[i] = ((parent.r[3 * i] * broadcast<V>(row.t[0]) + parent.r[3 * i + 1] * broadcast<V>(row.t[1])) +
-                   parent.r[3 * i + 2] * broadcast<V>(row.t[2])) +
-                  parent.t[i];
-    }
-  }
-}
-
-template <class V>
-void place(const Pose<V>& pose, float x, float y, float z, V* out) {
-  for (int i = 0; i < 3; ++i) {
-    out[i] = ((pose.r[3 * i] * broadcast<V>(x) + pose.r[3 * i + 1] * broadcast<V>(y)) +
-              pose.r[3 * i + 2] * broadcast<V>(z)) +
-             pose.t[i];
-  }
-}
-
-// The world point p in the obstacle's frame (the same operation order in every lane type).
+// The world point p in the obstacle's frame; an axis-aligned obstacle (rotation exactly the
+// identity, the usual table) costs three additions, the same bits as the full product.
 template <class V>
 void toObstacleFrame(const ObstacleRow& o, const V* p, V* l) {
+  if (o.aligned) {
+    for (int i = 0; i < 3; ++i) l[i] = p[i] + broadcast<V>(o.translation[i]);
+    return;
+  }
   for (int i = 0; i < 3; ++i) {
     l[i] = ((broadcast<V>(o.rotation[3 * i]) * p[0] + broadcast<V>(o.rotation[3 * i + 1]) * p[1]) +
             broadcast<V>(o.rotation[3 * i + 2]) * p[2]) +

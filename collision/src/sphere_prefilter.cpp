@@ -35,19 +35,30 @@ using prefilter::kLanes;
 constexpr double kUnitRoundoff = 1.0 / 16777216.0;
 constexpr double kTrigError = 2e-6;
 
-// Cross-product matrix [a]× (row-major into out) and the row-major copy of a 3×3 matrix.
-void rowMajor(const Eigen::Matrix3d& m, float* out) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) out[3 * i + j] = static_cast<float>(m(i, j));
-}
-
 float roundedUp(double x) {
   const float f = static_cast<float>(x);
   return static_cast<double>(f) >= x ? f : std::nextafter(f, INFINITY);
 }
 
+// Table entries within kSnap of 0 or ±1 are stored as exactly that, so the kernels skip them
+// (sphere_kernel.h); URDF origins written as rpy 1.570796327 leave entries of 2e-10 where the
+// rotation has zeros. What snapping moves is added to the error bounds (`snapped`).
+constexpr double kSnap = 1e-6;
+
+double snappedValue(double x, double& snapped) {
+  for (const double exact : {0.0, 1.0, -1.0}) {
+    if (std::abs(x - exact) < kSnap) {
+      snapped += std::abs(x - exact);
+      return exact;
+    }
+  }
+  return x;
+}
+
 // The bounding volume of one obstacle part in its own frame, as a kernel row placed in the world.
-prefilter::ObstacleRow obstacleRow(const Part& part) {
+// `snapped`: the sum of what snapping moved the rotation's entries (a world point p is then off by
+// at most snapped·|p| in the obstacle's frame).
+prefilter::ObstacleRow obstacleRow(const Part& part, double& snapped) {
   prefilter::ObstacleRow row{};
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   switch (part.solid.kind) {
@@ -82,31 +93,83 @@ prefilter::ObstacleRow obstacleRow(const Part& part) {
   }
   // local = R^T (p - t) - centre
   const Eigen::Matrix3d toLocal = part.offset.linear().transpose();
-  rowMajor(toLocal, row.rotation);
+  snapped = 0.0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) row.rotation[3 * i + j] = static_cast<float>(snappedValue(toLocal(i, j), snapped));
+  row.aligned = 1;
+  for (int i = 0; i < 9; ++i) row.aligned = row.aligned && row.rotation[i] == (i % 4 == 0 ? 1.0f : 0.0f);
   const Eigen::Vector3d translation = -(toLocal * part.offset.translation()) - centre;
   for (int i = 0; i < 3; ++i) row.translation[i] = static_cast<float>(translation[i]);
   return row;
 }
 
-prefilter::LinkRow linkRow(const robot::Link& link, int parentRow) {
+// Whether the snapped origin rotation is a signed permutation and the joint axis a coordinate axis
+// (sphere_tables.h, LinkRow::permuted); the snapping this takes is added to `snapped`.
+void describePermutation(const robot::Link& link, prefilter::LinkRow& row, double& snapped) {
+  const Eigen::Matrix3d origin = link.originInParent.linear();
+  double moved = 0.0;
+  row.permuted = 1;
+  for (int j = 0; j < 3; ++j) {
+    int nonzero = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double x = snappedValue(origin(i, j), moved);
+      if (x == 0.0) continue;
+      if (std::abs(x) != 1.0) row.permuted = 0;
+      row.column[j] = i;
+      row.sign[j] = static_cast<float>(x);
+      ++nonzero;
+    }
+    if (nonzero != 1) row.permuted = 0;
+  }
+  row.axis = -1;
+  row.axisSign = 1.0f;
+  if (link.joint >= 0) {
+    const Eigen::Vector3d a = link.axis.normalized();
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(std::abs(a[k]) - 1.0) < kSnap) {
+        row.axis = k;
+        row.axisSign = a[k] < 0.0 ? -1.0f : 1.0f;
+        // Rot(a, q) = I + sin q·[a]× + (1 − cos q)·[a]×² moves by at most 5·|a − a'| with the axis.
+        moved += 5.0 * (a - static_cast<double>(row.axisSign) * Eigen::Vector3d::Unit(k)).norm();
+      }
+    }
+    if (row.axis < 0) row.permuted = 0;
+  }
+  // One of the two paths computes the rotation: the bound takes the larger of their snapping.
+  if (row.permuted) snapped = std::max(snapped, moved);
+}
+
+// The row and, in `snapped`, the sum over the 9 rotation entries of what snapping moved their
+// coefficients (a bound of the local rotation's extra error for any q: |cos|, |sin| <= 1) and the
+// sum of what it moved the translation's components.
+prefilter::LinkRow linkRow(const robot::Link& link, int parentRow, double& snappedRotation,
+                           double& snappedTranslation) {
   prefilter::LinkRow row{};
   row.parent = parentRow;
   row.joint = link.joint;
   const Eigen::Matrix3d origin = link.originInParent.linear();
+  Eigen::Matrix3d c0 = origin, c1 = Eigen::Matrix3d::Zero(), c2 = Eigen::Matrix3d::Zero();
   if (link.joint >= 0) {
     const Eigen::Vector3d a = link.axis.normalized();
     Eigen::Matrix3d cross;
     cross << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-    const Eigen::Matrix3d along = origin * a * a.transpose();
-    rowMajor(along, row.c0);
-    rowMajor(origin - along, row.c1);
-    rowMajor(origin * cross, row.c2);
-  } else {
-    rowMajor(origin, row.c0);
+    c0 = origin * a * a.transpose();
+    c1 = origin - c0;
+    c2 = origin * cross;
   }
-  for (int i = 0; i < 3; ++i) row.t[i] = static_cast<float>(link.originInParent.translation()[i]);
-  row.zero = 0;
+  snappedRotation = snappedTranslation = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      row.c0[3 * i + j] = static_cast<float>(snappedValue(c0(i, j), snappedRotation));
+      row.c1[3 * i + j] = static_cast<float>(snappedValue(c1(i, j), snappedRotation));
+      row.c2[3 * i + j] = static_cast<float>(snappedValue(c2(i, j), snappedRotation));
+    }
+    row.t[i] = static_cast<float>(snappedValue(link.originInParent.translation()[i], snappedTranslation));
+  }
+  describePermutation(link, row, snappedRotation);
+  row.zero = row.constant = 0;
   for (int i = 0; i < 9; ++i) {
+    if (row.c1[i] == 0.0f && row.c2[i] == 0.0f) row.constant |= 1u << i;
     if (row.c0[i] == 0.0f && row.c1[i] == 0.0f && row.c2[i] == 0.0f) row.zero |= 1u << i;
   }
   return row;
@@ -128,12 +191,14 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
     if (!needed[l]) continue;
     const int parent = links[l].parent < 0 ? -1 : rowOf[links[l].parent];
     rowOf[l] = static_cast<int>(links_.size());
-    links_.push_back(linkRow(links[l], parent));
+    double snappedRotation = 0.0, snappedTranslation = 0.0;
+    links_.push_back(linkRow(links[l], parent, snappedRotation, snappedTranslation));
     const double offset = links[l].originInParent.translation().norm();
     const double parentR = parent < 0 ? 0.0 : eR[parent], parentT = parent < 0 ? 0.0 : eT[parent];
     reach.push_back((parent < 0 ? 0.0 : reach[parent]) + offset);
-    eR.push_back(parentR + (links[l].joint >= 0 ? 2.0 * kTrigError : 0.0) + 64.0 * kUnitRoundoff);
-    eT.push_back(parentT + parentR * offset + 8.0 * kUnitRoundoff * reach.back());
+    eR.push_back(parentR + (links[l].joint >= 0 ? 2.0 * kTrigError : 0.0) + 64.0 * kUnitRoundoff + snappedRotation);
+    // The snapped translation is rotated by the parent's rotation, of norm <= 1 + parentR < 2.
+    eT.push_back(parentT + parentR * offset + 8.0 * kUnitRoundoff * reach.back() + 2.0 * snappedTranslation);
   }
   // Bodies and their fine spheres.
   double centreError = 0.0, robotExtent = 0.0, radiusSum = 0.0;
@@ -164,9 +229,11 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
     bodies_.push_back(bodyRow);
   }
   // Obstacles: the bounding volume of every part, and per body the parts of its non-allowed obstacles.
-  double obstacleExtent = 0.0;
+  double obstacleExtent = 0.0, obstacleSnapped = 0.0;
   for (const Part& part : impl.obstacleParts) {
-    obstacles_.push_back(obstacleRow(part));
+    double snapped = 0.0;
+    obstacles_.push_back(obstacleRow(part, snapped));
+    obstacleSnapped = std::max(obstacleSnapped, snapped);
     const auto& row = obstacles_.back();
     obstacleExtent =
         std::max(obstacleExtent,
@@ -197,7 +264,8 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
   }
 
   centreErrorBound_ = centreError;
-  const double rounding = 16.0 * kUnitRoundoff * (robotExtent + obstacleExtent) + 2.0 * kUnitRoundoff * radiusSum;
+  const double rounding = 16.0 * kUnitRoundoff * (robotExtent + obstacleExtent) + 2.0 * kUnitRoundoff * radiusSum +
+                          obstacleSnapped * robotExtent;
   tables_.margin = roundedUp(2.0 * (2.0 * centreError + rounding));
   tables_.dof = robot.dof();
   tables_.linkCount = static_cast<int>(links_.size());

@@ -20,9 +20,18 @@ constexpr int kMaxFineSpheres = 384;
 // One link of the chain: rotation in the parent frame = c0 + cos q·c1 + sin q·c2 (row-major 3×3;
 // c1 = c2 = 0 for a fixed joint), translation t in the parent frame. Parents come first.
 struct LinkRow {
-  int parent;          // row index, -1 for the base
-  int joint;           // index into q, -1 for a fixed joint
-  std::uint32_t zero;  // bit i: c0[i] = c1[i] = c2[i] = 0 (the kernels skip those terms)
+  int parent;              // row index, -1 for the base
+  int joint;               // index into q, -1 for a fixed joint
+  std::uint32_t zero;      // bit i: c0[i] = c1[i] = c2[i] = 0 (the kernels skip those terms)
+  std::uint32_t constant;  // bit i: c1[i] = c2[i] = 0 (entry i is c0[i] whatever q)
+  // The common case of a UR chain: the origin rotation is a signed permutation (column j of it is
+  // sign[j] at row column[j]) and the joint turns about a coordinate axis (axisSign · e_axis), or is
+  // fixed (axis -1). Then the kernels permute the parent's columns and mix two of them.
+  int permuted;  // 1: the fields below describe the rotation; 0: c0, c1, c2 only
+  int column[3];
+  float sign[3];
+  int axis;
+  float axisSign;
   float c0[9], c1[9], c2[9];
   float t[3];
 };
@@ -42,6 +51,7 @@ struct BodyRow {
 // along local z of radius size[0] and half length size[1].
 struct ObstacleRow {
   int kind;
+  int aligned;  // 1: rotation is exactly the identity
   float rotation[9];
   float translation[3];
   float size[3];

@@ -208,6 +208,51 @@ TEST(SpherePrefilter, KernelsAndBatchesTakeTheSameDecisions) {
   EXPECT_GT(freeCount, 300);  // the prefilter cleared states, so the comparison compared decisions
 }
 
+// The chain's two rotation paths (sphere_kernel_chain.h): the UR10e's rows all take the permuted
+// one; the same tables with every row forced onto the general 3×3 path must give gaps within half
+// the margin of them (both are bounded by it; measured: the same bits, as the general path's skipped
+// terms are exact zeros and its factors ±1), and AVX2 and portable the same bits on the general path.
+TEST(SpherePrefilter, PermutedAndGeneralChainPathsAgree) {
+  const auto model = modelOf(randomScene(4, 8), true);
+  const auto& prefilter = prefilterOf(*model);
+  const auto& tables = prefilter.tables();
+  std::vector<detail::prefilter::LinkRow> general(tables.links, tables.links + tables.linkCount);
+  int permuted = 0;
+  for (auto& row : general) {
+    permuted += row.permuted;
+    row.permuted = 0;
+  }
+  ASSERT_EQ(permuted, tables.linkCount);  // every UR10e row is a signed permutation about a coordinate axis
+  detail::prefilter::Tables generalTables = tables;
+  generalTables.links = general.data();
+  detail::SphereWorkspace work;
+  prefilter.prepare(work);
+  std::fill(work.enough.begin(), work.enough.end(), 1e30f);  // fine spheres for every pair
+  std::vector<float> fast(work.gaps.size()), slow(work.gaps.size()), other(work.gaps.size());
+  std::mt19937_64 random(29);
+  double largest = 0.0;
+  for (int batch = 0; batch < 300; ++batch) {
+    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
+      const VectorXd q = randomState(model->robot(), random);
+      prefilter.loadLane(work, lane, q.data());
+    }
+    detail::prefilter::gapsPortable(tables, work.q.data(), work.enough.data(), fast.data());
+    detail::prefilter::gapsPortable(generalTables, work.q.data(), work.enough.data(), slow.data());
+    for (std::size_t k = 0; k < fast.size(); ++k)
+      largest = std::max(largest, std::abs(static_cast<double>(fast[k]) - slow[k]));
+#if defined(__x86_64__)
+    if (prefilter.usesAvx2()) {
+      detail::prefilter::gapsAvx2(generalTables, work.q.data(), work.enough.data(), other.data());
+      ASSERT_EQ(other, slow) << "batch " << batch;
+      ASSERT_EQ(detail::prefilter::freeLanesAvx2(generalTables, work.q.data(), 8),
+                detail::prefilter::freeLanesPortable(generalTables, work.q.data(), 8))
+          << "batch " << batch;
+    }
+#endif
+  }
+  EXPECT_LT(largest, prefilter.margin() / 2.0);
+}
+
 // Every answer of the prefiltered model is the exact model's, for random states (one by one and in
 // batches) and certified motions; the prefilter must also have answered a good share itself.
 void expectSameAnswers(const Scene& scene, unsigned seed, int states, int motions) {
