@@ -11,6 +11,7 @@
 
 #include "arcplan/common/error.h"
 #include "arcplan/robot/ur_description.h"
+#include "file_content.h"
 
 namespace arcplan::collision::detail {
 namespace {
@@ -88,21 +89,19 @@ UrdfFrames::UrdfFrames(const robot::RobotModel& model) : description_("the robot
 
 namespace {
 
-// What a description is, as a cache key: its files and their modification times, so a file changed
-// on disk is read again.
+// What a description is, as a cache key: its files' contents (file_content.h), so a file changed on disk
+// is read again.
 std::string descriptionKey(const MoveItRobot& robot) {
-  const auto stamped = [](const std::filesystem::path& file) {
-    if (file.empty()) return std::string("-");
-    std::error_code ignored;
-    return std::filesystem::absolute(file).string() + "@" +
-           std::to_string(std::filesystem::last_write_time(file, ignored).time_since_epoch().count());
+  const auto content = [](const std::filesystem::path& file) {
+    const auto [hash, size] = fileContentKey(file);
+    return std::filesystem::absolute(file).string() + "#" + std::to_string(hash) + ":" + std::to_string(size);
   };
-  if (!robot.urdf.empty() || robot.urDescription.type.empty()) return "urdf\n" + stamped(robot.urdf);
+  if (!robot.urdf.empty() || robot.urDescription.type.empty()) return "urdf\n" + content(robot.urdf);
   const auto& ur = robot.urDescription;
   const auto folder = ur.folder.empty() ? robot::defaultUrDescriptionFolder() : ur.folder;
   const auto kinematics =
       ur.kinematics.empty() ? folder / "config" / ur.type / "default_kinematics.yaml" : ur.kinematics;
-  return "ur\n" + ur.type + "\n" + std::filesystem::absolute(folder).string() + "\n" + stamped(kinematics);
+  return "ur\n" + ur.type + "\n" + std::filesystem::absolute(folder).string() + "\n" + content(kinematics);
 }
 
 robot::RobotModel loadModel(const MoveItRobot& robot) {

@@ -270,6 +270,31 @@ goal_constraints:
   EXPECT_NE(header.find("header"), std::string::npos) << header;
 }
 
+// The readers cache a description per process (file_content.h): a URDF rewritten in place, with the same
+// size and modification time, is read again, not served from the cache.
+TEST(MoveItScene, AUrdfRewrittenInPlaceIsReadAgain) {
+  const auto dir = arcplan::testing::freshTempDirectory("moveit_urdf_rewritten");
+  const MoveItRobot robot = ur10eOnStand(dir);
+  const auto sceneIn = [&](const std::string& frame) {
+    return write(dir, frame + ".yaml",
+                 "world:\n  collision_objects:\n    - id: a\n      header: {frame_id: " + frame +
+                     "}\n      primitives: [{type: sphere, dimensions: [0.1]}]\n      primitive_poses: [{}]\n");
+  };
+  EXPECT_EQ(arcplan::collision::loadMoveItScene(sceneIn("stand"), robot).scene.obstacles.size(), 1u);
+  std::string urdf = arcplan::testing::readFile(robot.urdf);
+  const auto size = std::filesystem::file_size(robot.urdf);
+  const auto written = std::filesystem::last_write_time(robot.urdf);
+  urdf = std::regex_replace(urdf, std::regex("\"stand\""), "\"stool\"");  // the root link renamed, same length
+  write(robot.urdf.parent_path(), robot.urdf.filename().string(), urdf);
+  std::filesystem::last_write_time(robot.urdf, written);
+  ASSERT_EQ(std::filesystem::file_size(robot.urdf), size);
+  EXPECT_EQ(arcplan::collision::loadMoveItScene(sceneIn("stool"), robot).scene.obstacles.size(), 1u);
+  EXPECT_NE(errorMessageOf([&] {
+              arcplan::collision::loadMoveItScene(sceneIn("stand"), robot);
+            }).find("unknown frame 'stand'"),
+            std::string::npos);
+}
+
 TEST(MoveItTextScene, OldAndNewLayoutsGiveTheSameObstacles) {
   const auto dir = arcplan::testing::freshTempDirectory("moveit_text");
   const auto older = write(dir, "old.scene",

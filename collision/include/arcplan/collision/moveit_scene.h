@@ -23,8 +23,8 @@ namespace arcplan::collision {
 // shoulder_pan_joint ... wrist_3_joint).
 struct MoveItRobot {
   std::filesystem::path urdf;
-  std::filesystem::path srdf;  // optional: its disabled collision pairs (empty: none)
-  robot::UrDescriptionSelection urDescription;
+  std::filesystem::path srdf;                        // optional: its disabled collision pairs (empty: none)
+  robot::UrDescriptionSelection urDescription = {};  // the initializer keeps {urdf, srdf} warning-free
 };
 
 struct MoveItProblem {
