@@ -25,6 +25,11 @@ using detail::Workspace;
 // much smaller, so that as a lower bound it never rests on an overestimate.
 constexpr double kHullDistanceSlack = 1e-6;
 
+// The coarse hull where there is one, else the hull.
+const fcl::CollisionGeometryd* coarseHullOf(const Part& part) {
+  return part.coarseHullGeometry ? part.coarseHullGeometry.get() : part.hullGeometry.get();
+}
+
 // FCL compares surfaces; a part entirely inside the other has no intersecting surfaces, so one
 // point of each is tested against the other's solid as well.
 bool oneInsideOther(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB) {
@@ -48,7 +53,8 @@ Workspace::Workspace(const CollisionModel& model)
       linkCapsuleStarts(model.linkNames().size()),
       linkCapsuleEnds(model.linkNames().size()),
       motionPairs(implementationOf(model).groups.size()),
-      motionJoints(model.robot().dof()) {
+      motionJoints(model.robot().dof()),
+      probeJoints(model.robot().dof()) {
   distanceOrder.reserve(implementationOf(model).partPairs.size());
   if (const auto& prefilter = implementationOf(model).prefilter) {
     spheres = std::make_shared<SphereWorkspace>();
@@ -105,11 +111,16 @@ double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& 
 }
 
 double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
-               const CollisionModelOptions& options) {
+               const CollisionModelOptions& options, double enough) {
   if (!options.hullLayer || !a.hullGeometry || !b.hullGeometry) return 0.0;
   if (options.convexDistance && a.convexGeometry && b.convexGeometry) return 0.0;
   static const fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-9);
   fcl::DistanceResultd result;
+  if (a.coarseHullGeometry || b.coarseHullGeometry) {
+    const double coarse = fcl::distance(coarseHullOf(a), poseA, coarseHullOf(b), poseB, request, result);
+    if (coarse - kHullDistanceSlack >= enough) return std::max(coarse - kHullDistanceSlack, 0.0);
+    result.clear();
+  }
   const double d = fcl::distance(a.hullGeometry.get(), poseA, b.hullGeometry.get(), poseB, request, result);
   return std::max(d - kHullDistanceSlack, 0.0);
 }
@@ -137,10 +148,15 @@ bool partsCollide(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, 
   if (options.convexCollision && a.convexGeometry && b.convexGeometry) {
     return fcl::collide(a.convexGeometry.get(), poseA, b.convexGeometry.get(), poseB, request, result) > 0;
   }
-  // The hulls contain the parts: hulls apart, parts apart (one GJK instead of a BVH traversal).
-  if (options.hullLayer && a.hullGeometry && b.hullGeometry &&
-      fcl::collide(a.hullGeometry.get(), poseA, b.hullGeometry.get(), poseB, request, result) == 0) {
-    return false;
+  // The hulls contain the parts: hulls apart, parts apart (one GJK instead of a BVH traversal); the
+  // coarse hulls contain the hulls.
+  if (options.hullLayer && a.hullGeometry && b.hullGeometry) {
+    if ((a.coarseHullGeometry || b.coarseHullGeometry) &&
+        fcl::collide(coarseHullOf(a), poseA, coarseHullOf(b), poseB, request, result) == 0) {
+      return false;
+    }
+    result.clear();
+    if (fcl::collide(a.hullGeometry.get(), poseA, b.hullGeometry.get(), poseB, request, result) == 0) return false;
   }
   result.clear();
   if (fcl::collide(a.collisionGeometry.get(), poseA, b.collisionGeometry.get(), poseB, request, result) > 0)
@@ -273,7 +289,8 @@ DistanceReport distance(const CollisionModel& model, CollisionData& workspace, c
     const Part& first = impl.robotParts[candidate.first];
     const Part& second = secondPart(impl, *candidate.group, candidate.second);
     const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, *candidate.group, candidate.second);
-    if (detail::hullGap(first, data.partPoses[candidate.first], second, secondPose, model.options()) >= best) continue;
+    if (detail::hullGap(first, data.partPoses[candidate.first], second, secondPose, model.options(), best) >= best)
+      continue;
     const double d =
         partsDistance(first, data.partPoses[candidate.first], second, secondPose, bound <= 0.0, model.options());
     if (d < best) {
@@ -331,7 +348,7 @@ bool hasClearance(const CollisionModel& model, CollisionData& workspace, const r
   }
   for (const auto& open : data.openPairs) {
     const auto [a, poseA, b, poseB] = parts(open);
-    if (detail::hullGap(a, poseA, b, poseB, model.options()) >= clearance) continue;
+    if (detail::hullGap(a, poseA, b, poseB, model.options(), clearance) >= clearance) continue;
     if (partsDistance(a, poseA, b, poseB, open.second, model.options()) < clearance) return false;
   }
   return true;

@@ -1,6 +1,7 @@
 #include "convex_hull.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -35,13 +36,14 @@ struct Facet {
   int corners[3];
 };
 
-}  // namespace
-
-std::shared_ptr<fcl::Convexd> containingHull(const std::vector<Eigen::Vector3d>& points) {
-  if (!spansVolume(points)) return nullptr;
+// The hull of `corners`, scaled about its centre until it contains every one of `points` (corners
+// among them).
+std::shared_ptr<fcl::Convexd> hullContaining(const std::vector<Eigen::Vector3d>& corners,
+                                             const std::vector<Eigen::Vector3d>& points) {
+  if (!spansVolume(corners)) return nullptr;
   std::vector<coordT> coordinates;
-  coordinates.reserve(3 * points.size());
-  for (const auto& p : points) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
+  coordinates.reserve(3 * corners.size());
+  for (const auto& p : corners) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
 
   qhT context;
   qhT* qh = &context;
@@ -49,14 +51,14 @@ std::shared_ptr<fcl::Convexd> containingHull(const std::vector<Eigen::Vector3d>&
   char options[] = "qhull Qt";  // triangulated facets
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Facet> facets;
-  if (qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False, options, nullptr, stderr) == 0) {
-    std::vector<int> indexOf(points.size(), -1);
+  if (qh_new_qhull(qh, 3, static_cast<int>(corners.size()), coordinates.data(), False, options, nullptr, stderr) == 0) {
+    std::vector<int> indexOf(corners.size(), -1);
     vertexT* vertex = nullptr;
     vertexT** vertexp = nullptr;
     FORALLvertices {
       const int id = qh_pointid(qh, vertex->point);
       indexOf[id] = static_cast<int>(vertices.size());
-      vertices.push_back(points[id]);
+      vertices.push_back(corners[id]);
     }
     facetT* facet = nullptr;
     FORALLfacets {
@@ -104,6 +106,32 @@ std::shared_ptr<fcl::Convexd> containingHull(const std::vector<Eigen::Vector3d>&
   // Checked, not assumed: a hull that leaves a point outside is no lower bound, so that part has none.
   if (!(largestOutside(*hull, points) <= 0.0)) return nullptr;
   return hull;
+}
+
+}  // namespace
+
+std::shared_ptr<fcl::Convexd> containingHull(const std::vector<Eigen::Vector3d>& points) {
+  return hullContaining(points, points);
+}
+
+std::shared_ptr<fcl::Convexd> coarseContainingHull(const std::vector<Eigen::Vector3d>& points, int directions) {
+  if (points.empty() || directions < 4) return nullptr;
+  // Evenly spread directions (a Fibonacci lattice on the sphere): the hull of the points extreme along
+  // them follows the full hull to within about the radius times 1 − cos(half their angular spacing).
+  std::vector<char> chosen(points.size(), 0);
+  std::vector<Eigen::Vector3d> corners;
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < directions; ++k) {
+    const double z = 1.0 - 2.0 * (k + 0.5) / directions, r = std::sqrt(1.0 - z * z);
+    const Eigen::Vector3d direction(r * std::cos(golden * k), r * std::sin(golden * k), z);
+    std::size_t extreme = 0;
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      if (direction.dot(points[i]) > direction.dot(points[extreme])) extreme = i;
+    }
+    if (!chosen[extreme]) corners.push_back(points[extreme]);
+    chosen[extreme] = 1;
+  }
+  return hullContaining(corners, points);
 }
 
 double largestOutside(const fcl::Convexd& hull, const std::vector<Eigen::Vector3d>& points) {

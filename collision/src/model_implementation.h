@@ -31,7 +31,7 @@ struct ModelImplementation {
   std::vector<Eigen::Vector3d> obstacleCapsuleStarts, obstacleCapsuleEnds;
   std::vector<Eigen::Isometry3d> obstacleInversePoses;
 
-  // Motion bounds (motion_check.cpp), per link with geometry b and joint j: movedBy(b, j) when j
+  // Motion bounds (motion_bounds.cpp), per link with geometry b and joint j: movedBy(b, j) when j
   // is an ancestor joint of b, and then jointReach(b, j) >= the distance of every point of b's
   // geometry from j's axis in every configuration (0 otherwise).
   Eigen::MatrixXd jointReach;
@@ -61,6 +61,8 @@ struct ModelImplementation {
   };
   std::vector<PartPair> partPairs;
   std::vector<int> firstPartPair;  // per group of `groups`: where its part pairs start in partPairs
+  // Per part pair (partPairs order), the group's relativeReach with the two parts' own reaches.
+  Eigen::MatrixXd partPairReach;
   // The SIMD sphere prefilter in front of FCL (null with CollisionModelOptions::spherePrefilter off).
   std::shared_ptr<const SpherePrefilter> prefilter;
 };
@@ -90,7 +92,14 @@ struct Workspace {
     double measuredFromStart = 0.0, measuredFromEnd = 1.0;
   };
   std::vector<MotionPair> motionPairs;
-  robot::JointVector motionJoints;           // the configuration on the motion being checked
+  robot::JointVector motionJoints;  // the configuration on the motion being checked
+  robot::JointVector probeJoints;   // a state probed before advancing (motion_check.cpp)
+  // Motion checks: a group's part pairs with their capsule bounds, in the order they are measured.
+  struct OrderedPart {
+    double key, bound;
+    int part;
+  };
+  std::vector<OrderedPart> partOrder;
   std::shared_ptr<SphereWorkspace> spheres;  // the prefilter's scratch (null without a prefilter)
 };
 
@@ -140,8 +149,9 @@ double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& 
 
 // A lower bound of partsDistance(a, b) from the parts' hulls (GJK, less its tolerance): 0 when the
 // hulls touch, when the layer is off, or when partsDistance would run GJK on the parts themselves.
+// The coarse hulls' bound is returned when it reaches `enough` (the caller's threshold), else the hulls'.
 double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
-               const CollisionModelOptions& options);
+               const CollisionModelOptions& options, double enough);
 
 inline const Part& secondPart(const Implementation& impl, const Implementation::PairGroup& group, int j) {
   return group.self ? impl.robotParts[j] : impl.obstacleParts[j];
@@ -158,7 +168,7 @@ bool groupCollides(const CollisionModel& model, Workspace& data, const ModelImpl
 // Measures the self pairs whose relativeReach is 0 once and marks them rigid (collision_model_building.cpp).
 void measureRigidPairs(const CollisionModel& model, ModelImplementation& impl);
 
-// Fills impl.jointReach, impl.movedBy and every group's relativeReach (motion_check.cpp).
+// Fills impl.jointReach, impl.movedBy, impl.partPairReach and every group's relativeReach (motion_bounds.cpp).
 void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl);
 
 }  // namespace arcplan::collision::detail

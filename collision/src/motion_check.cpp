@@ -28,52 +28,8 @@ constexpr double kSmallestMinimumClearance = 1e-5;
 // long motions of perf/perf_collision.cpp 0 (only the pairs at the front) takes 1.8x the time of
 // 0.5, 0.3–0.7 are within 7 % of it, 1 (every pair every time) takes 1.2x.
 constexpr double kEarlyMeasurement = 0.5;
-
-// A point of a body's geometry with a radius: the body lies inside the convex hull of these balls.
-struct BoundingBall {
-  Eigen::Vector3d center;
-  double radius;
-};
-
-// Pose of `to`'s frame before its own joint rotation, in `from`'s frame, for a descendant `to`
-// reached through fixed joints only (apart from `to`'s own).
-Eigen::Isometry3d chainOrigin(const robot::RobotModel& robot, int from, int to) {
-  Eigen::Isometry3d pose = robot.links()[to].originInParent;
-  for (int l = robot.links()[to].parent; l != from; l = robot.links()[l].parent) {
-    pose = robot.links()[l].originInParent * pose;
-  }
-  return pose;
-}
-
-double farthestDistance(const std::vector<BoundingBall>& balls, const Eigen::Isometry3d& toFrame) {
-  double farthest = 0.0;
-  for (const auto& ball : balls) farthest = std::max(farthest, (toFrame * ball.center).norm() + ball.radius);
-  return farthest;
-}
-
-// The largest distance of the balls from the axis through the origin along the unit `axis`.
-double farthestFromAxis(const std::vector<BoundingBall>& balls, const Eigen::Isometry3d& toFrame,
-                        const Eigen::Vector3d& axis) {
-  double farthest = 0.0;
-  for (const auto& ball : balls) {
-    const Eigen::Vector3d p = toFrame * ball.center;
-    farthest = std::max(farthest, (p - p.dot(axis) * axis).norm() + ball.radius);
-  }
-  return farthest;
-}
-
-// Per joint: how fast the distance between bodies a and b can shrink per radian of that joint. In
-// the frame of their nearest common ancestor only the joints that move one and not the other move
-// anything, each moving points of its body at most its reach.
-Eigen::VectorXd relativeReach(const Implementation& impl, int a, int b) {
-  Eigen::VectorXd reach = Eigen::VectorXd::Zero(impl.jointReach.cols());
-  for (Eigen::Index j = 0; j < reach.size(); ++j) {
-    if (impl.movedBy(a, j) != impl.movedBy(b, j)) {
-      reach[j] = impl.movedBy(a, j) ? impl.jointReach(a, j) : impl.jointReach(b, j);
-    }
-  }
-  return reach;
-}
+// States probed before advancing (probesClear).
+constexpr int kProbes = 3;
 
 void checkJoints(const CollisionModel& model, const robot::JointRef& qa, const robot::JointRef& qb) {
   if (qa.size() != model.robot().dof() || qb.size() != model.robot().dof()) {
@@ -81,13 +37,6 @@ void checkJoints(const CollisionModel& model, const robot::JointRef& qa, const r
                 std::to_string(qa.size()) + " and " + std::to_string(qb.size()));
   }
   if (!qa.allFinite() || !qb.allFinite()) throw Error("motion check: joint values must be finite numbers");
-}
-
-void checkBody(const CollisionModel& model, int body) {
-  if (body < 0 || body >= static_cast<int>(model.linkNames().size())) {
-    throw Error("motion bound: link index " + std::to_string(body) + " is not one of the " +
-                std::to_string(model.linkNames().size()) + " links with collision geometry");
-  }
 }
 
 struct PairMeasurement {
@@ -107,24 +56,34 @@ PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data
   if (group.rigid) return {group.rigidDistance - kDistanceSlack, group.rigidDistance < minimumClearance};
   double gap = detail::linkGap(impl, data, group);
   if (gap >= wanted) return {gap, false};
-  double partGap = kInfinity;
-  for (const auto& [i, j] : group.parts) partGap = std::min(partGap, detail::boundGap(impl, data, i, j, group.self));
-  gap = std::max(gap, partGap);
+  // Part pairs nearest first by their capsule bounds, so that the exact distances of the nearest
+  // settle the group and the others are dismissed by their bounds (in the parts' order, a group of the
+  // FTS300's or the Robotiq's many parts measured almost every hull).
+  auto& order = data.partOrder;
+  order.clear();
+  for (std::size_t p = 0; p < group.parts.size(); ++p) {
+    const auto [i, j] = group.parts[p];
+    const double bound = detail::boundGap(impl, data, i, j, group.self);
+    order.push_back({bound, bound, static_cast<int>(p)});
+  }
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
+  gap = std::max(gap, order.empty() ? kInfinity : order.front().key);
   if (gap >= minimumClearance) return {gap, false};
   double exact = kInfinity;
-  for (const auto& [i, j] : group.parts) {
-    const double bound = detail::boundGap(impl, data, i, j, group.self);
+  for (const auto& [key, bound, p] : order) {
     // A part pair bounded above the smallest distance so far cannot lower it, and one bounded
-    // above `wanted` certifies enough with its bound.
+    // above `wanted` certifies enough with its bound; so are all after it.
     if (bound >= std::min(wanted, exact)) {
       exact = std::min(exact, bound);
-      continue;
+      break;
     }
+    const auto [i, j] = group.parts[p];
     const auto &first = impl.robotParts[i], &second = detail::secondPart(impl, group, j);
     const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, group, j);
     // The hulls' lower bound (cheaper than the BVHs) will do unless closer than minimumClearance.
-    const double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options());
-    if (hull >= std::min(minimumClearance, exact)) {
+    const double enough = std::min(minimumClearance, exact);
+    const double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough);
+    if (hull >= enough) {
       exact = std::min(exact, hull);
       continue;
     }
@@ -135,23 +94,115 @@ PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data
   return {std::max(gap, exact), false};
 }
 
+// The fraction of the motion over which a distance `gap` shrinking at most at `rate` stays positive.
+double reachOf(double gap, double rate) {
+  if (rate > 0.0) return gap / rate;
+  return gap > 0.0 ? kInfinity : 0.0;
+}
+
+struct ReachRequest {
+  double groupRate;             // the group's relativeReach · step
+  const Eigen::VectorXd& step;  // |qb − qa|
+  double wanted;                // the reach that would certify the rest of the motion
+  double minimumClearance;
+};
+
+struct ReachMeasurement {
+  double reach;   // the fraction of the motion, each way from the current state, over which the group is apart
+  bool tooClose;  // an exact distance below minimumClearance
+};
+
+// measurePair for the certified check, in fractions of the motion: each part pair's bound over its own
+// rate (ModelImplementation::partPairReach), so a pair like the base and the upper arm, always a few centimetres apart
+// near the shoulder, is not stepped at the speed of the elbow end (on RRTConnect's long MBM edges that pair alone set
+// ~70 steps per motion). The part pairs with the smallest reach are refined first.
+ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& data, int k,
+                              const ReachRequest& request) {
+  const Implementation& impl = detail::implementationOf(model);
+  const Implementation::PairGroup& group = *impl.groups[k];
+  const auto rateOf = [&](std::size_t p) {
+    return impl.partPairReach.row(impl.firstPartPair[k] + static_cast<Eigen::Index>(p)).dot(request.step);
+  };
+  const double minimumClearance = request.minimumClearance;
+  if (group.rigid) return {reachOf(group.rigidDistance - kDistanceSlack, 0.0), group.rigidDistance < minimumClearance};
+  const double linkGap = detail::linkGap(impl, data, group);
+  const double linkReach = reachOf(linkGap, request.groupRate);
+  // Every bound taken instead of a distance is at least minimumClearance, as in measurePair.
+  if (linkGap >= minimumClearance && linkReach >= request.wanted) return {linkReach, false};
+  auto& order = data.partOrder;
+  order.clear();
+  double nearest = kInfinity;
+  for (std::size_t p = 0; p < group.parts.size(); ++p) {
+    const auto [i, j] = group.parts[p];
+    const double bound = detail::boundGap(impl, data, i, j, group.self);
+    nearest = std::min(nearest, bound);
+    order.push_back({reachOf(bound, rateOf(p)), bound, static_cast<int>(p)});
+  }
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
+  const double boundsReach = order.empty() ? kInfinity : order.front().key;
+  if (std::max(linkGap, nearest) >= minimumClearance) return {std::max(linkReach, boundsReach), false};
+  double best = kInfinity;
+  for (const auto& [reach, bound, p] : order) {
+    // A part pair bounded beyond minimumClearance that certifies enough, or no less than the best so
+    // far, keeps its bound; the others are measured (a distance below minimumClearance rejects).
+    if (bound >= minimumClearance && reach >= std::min(request.wanted, best)) {
+      best = std::min(best, reach);
+      continue;
+    }
+    const auto [i, j] = group.parts[p];
+    const auto &first = impl.robotParts[i], &second = detail::secondPart(impl, group, j);
+    const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, group, j);
+    const double rate = rateOf(p);
+    const double hull =
+        detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), minimumClearance);
+    if (hull >= minimumClearance) {
+      best = std::min(best, reachOf(hull, rate));
+      continue;
+    }
+    const double d = detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options());
+    if (d < minimumClearance) return {0.0, true};
+    best = std::min(best, reachOf(d - kDistanceSlack, rate));
+  }
+  return {std::max(linkReach, best), false};
+}
+
+// A few states of the motion, coarse to fine (its middle, then its quarters, ...), each asked whether
+// it keeps minimumClearance: the certified check below would reject the motion at such a state too if it
+// measured there, and a motion the spheres cannot settle is mostly one that collides or grazes an
+// obstacle somewhere inside, which advancing from the ends finds only after many steps (on RRTConnect's
+// long MBM edges 0.7–2.2 ms median).
+bool probesClear(const CollisionModel& model, CollisionData& data, const robot::JointRef& qa, const robot::JointRef& qb,
+                 double minimumClearance) {
+  robot::JointVector& q = detail::workspaceOf(data).probeJoints;
+  int probed = 0;
+  for (int parts = 2; probed < kProbes; parts *= 2) {
+    for (int k = 1; k < parts && probed < kProbes; k += 2, ++probed) {
+      q = qa + (static_cast<double>(k) / parts) * (qb - qa);
+      if (!hasClearance(model, data, q, minimumClearance)) return false;
+    }
+  }
+  return true;
+}
+
 // Conservative advancement from both ends, or only from the start when the last valid state is
 // wanted. Pair k is proven apart before motionPairs[k].certifiedFromStart and after
 // certifiedFromEnd (open intervals: a pair at distance g at s stays apart on (s − g/rate,
 // s + g/rate)); it is done when the two overlap. The front on each side is the smallest
 // certificate of the pairs not done, and the pairs whose certificate ends there (or soon after)
 // are measured there.
-bool certifiedMotionFree(const CollisionModel& model, detail::Workspace& data, const robot::JointRef& qa,
+bool certifiedMotionFree(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& qa,
                          const robot::JointRef& qb, double* lastValidFraction, double minimumClearance) {
   const Implementation& impl = detail::implementationOf(model);
+  detail::Workspace& data = detail::workspaceOf(workspace);
   // The sphere prefilter first: it certifies most motions with a few batches of 8 states.
   const detail::SphereMotion spheres = detail::sphereMotion(model, data, qa, qb, minimumClearance);
   if (spheres == detail::SphereMotion::Free) return true;
   if (spheres == detail::SphereMotion::Collides && lastValidFraction == nullptr) return false;
+  if (lastValidFraction == nullptr && !probesClear(model, workspace, qa, qb, minimumClearance)) return false;
   auto& pairs = data.motionPairs;
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    pairs[k] = {impl.groups[k]->relativeReach.dot((qb - qa).cwiseAbs()), 0.0, 1.0, 0.0, 1.0};
-  }
+  const Eigen::VectorXd step = (qb - qa).cwiseAbs();
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    pairs[k] = {impl.groups[k]->relativeReach.dot(step), 0.0, 1.0, 0.0, 1.0};
   const auto done = [](const detail::Workspace::MotionPair& pair) {
     return pair.certifiedFromStart > pair.certifiedFromEnd;
   };
@@ -177,13 +228,13 @@ bool certifiedMotionFree(const CollisionModel& model, detail::Workspace& data, c
           atStart ? pair.certifiedFromStart - pair.measuredFromStart : pair.measuredFromEnd - pair.certifiedFromEnd;
       if (ahead > kEarlyMeasurement * lastStep) continue;
       const double remaining = atStart ? pair.certifiedFromEnd - s : s - pair.certifiedFromStart;
-      const PairMeasurement measured = measurePair(model, data, *impl.groups[k],
-                                                   std::max(pair.rate * remaining, minimumClearance), minimumClearance);
+      const ReachMeasurement measured =
+          measureReach(model, data, static_cast<int>(k), {pair.rate, step, remaining, minimumClearance});
       if (measured.tooClose) {
         if (lastValidFraction != nullptr) *lastValidFraction = lastClear;
         return false;
       }
-      const double reach = measured.gap / pair.rate;  // +infinity for a pair the motion does not move
+      const double reach = measured.reach;
       // A pair measured before its certificate ran out keeps the longer one.
       if (atStart) {
         pair.certifiedFromStart = std::max(pair.certifiedFromStart, s + reach);
@@ -231,61 +282,6 @@ bool discreteMotionFree(const CollisionModel& model, CollisionData& data, const 
 
 }  // namespace
 
-namespace detail {
-
-void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl) {
-  const std::size_t bodies = impl.linkCapsules.size();
-  std::vector<std::vector<BoundingBall>> balls(bodies);
-  for (const Part& part : impl.robotParts) {
-    if (part.hullPoints.empty()) {
-      balls[part.body].push_back({part.offset * part.capsule.start, part.capsule.radius});
-      balls[part.body].push_back({part.offset * part.capsule.end, part.capsule.radius});
-    }
-    for (const auto& point : part.hullPoints) balls[part.body].push_back({part.offset * point, 0.0});
-  }
-  impl.jointReach = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(bodies), robot.dof());
-  impl.movedBy.setConstant(static_cast<Eigen::Index>(bodies), robot.dof(), false);
-  for (std::size_t b = 0; b < bodies; ++b) {
-    const int link = impl.linkCapsuleLink[b];
-    // The moving links from the body's link toward the base: movers[0] is the nearest one.
-    std::vector<int> movers;
-    for (int l = link; l >= 0; l = robot.links()[l].parent) {
-      if (robot.links()[l].joint >= 0) movers.push_back(l);
-    }
-    if (movers.empty()) continue;
-    // Geometry in the frame of the nearest moving link (through fixed joints only).
-    const Eigen::Isometry3d geometryInNearest =
-        link == movers[0] ? Eigen::Isometry3d::Identity() : chainOrigin(robot, movers[0], link);
-    const double farthestFromNearest = farthestDistance(balls[b], geometryInNearest);
-    // Between moving links the offsets are rigid: |o_next − o_previous| never changes.
-    double outerChain = 0.0;  // |o_movers[0] − o_movers[1]| + ... + |o_movers[k-2] − o_movers[k-1]|
-    for (std::size_t k = 0; k < movers.size(); ++k) {
-      const robot::Link& mover = robot.links()[movers[k]];
-      double reach = 0.0;
-      if (k == 0) {
-        // Rigidly attached to the joint's own link: exactly the farthest distance from its axis.
-        reach = farthestFromAxis(balls[b], geometryInNearest, mover.axis);
-      } else {
-        // Along the chain by the triangle inequality; the first offset is fixed in this joint's
-        // frame, so only its part perpendicular to the axis counts.
-        const Eigen::Vector3d firstOffset = chainOrigin(robot, movers[k], movers[k - 1]).translation();
-        reach = (firstOffset - firstOffset.dot(mover.axis) * mover.axis).norm() + outerChain + farthestFromNearest;
-        outerChain += firstOffset.norm();
-      }
-      impl.jointReach(static_cast<Eigen::Index>(b), mover.joint) = reach;
-      impl.movedBy(static_cast<Eigen::Index>(b), mover.joint) = true;
-    }
-  }
-  for (auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
-    for (auto& group : *groups) {
-      group.relativeReach = group.self ? relativeReach(impl, group.firstBody, group.secondBody)
-                                       : Eigen::VectorXd(impl.jointReach.row(group.firstBody).transpose());
-    }
-  }
-}
-
-}  // namespace detail
-
 const char* toString(MotionCheck method) {
   switch (method) {
     case MotionCheck::Discrete:
@@ -314,7 +310,7 @@ bool isMotionCollisionFree(const CollisionModel& model, CollisionData& data, con
   if (options.method == MotionCheck::Discrete) {
     return discreteMotionFree(model, data, qa, qb, lastValidFraction, options.maxJointStep);
   }
-  return certifiedMotionFree(model, detail::workspaceOf(data), qa, qb, lastValidFraction, options.minimumClearance);
+  return certifiedMotionFree(model, data, qa, qb, lastValidFraction, options.minimumClearance);
 }
 
 PathCertifier::PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance)
@@ -369,7 +365,7 @@ bool PathCertifier::extend(const robot::JointRef& q) {
     if (bound_[k] >= budget_[k]) {
       // Not even this one motion: advance along it conservatively, then start afresh at its end.
       ++measurements_;
-      if (!certifiedMotionFree(model_, detail::workspaceOf(data_), last_, q, nullptr, minimumClearance_)) return false;
+      if (!certifiedMotionFree(model_, data_, last_, q, nullptr, minimumClearance_)) return false;
       return anchorAll(q);
     }
   }
@@ -381,20 +377,6 @@ bool PathCertifier::extend(const robot::JointRef& q) {
 int discreteSegmentCount(const robot::JointRef& qa, const robot::JointRef& qb, double maxJointStep) {
   const double largestStep = qa.size() == 0 ? 0.0 : (qb - qa).cwiseAbs().maxCoeff();
   return std::max(1, static_cast<int>(std::ceil(largestStep / maxJointStep)));
-}
-
-double motionBound(const CollisionModel& model, int body, const robot::JointRef& qa, const robot::JointRef& qb) {
-  checkJoints(model, qa, qb);
-  checkBody(model, body);
-  return detail::implementationOf(model).jointReach.row(body).transpose().dot((qb - qa).cwiseAbs());
-}
-
-double relativeMotionBound(const CollisionModel& model, int body, int otherBody, const robot::JointRef& qa,
-                           const robot::JointRef& qb) {
-  checkJoints(model, qa, qb);
-  checkBody(model, body);
-  checkBody(model, otherBody);
-  return relativeReach(detail::implementationOf(model), body, otherBody).dot((qb - qa).cwiseAbs());
 }
 
 }  // namespace arcplan::collision

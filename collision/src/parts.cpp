@@ -30,6 +30,9 @@ namespace {
 constexpr std::size_t kMaxComponentParts = 32;
 // Bounding volumes are padded so rounding never makes them smaller than what they bound.
 constexpr double kBoundPadding = 1e-6;
+// Hulls with more vertices than this also get a coarse hull of the points extreme along this many
+// directions (fewer vertices: FCL's support search walks the vertex graph of the whole hull).
+constexpr int kCoarseHullVertices = 128, kCoarseHullDirections = 64;
 
 template <typename BV>
 std::shared_ptr<fcl::CollisionGeometryd> makeBvh(const robot::TriangleMesh& mesh) {
@@ -247,7 +250,10 @@ Part makeMeshPart(const robot::TriangleMesh& mesh, Solid solid, const CollisionM
     part.convexGeometry->computeLocalAABB();
     part.hullGeometry = part.convexGeometry;
   } else {
-    part.hullGeometry = containingHull(mesh.vertices);
+    const auto hull = containingHull(mesh.vertices);
+    part.hullGeometry = hull;
+    if (hull && static_cast<int>(hull->getVertices().size()) > kCoarseHullVertices)
+      part.coarseHullGeometry = coarseContainingHull(mesh.vertices, kCoarseHullDirections);
   }
   part.solid = std::move(solid);
   part.referencePoint = mesh.vertices.front();

@@ -41,6 +41,9 @@ struct Part {
   // a mesh part's vertices (convex_hull.h). Its GJK answers are bounds between the capsule and the
   // exact mesh: no contact proves the part free, its distance is a lower bound of the part's.
   std::shared_ptr<fcl::CollisionGeometryd> hullGeometry;
+  // Where the hull has many vertices: a containing hull with few (convex_hull.h coarseContainingHull),
+  // asked first — its bounds are looser but its GJK queries much cheaper. Null otherwise.
+  std::shared_ptr<fcl::CollisionGeometryd> coarseHullGeometry;
   // Broad phase: a capsule in the part frame, or (obstacle boxes) the box itself.
   bool boxBound = false;
   Capsule capsule;

@@ -1,0 +1,177 @@
+// The motion bounds of the certified check (motion_check.h, docs/collision.md): per body and joint how
+// far the body's points are from the joint's axis, per body pair and per part pair how fast their
+// distance can shrink on a straight joint motion.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "arcplan/common/error.h"
+#include "model_implementation.h"
+#include "motion_bounds.h"
+
+namespace arcplan::collision {
+namespace {
+
+using detail::Implementation;
+
+// A point of a body's geometry with a radius: the body lies inside the convex hull of these balls.
+struct BoundingBall {
+  Eigen::Vector3d center;
+  double radius;
+};
+
+// Pose of `to`'s frame before its own joint rotation, in `from`'s frame, for a descendant `to`
+// reached through fixed joints only (apart from `to`'s own).
+Eigen::Isometry3d chainOrigin(const robot::RobotModel& robot, int from, int to) {
+  Eigen::Isometry3d pose = robot.links()[to].originInParent;
+  for (int l = robot.links()[to].parent; l != from; l = robot.links()[l].parent) {
+    pose = robot.links()[l].originInParent * pose;
+  }
+  return pose;
+}
+
+double farthestDistance(const std::vector<BoundingBall>& balls, const Eigen::Isometry3d& toFrame) {
+  double farthest = 0.0;
+  for (const auto& ball : balls) farthest = std::max(farthest, (toFrame * ball.center).norm() + ball.radius);
+  return farthest;
+}
+
+// The largest distance of the balls from the axis through the origin along the unit `axis`.
+double farthestFromAxis(const std::vector<BoundingBall>& balls, const Eigen::Isometry3d& toFrame,
+                        const Eigen::Vector3d& axis) {
+  double farthest = 0.0;
+  for (const auto& ball : balls) {
+    const Eigen::Vector3d p = toFrame * ball.center;
+    farthest = std::max(farthest, (p - p.dot(axis) * axis).norm() + ball.radius);
+  }
+  return farthest;
+}
+
+// Per joint, a bound of the distance from its axis of every point of geometry `balls` on link `link`,
+// in every configuration (0 for the joints that do not move it).
+Eigen::VectorXd axisReach(const robot::RobotModel& robot, int link, const std::vector<BoundingBall>& balls) {
+  Eigen::VectorXd reach = Eigen::VectorXd::Zero(robot.dof());
+  // The moving links from the body's link toward the base: movers[0] is the nearest one.
+  std::vector<int> movers;
+  for (int l = link; l >= 0; l = robot.links()[l].parent) {
+    if (robot.links()[l].joint >= 0) movers.push_back(l);
+  }
+  if (movers.empty()) return reach;
+  // Geometry in the frame of the nearest moving link (through fixed joints only).
+  const Eigen::Isometry3d geometryInNearest =
+      link == movers[0] ? Eigen::Isometry3d::Identity() : chainOrigin(robot, movers[0], link);
+  const double farthestFromNearest = farthestDistance(balls, geometryInNearest);
+  // Between moving links the offsets are rigid: |o_next − o_previous| never changes.
+  double outerChain = 0.0;  // |o_movers[0] − o_movers[1]| + ... + |o_movers[k-2] − o_movers[k-1]|
+  for (std::size_t k = 0; k < movers.size(); ++k) {
+    const robot::Link& mover = robot.links()[movers[k]];
+    if (k == 0) {
+      // Rigidly attached to the joint's own link: exactly the farthest distance from its axis.
+      reach[mover.joint] = farthestFromAxis(balls, geometryInNearest, mover.axis);
+    } else {
+      // Along the chain by the triangle inequality; the first offset is fixed in this joint's
+      // frame, so only its part perpendicular to the axis counts.
+      const Eigen::Vector3d firstOffset = chainOrigin(robot, movers[k], movers[k - 1]).translation();
+      reach[mover.joint] =
+          (firstOffset - firstOffset.dot(mover.axis) * mover.axis).norm() + outerChain + farthestFromNearest;
+      outerChain += firstOffset.norm();
+    }
+  }
+  return reach;
+}
+
+// Per joint: how fast the distance between bodies a and b can shrink per radian of that joint. In
+// the frame of their nearest common ancestor only the joints that move one and not the other move
+// anything, each moving points of its body at most its reach.
+Eigen::VectorXd relativeReach(const Implementation& impl, int a, int b) {
+  Eigen::VectorXd reach = Eigen::VectorXd::Zero(impl.jointReach.cols());
+  for (Eigen::Index j = 0; j < reach.size(); ++j) {
+    if (impl.movedBy(a, j) != impl.movedBy(b, j)) {
+      reach[j] = impl.movedBy(a, j) ? impl.jointReach(a, j) : impl.jointReach(b, j);
+    }
+  }
+  return reach;
+}
+
+// The joint values of a motion bound's ends, with the messages of the motion checks.
+void checkJoints(const CollisionModel& model, const robot::JointRef& qa, const robot::JointRef& qb) {
+  if (qa.size() != model.robot().dof() || qb.size() != model.robot().dof()) {
+    throw Error("motion check: expected " + std::to_string(model.robot().dof()) + " joint values per end, got " +
+                std::to_string(qa.size()) + " and " + std::to_string(qb.size()));
+  }
+  if (!qa.allFinite() || !qb.allFinite()) throw Error("motion check: joint values must be finite numbers");
+}
+
+void checkBody(const CollisionModel& model, int body) {
+  if (body < 0 || body >= static_cast<int>(model.linkNames().size())) {
+    throw Error("motion bound: link index " + std::to_string(body) + " is not one of the " +
+                std::to_string(model.linkNames().size()) + " links with collision geometry");
+  }
+}
+
+}  // namespace
+
+namespace detail {
+
+void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl) {
+  const std::size_t bodies = impl.linkCapsules.size();
+  std::vector<std::vector<BoundingBall>> balls(bodies), partBalls(impl.robotParts.size());
+  for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
+    const Part& part = impl.robotParts[i];
+    if (part.hullPoints.empty()) {
+      partBalls[i].push_back({part.offset * part.capsule.start, part.capsule.radius});
+      partBalls[i].push_back({part.offset * part.capsule.end, part.capsule.radius});
+    }
+    for (const auto& point : part.hullPoints) partBalls[i].push_back({part.offset * point, 0.0});
+    balls[part.body].insert(balls[part.body].end(), partBalls[i].begin(), partBalls[i].end());
+  }
+  impl.jointReach = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(bodies), robot.dof());
+  impl.movedBy.setConstant(static_cast<Eigen::Index>(bodies), robot.dof(), false);
+  for (std::size_t b = 0; b < bodies; ++b) {
+    const int link = impl.linkCapsuleLink[b];
+    impl.jointReach.row(static_cast<Eigen::Index>(b)) = axisReach(robot, link, balls[b]).transpose();
+    for (int l = link; l >= 0; l = robot.links()[l].parent) {
+      if (robot.links()[l].joint >= 0) impl.movedBy(static_cast<Eigen::Index>(b), robot.links()[l].joint) = true;
+    }
+  }
+  // The same per part pair, with the parts' own reaches, which near a joint axis are far below their body's.
+  Eigen::MatrixXd partReach(static_cast<Eigen::Index>(impl.robotParts.size()), robot.dof());
+  for (std::size_t i = 0; i < impl.robotParts.size(); ++i) {
+    partReach.row(static_cast<Eigen::Index>(i)) =
+        axisReach(robot, impl.linkCapsuleLink[impl.robotParts[i].body], partBalls[i]).transpose();
+  }
+  impl.partPairReach = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(impl.partPairs.size()), robot.dof());
+  for (std::size_t p = 0; p < impl.partPairs.size(); ++p) {
+    const auto& [group, i, j] = impl.partPairs[p];
+    for (int joint = 0; joint < robot.dof(); ++joint) {
+      const bool first = impl.movedBy(group->firstBody, joint);
+      const bool second = group->self && impl.movedBy(group->secondBody, joint);
+      if (first != second)
+        impl.partPairReach(static_cast<Eigen::Index>(p), joint) = first ? partReach(i, joint) : partReach(j, joint);
+    }
+  }
+  for (auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
+    for (auto& group : *groups) {
+      group.relativeReach = group.self ? relativeReach(impl, group.firstBody, group.secondBody)
+                                       : Eigen::VectorXd(impl.jointReach.row(group.firstBody).transpose());
+    }
+  }
+}
+
+}  // namespace detail
+
+double motionBound(const CollisionModel& model, int body, const robot::JointRef& qa, const robot::JointRef& qb) {
+  checkJoints(model, qa, qb);
+  checkBody(model, body);
+  return detail::implementationOf(model).jointReach.row(body).transpose().dot((qb - qa).cwiseAbs());
+}
+
+double relativeMotionBound(const CollisionModel& model, int body, int otherBody, const robot::JointRef& qa,
+                           const robot::JointRef& qb) {
+  checkJoints(model, qa, qb);
+  checkBody(model, body);
+  checkBody(model, otherBody);
+  return relativeReach(detail::implementationOf(model), body, otherBody).dot((qb - qa).cwiseAbs());
+}
+
+}  // namespace arcplan::collision
