@@ -3,7 +3,9 @@
 // problem families in tests/collision/moveit_problems (every shape and field the readers claim, family
 // names MBM does not have). Expected poses come from the message definitions and UR's xacro
 // convention (base_link_inertia is base_link turned by pi about z), names from the description files.
+#include <cmath>
 #include <fstream>
+#include <random>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -14,7 +16,9 @@
 #include "arcplan/benchmarks/suite.h"
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/moveit_scene.h"
+#include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/ur_description.h"
+#include "arcplan/robot/ur_inverse_kinematics.h"
 #include "support/command.h"
 #include "support/error_message.h"
 
@@ -152,6 +156,68 @@ TEST(MoveItUrType, EveryDescriptionTypePlansAMoveItProblem) {
         arcplan::benchmarks::planQuery(std::make_shared<const arcplan::collision::Scene>(problem.scene), "", options);
     EXPECT_EQ(planned.status, arcplan::benchmarks::PlanStatus::Exact) << type << ": " << planned.reason;
   }
+}
+
+// A type the description folder does not have: the UR20, from its datasheet DH parameters (d1 0.2363,
+// a2 -0.862, a3 -0.7287, d4 0.201, d5 0.1593, d6 0.1543 m), in a folder made at run time beside links
+// of UR's UR10e limits, masses and meshes. Its tool0 must be the DH chain's last frame seen from
+// base_link (UR's `base` frame, the DH base, is base_link turned by pi about z), IK must give the
+// configurations back, and it must read and plan a MoveIt problem.
+TEST(MoveItUrType, ATypeTheFolderDoesNotHaveLoadsMatchesItsDhAndPlans) {
+  const auto dir = arcplan::testing::freshTempDirectory("moveit_ur20");
+  const fs::path shared = arcplan::robot::defaultUrDescriptionFolder();
+  fs::create_directories(dir / "config" / "ur20");
+  fs::create_directory_symlink(shared / "meshes", dir / "meshes");
+  for (const char* file : {"joint_limits.yaml", "physical_parameters.yaml", "visual_parameters.yaml"})
+    fs::create_symlink(shared / "config" / "ur10e" / file, dir / "config" / "ur20" / file);
+  const double d1 = 0.2363, a2 = -0.862, a3 = -0.7287, d4 = 0.201, d5 = 0.1593, d6 = 0.1543;
+  std::ofstream(dir / "config" / "ur20" / "default_kinematics.yaml")
+      << "kinematics:\n"
+      << "  shoulder: {x: 0, y: 0, z: " << d1 << ", roll: 0, pitch: 0, yaw: 0}\n"
+      << "  upper_arm: {x: 0, y: 0, z: 0, roll: 1.5707963267948966, pitch: 0, yaw: 0}\n"
+      << "  forearm: {x: " << a2 << ", y: 0, z: 0, roll: 0, pitch: 0, yaw: 0}\n"
+      << "  wrist_1: {x: " << a3 << ", y: 0, z: " << d4 << ", roll: 0, pitch: 0, yaw: 0}\n"
+      << "  wrist_2: {x: 0, y: " << -d5 << ", z: 0, roll: 1.5707963267948966, pitch: 0, yaw: 0}\n"
+      << "  wrist_3: {x: 0, y: " << d6
+      << ", z: 0, roll: 1.5707963267948966, pitch: 3.141592653589793, yaw: 3.141592653589793}\n";
+  const arcplan::robot::RobotModel model = arcplan::robot::loadUrDescription({"ur20", dir, {}});
+  const arcplan::robot::UrInverseKinematics ik(model);
+  arcplan::robot::KinematicsData data(model);
+  std::mt19937 random(20);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0);
+  const double d[] = {d1, 0, 0, d4, d5, d6}, a[] = {0, a2, a3, 0, 0, 0};
+  const double alpha[] = {M_PI_2, 0, 0, M_PI_2, -M_PI_2, 0};
+  for (int trial = 0; trial < 50; ++trial) {
+    arcplan::robot::Vector6 q;
+    for (int j = 0; j < 6; ++j) q[j] = angle(random);
+    Eigen::Isometry3d expected(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()));
+    for (int j = 0; j < 6; ++j) {
+      expected = expected * Eigen::AngleAxisd(q[j], Eigen::Vector3d::UnitZ()) * Eigen::Translation3d(a[j], 0, d[j]) *
+                 Eigen::AngleAxisd(alpha[j], Eigen::Vector3d::UnitX());
+    }
+    arcplan::robot::forwardKinematics(model, q, data);
+    EXPECT_LT((data.linkPoses[model.linkIndex("tool0")].matrix() - expected.matrix()).cwiseAbs().maxCoeff(), 1e-9);
+    double closest = 1e9;
+    for (const auto& solution : ik.solveBranches(expected)) {
+      double worst = 0.0;
+      for (int j = 0; j < 6; ++j) worst = std::max(worst, std::abs(std::remainder(solution[j] - q[j], 2 * M_PI)));
+      closest = std::min(closest, worst);
+    }
+    EXPECT_LT(closest, 1e-9) << q.transpose();
+  }
+  // The cage's request in a scene with only a floor, read against the UR20's names.
+  std::ofstream(dir / "floor.yaml")
+      << "world:\n  collision_objects:\n    - id: floor\n      primitives: [{type: box, "
+         "dimensions: [4, 4, 0.02]}]\n      primitive_poses: [{position: [0, 0, -0.03]}]\n";
+  const MoveItProblem problem = arcplan::collision::loadMoveItProblem(
+      dir / "floor.yaml", kProblems / "cage_ur5e" / "request0001.yaml", {{}, {}, {"ur20", dir, {}}});
+  EXPECT_EQ(problem.scene.robot.urType, "ur20");
+  arcplan::benchmarks::PlanQueryOptions options;
+  options.planner = "RRTConnect";
+  options.seed = 1;
+  const auto planned =
+      arcplan::benchmarks::planQuery(std::make_shared<const arcplan::collision::Scene>(problem.scene), "", options);
+  EXPECT_EQ(planned.status, arcplan::benchmarks::PlanStatus::Exact) << planned.reason;
 }
 
 }  // namespace
