@@ -123,7 +123,10 @@ std::vector<std::string> urTypesIn(const std::filesystem::path& folder) {
 }
 
 RobotModel loadUrDescription(const UrDescriptionSelection& selection, const ChainSelection& chain) {
-  const std::filesystem::path folder = selection.folder.empty() ? defaultUrDescriptionFolder() : selection.folder;
+  // Absolute: the generated URDF names its meshes under this folder and is then read relative to the
+  // calibration file's folder, where a relative folder (the default ../shared/data) would point elsewhere.
+  const std::filesystem::path folder =
+      std::filesystem::absolute(selection.folder.empty() ? defaultUrDescriptionFolder() : selection.folder);
   if (!std::filesystem::is_directory(folder / "config")) {
     throw Error("UR description folder " + folder.string() +
                 " not found or without config/ (set ARCPLAN_SHARED_DATA or name the folder with description)");

@@ -206,6 +206,23 @@ TEST(UrDescription, LinksCarryTheMassesAndCollisionMeshesOfTheirFiles) {
   EXPECT_NEAR(model.joints()[2].limits.upper, M_PI, 1e-12);
 }
 
+// The default folder (../shared/data/ur_description) is relative to the current directory: its meshes must
+// be the files under that folder, not a path read relative to the kinematics file's own folder.
+TEST(UrDescription, RelativeFolderNamesMeshesUnderItself) {
+  const std::filesystem::path absolute = std::filesystem::absolute(descriptionFolder());
+  const std::filesystem::path relative = std::filesystem::relative(absolute);
+  ASSERT_TRUE(relative.is_relative());
+  const RobotModel model = loadUrDescription({"ur5e", relative, {}});
+  for (const char* name : {"shoulder_link", "upper_arm_link", "forearm_link", "wrist_1_link"}) {
+    const auto& link = model.links()[model.linkIndex(name)];
+    ASSERT_EQ(link.collisions.size(), 1u) << name;
+    EXPECT_TRUE(std::filesystem::is_regular_file(link.collisions[0].meshFile)) << link.collisions[0].meshFile;
+    EXPECT_TRUE(
+        std::filesystem::equivalent(link.collisions[0].meshFile.parent_path(), absolute / "meshes/ur5e/collision"))
+        << link.collisions[0].meshFile;
+  }
+}
+
 // A factory calibration: every joint frame moved by up to 1 mm and 1 mrad from the nominal one.
 std::filesystem::path writeCalibration(const std::string& type, unsigned seed) {
   YAML::Node root = YAML::LoadFile((descriptionFolder() / "config" / type / "default_kinematics.yaml").string());
