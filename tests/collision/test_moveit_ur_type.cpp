@@ -135,6 +135,21 @@ TEST(MoveItUrType, EveryFamilyOfASuiteLoadsValidAndPlans) {
     }
   }
   EXPECT_EQ(families, (std::set<std::string>{"cage_ur5e", "shelf_pick_ur5e"}));
+  // Both robots, or a calibration without a type: the entry's line and what it expects.
+  std::ofstream(dir / "both.yaml") << "name: both\nmoveit_problems: {folder: " << kProblems.string()
+                                   << ", ur_type: ur5e, urdf: " << arcplan::robot::ur10eUrdfPath().string()
+                                   << "}\nplanners: [RRTConnect]\n";
+  const std::string both = arcplan::testing::errorMessageOf([&] { arcplan::benchmarks::loadSuite(dir / "both.yaml"); });
+  EXPECT_NE(both.find("both.yaml:2:"), std::string::npos) << both;
+  EXPECT_NE(both.find("expected either 'urdf' or 'ur_type'"), std::string::npos) << both;
+  std::ofstream(dir / "kinematics.yaml") << "name: k\nmoveit_problems: {folder: " << kProblems.string()
+                                         << ", urdf: " << arcplan::robot::ur10eUrdfPath().string()
+                                         << ", kinematics: " << (dir / "suite.yaml").string()
+                                         << "}\nplanners: [RRTConnect]\n";
+  EXPECT_NE(arcplan::testing::errorMessageOf([&] {
+              arcplan::benchmarks::loadSuite(dir / "kinematics.yaml");
+            }).find("'description' and 'kinematics' go with 'ur_type'"),
+            std::string::npos);
 }
 
 // Every type in the description folder reads a MoveIt problem and plans it: the cage's request in a
