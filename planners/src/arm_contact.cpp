@@ -2,9 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <limits>
+#include <queue>
+#include <unordered_map>
 
 #include "arcplan/common/error.h"
+#include "arcplan/planners/arc_path.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/mesh.h"
 
@@ -130,6 +135,147 @@ ObstacleCluster seenFromTheTcp(const ObstacleCluster& cluster, const std::vector
     for (const Eigen::Vector3d& l : link) shifted.hull.push_back(h - l);
   }
   return shifted;
+}
+
+BlockedSpan blockedSpan(const Eigen::Vector3d& p, const Eigen::Vector3d& q, double at, const PostureClear& clear) {
+  const double length = (q - p).norm();
+  const Eigen::Vector3d along = (q - p) / length;
+  BlockedSpan span{at, at};
+  if (clear(p + at * along)) return span;
+  while (span.from > 0.0 && !clear(p + std::max(span.from - kPostureProbeStep, 0.0) * along))
+    span.from = std::max(span.from - kPostureProbeStep, 0.0);
+  while (span.to < length && !clear(p + std::min(span.to + kPostureProbeStep, length) * along))
+    span.to = std::min(span.to + kPostureProbeStep, length);
+  return span;
+}
+
+namespace {
+
+constexpr int kDetourPlanes = 12;        // 30° apart, as viaCandidates
+constexpr double kDetourEndKeep = 0.01;  // m along the leg from p and q
+
+// Every posture probed along a -> b (a itself excluded, b included) is clear.
+bool segmentClear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const PostureClear& clear) {
+  const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kPostureProbeStep)));
+  for (int k = 1; k <= steps; ++k) {
+    if (!clear(a + (b - a) * (static_cast<double>(k) / steps))) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<ViaCandidate> clearingDetours(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const BlockedSpan& span,
+                                          const PostureClear& clear) {
+  std::vector<ViaCandidate> detours;
+  const double length = (q - p).norm();
+  if (length < 4.0 * kDetourEndKeep) return detours;
+  const Eigen::Vector3d along = (q - p) / length;
+  const auto inside = [&](double x) { return std::clamp(x, kDetourEndKeep, length - kDetourEndKeep); };
+  for (int plane = 0; plane < kDetourPlanes; ++plane) {
+    const Eigen::Vector3d away = avoidanceDirection(along, 2.0 * M_PI * plane / kDetourPlanes);
+    double below = 0.0;
+    for (const double lift : kDetourLifts) {
+      const Eigen::Vector3d enter = p + inside(span.from - lift) * along + lift * away;
+      const Eigen::Vector3d leave = p + inside(span.to + lift) * along + lift * away;
+      const bool clears = clear(enter) && segmentClear(enter, leave, clear) && segmentClear(p, enter, clear) &&
+                          segmentClear(leave, q, clear);
+      if (clears) {
+        ViaCandidate detour{{enter}, lift - below};
+        if ((leave - enter).norm() > 1e-3) detour.points.push_back(leave);
+        detours.push_back(std::move(detour));
+        break;
+      }
+      below = lift;
+    }
+  }
+  return detours;
+}
+
+namespace {
+
+// A lattice point, i, j, k steps from the origin, packed into one key (|i|, |j|, |k| < 2^20).
+std::int64_t latticeKey(const Eigen::Vector3i& cell) {
+  constexpr std::int64_t kSpan = 1 << 21, kHalf = 1 << 20;
+  return ((cell.x() + kHalf) * kSpan + (cell.y() + kHalf)) * kSpan + (cell.z() + kHalf);
+}
+
+// The lattice path p -> ... -> q, or nothing when none was found within kLatticeTests tests.
+std::optional<std::vector<Eigen::Vector3d>> latticePath(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                                                        const PostureClear& clear) {
+  struct Node {
+    Eigen::Vector3i cell;
+    double cost = 0.0;
+    std::int64_t parent = -1;
+    bool closed = false;
+  };
+  std::unordered_map<std::int64_t, Node> nodes;
+  std::unordered_map<std::int64_t, bool> passable;
+  using Entry = std::pair<double, std::int64_t>;  // cost + heuristic, key
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  const auto position = [&](const Eigen::Vector3i& cell) -> Eigen::Vector3d {
+    return p + kLatticeStep * cell.cast<double>();
+  };
+  nodes[latticeKey(Eigen::Vector3i::Zero())] = Node{Eigen::Vector3i::Zero(), 0.0, -1, false};
+  open.emplace((q - p).norm(), latticeKey(Eigen::Vector3i::Zero()));
+  int tests = 0;
+  while (!open.empty()) {
+    const std::int64_t key = open.top().second;
+    open.pop();
+    Node& node = nodes[key];
+    if (node.closed) continue;
+    node.closed = true;
+    const Eigen::Vector3d here = position(node.cell);
+    if ((q - here).norm() < 2.0 * kLatticeStep && segmentClear(here, q, clear)) {
+      std::vector<Eigen::Vector3d> path{q};
+      for (std::int64_t k = key; k != -1; k = nodes[k].parent) path.push_back(position(nodes[k].cell));
+      path.back() = p;
+      std::reverse(path.begin(), path.end());
+      return path;
+    }
+    const Node from = node;  // nodes may rehash below
+    for (int n = 0; n < 27; ++n) {
+      const Eigen::Vector3i step(n % 3 - 1, n / 3 % 3 - 1, n / 9 - 1);
+      if (step.isZero()) continue;
+      const Eigen::Vector3i cell = from.cell + step;
+      const std::int64_t next = latticeKey(cell);
+      auto known = passable.find(next);
+      if (known == passable.end()) {
+        if (++tests > kLatticeTests) return std::nullopt;
+        known = passable.emplace(next, clear(position(cell))).first;
+      }
+      if (!known->second) continue;
+      const double cost = from.cost + kLatticeStep * step.cast<double>().norm();
+      auto [it, added] = nodes.try_emplace(next, Node{cell, cost, key, false});
+      if (!added) {
+        if (it->second.closed || it->second.cost <= cost) continue;
+        it->second.cost = cost;
+        it->second.parent = key;
+      }
+      open.emplace(cost + (q - position(cell)).norm(), next);
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<ViaCandidate> latticeDetour(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const PostureClear& clear,
+                                          std::size_t maxViaPoints) {
+  const std::optional<std::vector<Eigen::Vector3d>> path = latticePath(p, q, clear);
+  if (!path) return std::nullopt;
+  // Greedy: from each kept point, the farthest later point the straight leg reaches clear.
+  ViaCandidate detour{{}, kLatticeStep};
+  std::size_t from = 0;
+  while (from + 1 < path->size()) {
+    std::size_t to = path->size() - 1;
+    while (to > from + 1 && !segmentClear((*path)[from], (*path)[to], clear)) --to;
+    if (to + 1 < path->size()) detour.points.push_back((*path)[to]);
+    if (detour.points.size() > maxViaPoints) return std::nullopt;
+    from = to;
+  }
+  if (detour.points.empty()) return std::nullopt;  // the straight leg is clear: nothing to detour
+  return detour;
 }
 
 }  // namespace arcplan::planners

@@ -12,6 +12,8 @@
 // kept. Internal to the arc planner (via_point_planning.cpp).
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -57,5 +59,42 @@ std::vector<ArmContact> armContacts(const robot::RobotModel& robot, const LinkOu
 // the Minkowski difference of its hull and the link, every hull point minus every link point (names
 // kept). Where the TCP stays outside it, the link, carried rigidly by the TCP, stays outside the cluster.
 ObstacleCluster seenFromTheTcp(const ObstacleCluster& cluster, const std::vector<Eigen::Vector3d>& link);
+
+// The Minkowski difference treats the arm as rigid; it is not (the elbow drops as the TCP reaches out,
+// rises as it comes in), so a link crossing a long body — a forearm under a beam — may need the TCP
+// far from where the difference puts it. Detours measured on the arm itself: `clear` says whether the
+// arm, in the posture the IK gives for a TCP position (the branch and tool orientation kept), keeps
+// the margin there; one IK solution and one clearance test each, far cheaper than a certified walk.
+using PostureClear = std::function<bool(const Eigen::Vector3d&)>;
+
+// Distance (m) between the postures probed along a leg and across it.
+inline constexpr double kPostureProbeStep = 0.02;
+
+// The stretch of the leg p -> q (distances from p, m) around `at` whose postures fail `clear`, probed
+// every kPostureProbeStep: both ends at `at` when its own posture is clear.
+struct BlockedSpan {
+  double from = 0.0, to = 0.0;
+};
+BlockedSpan blockedSpan(const Eigen::Vector3d& p, const Eigen::Vector3d& q, double at, const PostureClear& clear);
+
+// Per plane through the leg (the directions of viaCandidates), the smallest lift of kDetourLifts that
+// clears the span: two via points that far across the leg, entering and leaving as far along it as
+// the lift (45° ramps, kept within the leg), every posture probed along p -> via -> via -> q clear (the
+// span's first, where a lift too small fails soonest). Its margin is the lift's step from the one below,
+// which route shortening may take back. Nothing in a plane where no lift clears.
+inline constexpr double kDetourLifts[] = {0.03, 0.06, 0.1, 0.15, 0.2, 0.27, 0.35, 0.45};
+std::vector<ViaCandidate> clearingDetours(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const BlockedSpan& span,
+                                          const PostureClear& clear);
+
+// When no such detour clears — the arm must pass a long body low, or reach the end from another
+// side — a search of TCP positions on a lattice of kLatticeStep about p (A*, 26 neighbours, path length
+// as cost, straight-line distance to q as heuristic; a lattice point is passable where `clear` holds,
+// at most kLatticeTests tested) for a way from p to q, then cut short greedily (a via point is kept only
+// where the straight leg past it would not be clear at every kPostureProbeStep). The via points between
+// p and q when there are at most `maxViaPoints`; nothing otherwise.
+inline constexpr double kLatticeStep = 0.04;
+inline constexpr int kLatticeTests = 20000;
+std::optional<ViaCandidate> latticeDetour(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const PostureClear& clear,
+                                          std::size_t maxViaPoints);
 
 }  // namespace arcplan::planners

@@ -9,7 +9,9 @@
 
 #include "arc_planning.h"
 #include "arcplan/planners/blended_path.h"
+#include "arcplan/robot/kinematics.h"
 #include "arm_contact.h"
+#include "posture_test.h"
 #include "route_search.h"
 #include "via_points.h"
 
@@ -20,8 +22,19 @@ namespace {
 constexpr double kClusterGap = 0.1;
 // A route has at most this many via points (two clusters passed over a trapezoid each).
 constexpr std::size_t kMaxViaPoints = 4;
-// Routes walked before the search gives up (each walk costs ~0.1 ms).
+// Routes walked before the search gives up (each walk costs ~0.1 ms), and routes taken from the queue
+// in all (most are dropped by one posture test of a via point, ~10 us, and do not count as walked).
 constexpr int kMaxRoutes = 300;
+constexpr int kMaxRoutesTaken = 10 * kMaxRoutes;
+// Legs blocked by the arm that get detours measured on the arm's postures (each ~1-3 ms: the first
+// failures, on the straight line and the shortest routes, are where they pay), after this many walks.
+constexpr std::size_t kMaxDetourSearches = 8;
+constexpr int kWalksBeforeDetours = 60;
+// Detours are probed every 2 cm: their postures keep this much (m) beyond the margin, so that the arm
+// between two probes, and the blended corners, still keep the margin.
+constexpr double kDetourSlack = 0.005;
+// Via points of the lattice route (latticeDetour), tried once the search is exhausted.
+constexpr std::size_t kMaxLatticeViaPoints = 10;
 // Blends shrink by halves down to this tangent length (m); below it the corner counts as failed.
 constexpr double kSmallestBlend = 0.004;
 // Trials spent shortening the route that validated (each at most one walk, ~0.1 ms).
@@ -42,19 +55,6 @@ bool legsLongEnough(const Route& route) {
   return true;
 }
 
-// The configuration at a TCP pose on the start's branch (what a walk would reach there).
-std::optional<robot::Vector6> postureAt(const ArcQuery& query, const Eigen::Isometry3d& pose) {
-  return query.ik.solveBranch(pose, query.ik.branchOf(query.start), query.start[5]);
-}
-
-// The via point's configuration keeps the margin: a cheap test before a walk (held orientation).
-bool viaPointClear(const ArcQuery& query, const Eigen::Vector3d& point) {
-  Eigen::Isometry3d pose = query.a;
-  pose.translation() = point;
-  const auto q = postureAt(query, pose);
-  return q && query.validator.keepsMargin(*q);
-}
-
 // Where a route probably fails, tested before it is walked: one IK solution and one distance query
 // each instead of a certified walk up to there. The suspects are the clusters' centres (the route's
 // nearest point; the arm above the tool passes them there too) and the TCP positions where earlier
@@ -68,7 +68,8 @@ struct Suspect {
 };
 
 // The first probed configuration closer than the margin, as a walk rejected there.
-std::optional<Walk> failingProbe(const ArcQuery& query, const BlendedPath& path, const std::vector<Suspect>& suspects) {
+std::optional<Walk> failingProbe(const ArcQuery& query, PostureTest& posture, const BlendedPath& path,
+                                 const std::vector<Suspect>& suspects) {
   const int count = static_cast<int>(std::ceil(path.length() / kProbeSpacing));
   std::vector<Eigen::Vector3d> points;
   for (int k = 0; k <= count; ++k) points.push_back(path.position(path.length() * k / count));
@@ -84,7 +85,7 @@ std::optional<Walk> failingProbe(const ArcQuery& query, const BlendedPath& path,
   for (const int k : probes) {  // in order along the route, as a walk would meet them
     const double arcLength = path.length() * k / count;
     const auto q = postureAt(query, path.pose(arcLength));
-    if (q && !query.validator.keepsMargin(*q)) {
+    if (q && !posture.keepsMargin(*q)) {
       Walk probed;
       probed.waypoints.status = ConversionStatus::Rejected;
       probed.waypoints.failedAtArcLength = arcLength;
@@ -120,6 +121,7 @@ public:
       : query_(query),
         clusters_(clusterObstacles(query.obstacles, kClusterGap)),
         search_(query.a.translation(), query.b.translation(), kMaxViaPoints),
+        posture_(query),
         orientationHeld_(Eigen::Quaterniond(query.a.linear()).angularDistance(Eigen::Quaterniond(query.b.linear())) <
                          1e-12) {
     for (const ObstacleCluster& cluster : clusters_) {
@@ -130,15 +132,25 @@ public:
   }
 
   ArcOutcome solve() {
-    while (const std::optional<Route> route = search_.next()) {
+    for (;;) {
+      if (walks_ >= kWalksBeforeDetours) measureArmDetours();
+      const std::optional<Route> route = search_.next();
+      if (!route) {
+        if (measureArmDetours()) continue;
+        break;
+      }
       if (query_.ptc()) return failed("time limit reached before a valid route was found (" + lastFailure_ + ")");
-      if (static_cast<int>(search_.routesTried()) > kMaxRoutes) break;
+      if (walks_ >= kMaxRoutes || static_cast<int>(search_.routesTried()) > kMaxRoutesTaken) break;
       if (!legsLongEnough(*route)) continue;
       const std::vector<Eigen::Vector3d> vias(route->points.begin() + 1, route->points.end() - 1);
       if (!viasClear(vias)) continue;
+      ++walks_;
       if (std::optional<ArcOutcome> found = walkRoute(*route, vias)) return std::move(*found);
     }
     routesWalked_ = static_cast<int>(search_.routesTried());
+    if (armBlocked_ && !query_.ptc()) {
+      if (std::optional<ArcOutcome> found = latticeRoute()) return std::move(*found);
+    }
     std::ostringstream message;
     message << (query_.ptc() ? "time limit reached" : "no route through via points is valid") << " ("
             << search_.routesTried() << " routes walked of " << search_.routesQueued() << "; last: " << lastFailure_
@@ -147,13 +159,43 @@ public:
   }
 
 private:
+  // The last resort of a search the arm kept failing: a way from start to goal through the arm's clear
+  // postures (arm_contact.h, latticeDetour), walked as any route.
+  std::optional<ArcOutcome> latticeRoute() {
+    const Eigen::Vector3d a = query_.a.translation(), b = query_.b.translation();
+    const Eigen::Quaterniond from(query_.a.linear()), to(query_.b.linear());
+    const PostureClear clear = [&](const Eigen::Vector3d& position) {
+      if (query_.ptc()) return false;  // out of time: nothing more is passable, the search ends
+      // The tool's orientation as the path would have it about there (slerped along the chord).
+      const double t = std::clamp((position - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-12), 0.0, 1.0);
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.linear() = from.slerp(t, to).toRotationMatrix();
+      pose.translation() = position;
+      return posture_.clearAt(pose, kDetourSlack);
+    };
+    const std::optional<ViaCandidate> way = latticeDetour(a, b, clear, kMaxLatticeViaPoints);
+    if (!way) return std::nullopt;
+    Route route{{a}, std::vector<double>(way->points.size(), way->margin), 0.0};
+    route.points.insert(route.points.end(), way->points.begin(), way->points.end());
+    route.points.push_back(b);
+    if (!legsLongEnough(route)) return std::nullopt;
+    return walkRoute(route, way->points);
+  }
+
+  // The via point's configuration keeps the margin (held orientation).
+  bool viaPointClear(const Eigen::Vector3d& point) {
+    Eigen::Isometry3d pose = query_.a;
+    pose.translation() = point;
+    return posture_.clearAt(pose);
+  }
+
   // With a held orientation a via point's posture is known before the walk: tested first, and
   // remembered when it fails.
   bool viasClear(const std::vector<Eigen::Vector3d>& vias) {
     for (const Eigen::Vector3d& v : vias) {
       const std::array<double, 3> key{v.x(), v.y(), v.z()};
       if (blockedPoints_.count(key) > 0) return false;
-      if (orientationHeld_ && !viaPointClear(query_, v)) {
+      if (orientationHeld_ && !viaPointClear(v)) {
         blockedPoints_.insert(key);
         return false;
       }
@@ -186,7 +228,7 @@ private:
 
   // The probes first, then the certified walk; a walk rejected away from every suspect adds one.
   Walk probeThenWalk(const BlendedPath& path) {
-    if (std::optional<Walk> probed = failingProbe(query_, path, suspects_)) return std::move(*probed);
+    if (std::optional<Walk> probed = failingProbe(query_, posture_, path, suspects_)) return std::move(*probed);
     Walk walked = query_.validator.walk(path, query_.startOnly(), query_.goal);
     if (!walked.rejected) return walked;
     const Eigen::Vector3d rejectedAt = path.position(walked.waypoints.failedAtArcLength);
@@ -226,9 +268,10 @@ private:
   }
 
   // The cluster's candidates as the TCP sees it, and where a link above the tool met it, as that link
-  // sees it (arm_contact.h): the TCP moved so that the link clears the cluster.
+  // sees it (arm_contact.h): the TCP moved so that the link clears the cluster. Such a leg is also
+  // kept for detours measured on the arm's postures (measureArmDetours).
   std::vector<ViaCandidate> waysRound(const ObstacleCluster& cluster, const Rejection& rejection,
-                                      const robot::Vector6& refused, const Route& route, std::size_t leg) const {
+                                      const robot::Vector6& refused, const Route& route, std::size_t leg) {
     const Eigen::Vector3d &p = route.points[leg], &q = route.points[leg + 1];
     const double margin = query_.validator.margin();
     std::vector<ViaCandidate> ways = viaCandidates(cluster, p, q, margin);
@@ -236,13 +279,39 @@ private:
     for (const collision::Obstacle& obstacle : query_.obstacles) {
       if (std::count(cluster.names.begin(), cluster.names.end(), obstacle.name) > 0) bodies.push_back(obstacle);
     }
-    for (const ArmContact& contact :
-         armContacts(query_.model.robot(), query_.outlines, refused, rejection.pairs.collisions, bodies)) {
+    const std::vector<ArmContact> contacts =
+        armContacts(query_.model.robot(), query_.outlines, refused, rejection.pairs.collisions, bodies);
+    if (!contacts.empty()) {
+      armBlocked_ = true;
+      if (armLegs_.size() < kMaxDetourSearches) armLegs_.push_back({route, leg, refused});
+    }
+    for (const ArmContact& contact : contacts) {
       const std::vector<ViaCandidate> more =
           viaCandidates(seenFromTheTcp(cluster, contact.outline), p, q, margin, contact.side);
       ways.insert(ways.end(), more.begin(), more.end());
     }
     return ways;
+  }
+
+  // The arm's detours (clearingDetours) of the legs the arm blocked, added as further ways round them.
+  // Measured only once the cheap candidates had their chance (kWalksBeforeDetours walks, or the queue
+  // ran dry): each costs ~100 posture tests, more than the walks of a search the TCP's candidates end.
+  // False when there was nothing left to measure.
+  bool measureArmDetours() {
+    if (armLegsMeasured_ == armLegs_.size()) return false;
+    for (; armLegsMeasured_ < armLegs_.size(); ++armLegsMeasured_) {
+      const ArmLeg& blocked = armLegs_[armLegsMeasured_];
+      const Eigen::Vector3d &p = blocked.route.points[blocked.leg], &q = blocked.route.points[blocked.leg + 1];
+      // The refused posture's tool orientation held across the leg (exact when the route holds it).
+      Eigen::Isometry3d pose = robot::tipPose(query_.model.robot(), blocked.refused);
+      const double at = std::clamp((pose.translation() - p).dot((q - p).normalized()), 0.0, (q - p).norm());
+      const PostureClear clear = [&](const Eigen::Vector3d& position) {
+        pose.translation() = position;
+        return posture_.clearAt(pose, kDetourSlack);
+      };
+      search_.legFailed(blocked.route, blocked.leg, clearingDetours(p, q, blockedSpan(p, q, at, clear), clear));
+    }
+    return true;
   }
 
   // The margins come in steps: where a via point can come closer, the path gets shorter. Each trial
@@ -272,9 +341,9 @@ private:
   // The walk of a shortening candidate when it validates.
   std::optional<Walk> validatedWalk(const BlendedPath& candidate) {
     for (std::size_t i = 0; i + 2 < candidate.points().size(); ++i) {
-      if (orientationHeld_ && !viaPointClear(query_, candidate.points()[i + 1])) return std::nullopt;
+      if (orientationHeld_ && !viaPointClear(candidate.points()[i + 1])) return std::nullopt;
     }
-    if (failingProbe(query_, candidate, suspects_)) return std::nullopt;
+    if (failingProbe(query_, posture_, candidate, suspects_)) return std::nullopt;
     Walk walked = query_.validator.walk(candidate, query_.startOnly(), query_.goal);
     if (!walked.ok()) return std::nullopt;
     return walked;
@@ -290,12 +359,22 @@ private:
   const ArcQuery& query_;
   const std::vector<ObstacleCluster> clusters_;
   RouteSearch search_;
+  PostureTest posture_;
   const bool orientationHeld_;
   std::vector<Suspect> suspects_;
   std::set<std::array<double, 3>> blockedPoints_;  // via points whose posture failed the margin
   std::string lastFailure_ = "no route";
   std::vector<std::string> obstacles_;  // bodies that blocked a leg, in the order met
   int routesWalked_ = 0;                // routes tried when the last one was walked
+  int walks_ = 0;                       // routes walked (or probed) so far
+  bool armBlocked_ = false;             // a link above the tool stopped a walk
+  struct ArmLeg {
+    Route route;
+    std::size_t leg;
+    robot::Vector6 refused;
+  };
+  std::vector<ArmLeg> armLegs_;  // legs the arm blocked, the first kMaxDetourSearches
+  std::size_t armLegsMeasured_ = 0;
 };
 
 }  // namespace

@@ -70,9 +70,140 @@ TEST(ArmContact, AContactAtTheToolIsLeftToTheTcpsOwnCandidates) {
   const auto outlines = arcplan::planners::linkOutlines(robot);
   Vector6 q;
   q << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098;
-  const Eigen::Vector3d tcp = arcplan::robot::tipPose(robot, q).translation();
+  arcplan::robot::KinematicsData kinematics(robot);
+  arcplan::robot::forwardKinematics(robot, q, kinematics);
+  const Eigen::Vector3d tcp = kinematics.linkPoses[robot.tipLink()].translation();
   const auto ball = sphere("ball", tcp + Eigen::Vector3d(0.0, 0.0, -0.05), 0.02);  // just below the flange
   EXPECT_TRUE(arcplan::planners::armContacts(robot, outlines, q, {{"wrist_3_link", "ball"}}, {ball}).empty());
+  // Positive control, same configuration and ball: beside wrist 1, farther than kArmContactReach from the
+  // TCP (measured here by forward kinematics), the same call names the link.
+  const Eigen::Vector3d wrist1 = kinematics.linkPoses[robot.linkIndex("wrist_1_link")].translation();
+  ASSERT_GT((wrist1 - tcp).norm(), arcplan::planners::kArmContactReach + 0.05);
+  const auto beside = sphere("ball", wrist1 + Eigen::Vector3d(0.0, 0.0, 0.05), 0.02);
+  const std::vector<ArmContact> contacts =
+      arcplan::planners::armContacts(robot, outlines, q, {{"wrist_1_link", "ball"}}, {beside});
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_EQ(contacts[0].link, "wrist_1_link");
+  EXPECT_GT(contacts[0].offset.norm(), arcplan::planners::kArmContactReach);
+}
+
+// Synthetic postures for the detour searches: a TCP position is "clear" unless it lies in one of these
+// boxes (what the IK and the clearance test say of a real arm, here known exactly).
+struct BlockedBoxes {
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> boxes;  // low, high corners
+  bool operator()(const Eigen::Vector3d& p) const {
+    return std::none_of(boxes.begin(), boxes.end(), [&](const auto& box) {
+      return (p.array() >= box.first.array()).all() && (p.array() <= box.second.array()).all();
+    });
+  }
+  // Every point of the polyline, 1 mm apart, is clear (finer than the searches' 2 cm probes).
+  bool polylineClear(const std::vector<Eigen::Vector3d>& points) const {
+    for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+      const int steps = static_cast<int>(std::ceil((points[i + 1] - points[i]).norm() / 0.001));
+      for (int k = 0; k <= steps; ++k) {
+        if (!(*this)(points[i] + (points[i + 1] - points[i]) * (static_cast<double>(k) / steps))) return false;
+      }
+    }
+    return true;
+  }
+};
+
+// A wall across the leg (0,0,0) -> (1,0,0): x in [0.3, 0.5], |y| < 0.12, z < 0.1; the floor below z = -0.05.
+BlockedBoxes wallAcrossTheLeg() {
+  return BlockedBoxes{{{{0.3, -0.12, -1.0}, {0.5, 0.12, 0.1 - 1e-9}}, {{-5.0, -5.0, -5.0}, {5.0, 5.0, -0.05}}}};
+}
+
+TEST(ArmDetours, TheBlockedSpanIsWhereTheProbesAlongTheLegFail) {
+  const BlockedBoxes wall = wallAcrossTheLeg();
+  const auto span = arcplan::planners::blockedSpan({0, 0, 0}, {1, 0, 0}, 0.35, wall);
+  // Probes 2 cm apart from 0.35: 0.31 is the last blocked one going back (0.29 is clear), 0.49 going on.
+  EXPECT_NEAR(span.from, 0.31, 1e-9);
+  EXPECT_NEAR(span.to, 0.49, 1e-9);
+  // A clear posture at `at` is no span at all.
+  const auto none = arcplan::planners::blockedSpan({0, 0, 0}, {1, 0, 0}, 0.7, wall);
+  EXPECT_EQ(none.from, 0.7);
+  EXPECT_EQ(none.to, 0.7);
+}
+
+TEST(ArmDetours, EachPlaneGetsTheSmallestLiftThatClearsTheWall) {
+  const BlockedBoxes wall = wallAcrossTheLeg();
+  const Eigen::Vector3d p(0, 0, 0), q(1, 0, 0);
+  const auto detours = arcplan::planners::clearingDetours(p, q, {0.31, 0.49}, wall);
+  ASSERT_FALSE(detours.empty());
+  bool over = false, beside = false;
+  for (const auto& detour : detours) {
+    ASSERT_EQ(detour.points.size(), 2u);
+    std::vector<Eigen::Vector3d> polyline{p, detour.points[0], detour.points[1], q};
+    EXPECT_TRUE(wall.polylineClear(polyline));
+    // Over the wall: z = 0.1 is the lowest clear height, so the lift of the ladder is 0.1 (0.06 below it);
+    // entering and leaving one lift before and after the span (45° ramps).
+    if (detour.points[0].z() > 0.05 && std::abs(detour.points[0].y()) < 1e-9) {
+      over = true;
+      EXPECT_TRUE(detour.points[0].isApprox(Eigen::Vector3d(0.21, 0.0, 0.1), 1e-9)) << detour.points[0].transpose();
+      EXPECT_TRUE(detour.points[1].isApprox(Eigen::Vector3d(0.59, 0.0, 0.1), 1e-9)) << detour.points[1].transpose();
+      EXPECT_NEAR(detour.margin, 0.1 - 0.06, 1e-12);
+    }
+    // Beside it: |y| must exceed 0.12, the ladder's 0.15.
+    if (std::abs(detour.points[0].z()) < 1e-9) {
+      beside = true;
+      EXPECT_NEAR(std::abs(detour.points[0].y()), 0.15, 1e-9);
+      EXPECT_NEAR(detour.points[0].x(), 0.31 - 0.15, 1e-9);
+      EXPECT_NEAR(detour.points[1].x(), 0.49 + 0.15, 1e-9);
+    }
+    // Nothing under it: the floor is 5 cm down and the wall reaches it.
+    EXPECT_GT(detour.points[0].z(), -0.05);
+  }
+  EXPECT_TRUE(over);
+  EXPECT_TRUE(beside);
+}
+
+TEST(ArmDetours, TheLatticeFindsAWayOverAWallNoSingleLiftClears) {
+  // A wall 0.5 m high across everything (no way beside it), its top out of the detours' 45° ramps
+  // within the leg: the lattice goes over it.
+  const BlockedBoxes wall{{{{0.4, -5.0, -1.0}, {0.6, 5.0, 0.5}}, {{-5.0, -5.0, -5.0}, {5.0, 5.0, -0.05}}}};
+  const Eigen::Vector3d p(0, 0, 0), q(1, 0, 0);
+  const auto way = arcplan::planners::latticeDetour(p, q, wall, 10);
+  ASSERT_TRUE(way.has_value());
+  ASSERT_FALSE(way->points.empty());
+  EXPECT_LE(way->points.size(), 10u);
+  std::vector<Eigen::Vector3d> polyline{p};
+  polyline.insert(polyline.end(), way->points.begin(), way->points.end());
+  polyline.push_back(q);
+  EXPECT_TRUE(wall.polylineClear(polyline));
+  double highest = 0.0;
+  for (const Eigen::Vector3d& v : way->points) highest = std::max(highest, v.z());
+  EXPECT_GT(highest, 0.5);
+  // Not much longer than the shortest way over (up to 0.5 m at x = 0.4 and down from x = 0.6).
+  double length = 0.0;
+  for (std::size_t i = 0; i + 1 < polyline.size(); ++i) length += (polyline[i + 1] - polyline[i]).norm();
+  const double shortest = std::hypot(0.4, 0.5) + 0.2 + std::hypot(0.4, 0.5);
+  EXPECT_GE(length, shortest - 1e-9);
+  EXPECT_LT(length, shortest + 0.25);
+}
+
+TEST(ArmDetours, TheLatticeGivesUpWhereTheGoalIsWalledIn) {
+  // q inside a closed shell of blocked positions: no way in, within the lattice's bounded tests.
+  const Eigen::Vector3d q(1, 0, 0);
+  BlockedBoxes shell;
+  for (int axis = 0; axis < 3; ++axis) {  // two 5 cm slabs per axis (x, y, z), 0.15-0.2 m from q, low side first
+    for (const double side : {-1.0, 1.0}) {
+      Eigen::Vector3d low = q - Eigen::Vector3d::Constant(0.2), high = q + Eigen::Vector3d::Constant(0.2);
+      (side < 0 ? high : low)[axis] = q[axis] + side * 0.15;
+      shell.boxes.emplace_back(low, high);
+    }
+  }
+  ASSERT_TRUE(shell(q));
+  EXPECT_FALSE(arcplan::planners::latticeDetour({0, 0, 0}, q, shell, 10).has_value());
+  // Positive control: the same call with the shell open at +y (not towards p: the way in turns round)
+  // finds its way in.
+  BlockedBoxes open = shell;
+  open.boxes.erase(open.boxes.begin() + 3);
+  const auto way = arcplan::planners::latticeDetour({0, 0, 0}, q, open, 10);
+  ASSERT_TRUE(way.has_value());
+  std::vector<Eigen::Vector3d> polyline{{0, 0, 0}};
+  polyline.insert(polyline.end(), way->points.begin(), way->points.end());
+  polyline.push_back(q);
+  EXPECT_TRUE(open.polylineClear(polyline));
 }
 
 // The generated suite's forearm-beam-001 (families of issue 23, seed 20240611): a 0.67 m beam across the
@@ -111,6 +242,40 @@ TEST(ArmContact, ABeamAcrossTheForearmsSweepIsPassedWithLinesAndArcs) {
     EXPECT_GT((local.cwiseAbs() - 0.5 * beam.size).cwiseMax(0.0).norm(), 0.01) << k;
   }
   // The path keeps 1 cm everywhere, measured independently of the planner's certified check.
+  EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);
+}
+
+// The generated suite's forearm-beam-011 (seed 20240611): a beam across the upper arm's and forearm's sweep
+// near the base. No via point over, beside or under it clears the arm (the search exhausted its routes and
+// fell back to joint space, 6.8 s to execute); the arm passes it low, the TCP near the table.
+arcplan::planners::PlanningProblem upperArmBeamProblem() {
+  auto scene = std::make_shared<arcplan::collision::Scene>(*loadTestScene("thesis_free"));
+  auto beam = box("beam", {0.19865537916383, 0.302090638445797, 0.805541074616536},
+                  {0.994337452535656, 0.0475643834102874, 0.115713834109601});
+  beam.pose.linear() = arcplan::robot::rotationFromRpy(0.0, 0.0, -1.7523223997636);
+  scene->obstacles.push_back(beam);
+  Vector6 start, goal;
+  start << -0.19061958865577, -0.958818647123847, 1.83534732930038, -2.44732500897143, -1.5707963267949,
+      -0.190619588655769;
+  goal << 0.783098819597691, -2.008806199887, 2.31271157416581, -1.8747017010737, -1.57079632679489, 0.783098819597691;
+  scene->queries[0].start = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, start};
+  scene->queries[0].goal = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, goal};
+  return arcplan::planners::makePlanningProblem(scene);
+}
+
+TEST(ArmDetours, ABeamNoViaPointClearsIsPassedLowThroughTheArmsClearPostures) {
+  auto problem = upperArmBeamProblem();
+  const auto [planner, status] = solve(problem, "arc", {{"auto", "1"}, {"fallback", "0"}});
+  const auto& result = arcOf(planner).lastResult();
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << result.reason;
+  EXPECT_EQ(result.mode(), "arc");
+  EXPECT_GT(result.viaPoints.size(), 2u);
+  // Passed low: some via point near the table, far below both ends.
+  const Eigen::Vector3d a = arcplan::robot::tipPose(arcplan::robot::ur10e(), problem.start).translation();
+  const Eigen::Vector3d b = arcplan::robot::tipPose(arcplan::robot::ur10e(), problem.goal).translation();
+  double lowest = std::min(a.z(), b.z());
+  for (const Eigen::Vector3d& v : result.viaPoints) lowest = std::min(lowest, v.z());
+  EXPECT_LT(lowest, std::min(a.z(), b.z()) - 0.05);
   EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);
 }
 
