@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <mutex>
+#include <set>
 #include <type_traits>
 #include <sstream>
 
@@ -99,9 +100,16 @@ std::string descriptionKey(const MoveItRobot& robot) {
   if (!robot.urdf.empty() || robot.urDescription.type.empty()) return "urdf\n" + content(robot.urdf);
   const auto& ur = robot.urDescription;
   const auto folder = ur.folder.empty() ? robot::defaultUrDescriptionFolder() : ur.folder;
-  const auto kinematics =
-      ur.kinematics.empty() ? folder / "config" / ur.type / "default_kinematics.yaml" : ur.kinematics;
-  return "ur\n" + ur.type + "\n" + std::filesystem::absolute(folder).string() + "\n" + content(kinematics);
+  const auto config = folder / "config" / ur.type;
+  // Every file of the type's folder (kinematics, limits, masses, meshes named), and a calibration file.
+  std::set<std::filesystem::path> files;
+  std::error_code missing;  // a missing folder: loadUrDescription says so
+  for (const auto& entry : std::filesystem::directory_iterator(config, missing))
+    if (entry.is_regular_file()) files.insert(entry.path());
+  if (!ur.kinematics.empty()) files.insert(ur.kinematics);
+  std::string key = "ur\n" + ur.type + "\n" + std::filesystem::absolute(config).string();
+  for (const auto& file : files) key += "\n" + content(file);
+  return key;
 }
 
 robot::RobotModel loadModel(const MoveItRobot& robot) {

@@ -233,6 +233,24 @@ TEST(MoveItUrType, ATypeTheFolderDoesNotHaveLoadsMatchesItsDhAndPlans) {
   const auto planned =
       arcplan::benchmarks::planQuery(std::make_shared<const arcplan::collision::Scene>(problem.scene), "", options);
   EXPECT_EQ(planned.status, arcplan::benchmarks::PlanStatus::Exact) << planned.reason;
+
+  // The readers cache the description by its files' contents: the calibration rewritten in place (d1 one
+  // centimetre longer, same size and time) moves a ball held at tool0 one centimetre up.
+  std::ofstream(dir / "held.yaml") << "world:\n  collision_objects:\n    - id: ball\n      header: {frame_id: tool0}\n"
+                                      "      primitives: [{type: sphere, dimensions: [0.05]}]\n"
+                                      "      primitive_poses: [{}]\n";
+  const MoveItRobot ur20{{}, {}, {"ur20", dir, {}}};
+  const double before =
+      arcplan::collision::loadMoveItScene(dir / "held.yaml", ur20).scene.obstacles[0].pose.translation().z();
+  const auto kinematics = dir / "config" / "ur20" / "default_kinematics.yaml";
+  const auto written = fs::last_write_time(kinematics);
+  std::string text = arcplan::testing::readFile(kinematics);
+  text.replace(text.find("0.2363"), 6, "0.2463");
+  std::ofstream(kinematics) << text;
+  fs::last_write_time(kinematics, written);
+  const double after =
+      arcplan::collision::loadMoveItScene(dir / "held.yaml", ur20).scene.obstacles[0].pose.translation().z();
+  EXPECT_NEAR(after - before, 0.01, 1e-12);
 }
 
 }  // namespace
