@@ -37,8 +37,10 @@ constexpr double kDetourSlack = 0.005;
 constexpr std::size_t kMaxLatticeViaPoints = 10;
 // Blends shrink by halves down to this tangent length (m); below it the corner counts as failed.
 constexpr double kSmallestBlend = 0.004;
-// Trials spent shortening the route that validated (each at most one walk, ~0.1 ms).
-constexpr int kMaxShorteningTrials = 3;
+// Trials spent shortening the route that validated (each at most one certified walk of the whole path,
+// as much as the rest of a simple search). One: the first trial (the whole margin) gives most of the gain;
+// on the generated suite 3 trials made 0.3 % shorter executions and took ~1 ms more on line problems.
+constexpr int kMaxShorteningTrials = 1;
 
 // The blend a corner starts with: the largest that fits, but whose arc does not cut the corner by more
 // than half the margin its via point keeps (t·tan(φ/4) inside the corner).
