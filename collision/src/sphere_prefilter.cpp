@@ -30,8 +30,12 @@ using prefilter::kLanes;
 //     reach so far (3 products and 3 sums of terms no larger than that reach);
 // a sphere centre c of a link is then off by eT + eR·|c| + 8u·(reach + |c|); the distance from an
 // obstacle's frame (one more rotation and translation, a square root) adds 16u × the extent of the
-// robot and obstacles; a sum of two radii 2u × their sum. The kernels require the spheres to be
-// clear by twice all that, and the radii are rounded up to float.
+// robot and obstacles; a sum of two radii 2u × their sum. Table entries snapped to 0 or ±1
+// (snappedValue) add what they moved: to the rotation error the sum over the entries' coefficients
+// (|cos|, |sin| <= 1), to the translation error twice the offsets' (rotated by a parent of norm < 2),
+// for the permuted path the origin's entries plus 5·|a − a'| for the axis, and an obstacle's rotation
+// moves a world point p by at most its sum × |p| (<= the robot's extent). The kernels require the
+// spheres to be clear by twice all that, and the radii are rounded up to float.
 constexpr double kUnitRoundoff = 1.0 / 16777216.0;
 constexpr double kTrigError = 2e-6;
 
