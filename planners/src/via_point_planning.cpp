@@ -27,9 +27,10 @@ constexpr std::size_t kMaxViaPoints = 4;
 constexpr int kMaxRoutes = 300;
 constexpr int kMaxRoutesTaken = 10 * kMaxRoutes;
 // Legs blocked by the arm that get detours measured on the arm's postures (each ~1-3 ms: the first
-// failures, on the straight line and the shortest routes, are where they pay), after this many walks.
+// failures, on the straight line and the shortest routes, are where they pay): the first after this many
+// walks, one more every kWalksPerDetour walks (all of them when the queue runs dry).
 constexpr std::size_t kMaxDetourSearches = 8;
-constexpr int kWalksBeforeDetours = 60;
+constexpr int kWalksBeforeDetours = 60, kWalksPerDetour = 10;
 // Detours are probed every 2 cm: their postures keep this much (m) beyond the margin, so that the arm
 // between two probes, and the blended corners, still keep the margin.
 constexpr double kDetourSlack = 0.005;
@@ -135,10 +136,12 @@ public:
 
   ArcOutcome solve() {
     for (;;) {
-      if (walks_ >= kWalksBeforeDetours) measureArmDetours();
+      // One more blocked leg's detours every kWalksPerDetour walks past kWalksBeforeDetours.
+      const auto due = static_cast<std::size_t>((walks_ - kWalksBeforeDetours) / kWalksPerDetour + 1);
+      if (walks_ >= kWalksBeforeDetours) measureArmDetours(due);
       const std::optional<Route> route = search_.next();
       if (!route) {
-        if (measureArmDetours()) continue;
+        if (measureArmDetours(armLegs_.size())) continue;
         break;
       }
       if (query_.ptc()) return failed("time limit reached before a valid route was found (" + lastFailure_ + ")");
@@ -297,11 +300,13 @@ private:
 
   // The arm's detours (clearingDetours) of the legs the arm blocked, added as further ways round them.
   // Measured only once the cheap candidates had their chance (kWalksBeforeDetours walks, or the queue
-  // ran dry): each costs ~100 posture tests, more than the walks of a search the TCP's candidates end.
+  // ran dry), up to the first `upTo` legs: each costs ~100 posture tests, more than the walks of a search
+  // the TCP's candidates end.
   // False when there was nothing left to measure.
-  bool measureArmDetours() {
-    if (armLegsMeasured_ == armLegs_.size()) return false;
-    for (; armLegsMeasured_ < armLegs_.size(); ++armLegsMeasured_) {
+  bool measureArmDetours(std::size_t upTo) {
+    upTo = std::min(upTo, armLegs_.size());
+    if (armLegsMeasured_ >= upTo) return false;
+    for (; armLegsMeasured_ < upTo; ++armLegsMeasured_) {
       const ArmLeg& blocked = armLegs_[armLegsMeasured_];
       const Eigen::Vector3d &p = blocked.route.points[blocked.leg], &q = blocked.route.points[blocked.leg + 1];
       // The refused posture's tool orientation held across the leg (exact when the route holds it).
