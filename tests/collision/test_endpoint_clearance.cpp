@@ -20,6 +20,7 @@
 
 #include "arcplan/collision/endpoint_clearance.h"
 #include "motion_bounds.h"
+#include "arcplan/collision/moveit_scene.h"
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "support/command.h"
@@ -132,14 +133,18 @@ TEST(EndpointClearance, MotionsKeepTheSmallestRequirementAlongThem) {
   EXPECT_DOUBLE_EQ(rule.motionClearanceAlong(joints(-0.3, 0.5), joints(0.3, 0.5)), kClearance);
   EXPECT_NEAR(rule.stateClearanceAlong(joints(-0.3, 0.3), joints(0.3, 0.3)), inZone, 1e-9);
   EXPECT_DOUBLE_EQ(rule.stateClearanceAlong(joints(-0.3, 0.5), joints(0.3, 0.5)), kClearance);
-  // From the start (beside the box) into the goal: the motion passes 3 mm under the box, which the
-  // goal's zone allows; to a state outside the zone under the box it does not (that state is invalid).
+  // The validator certifies a motion piece by piece: 3 mm under the box inside the zone (|a| <= 0.1818),
+  // 1 cm outside it. From the zone's edge into the goal the sphere stays 3 mm under the box: accepted.
+  // From the start it is 3 mm under the box for a in (0.1818, 0.41] too (0.5·cos a >= 0.3, 0.5·sin a
+  // <= 0.2), where a state needs 1 cm (invalid, as (0.3, 0) is): rejected, though the motion touches the zone.
   const auto si = makeSpaceInformation(model, {}, kClearance, {start, goal});
-  EXPECT_TRUE(motionValid(si, start, goal));
+  EXPECT_TRUE(motionValid(si, joints(0.17, 0), goal));
+  EXPECT_FALSE(valid(si, 0.3, 0));
+  EXPECT_FALSE(motionValid(si, start, goal));
   EXPECT_FALSE(motionValid(si, start, joints(0.3, 0)));
-  // Without the zone the same motion is rejected (the goal keeps 3 mm, not 1 cm).
+  // Without the zone the motion from its edge is rejected too (the goal keeps 3 mm, not 1 cm).
   const auto strict = makeSpaceInformation(model, {}, kClearance, {start});
-  EXPECT_FALSE(motionValid(strict, start, goal));
+  EXPECT_FALSE(motionValid(strict, joints(0.17, 0), goal));
 }
 
 TEST(EndpointClearance, PathWaypointsAreJudgedByTheirMotions) {
@@ -193,6 +198,55 @@ TEST(EndpointClearance, DisplacementIsTheMotionChecksLargestBodyBound) {
     for (std::size_t body = 0; body < model->linkNames().size(); ++body)
       largest = std::max(largest, motionBound(*model, static_cast<int>(body), a, b));
     EXPECT_NEAR(rule.displacement(a, b), largest, 1e-12 * largest);
+  }
+}
+
+// The motion behind MBM paths that ended in contact (bookshelf_thin_ur5 0096, 1 cm, RRTConnect: the
+// simplifier cut it at a state past the zone): from the goal, 4.9 mm below a shelf (zone: 2.5 mm), it
+// leaves the zone at ~5 % of its length and passes 5.4 mm from the shelf just after. Certified whole at
+// 2.5 mm it was accepted, and its states there were invalid. Expected answers from 2001 exact distances.
+TEST(EndpointClearance, MbmMotionLeavingAGoalsZoneKeepsTheClearanceOutsideIt) {
+  const std::filesystem::path mbm = arcplan::testing::sharedDataDirectory() / "mbm_ur5";
+  const std::filesystem::path folder = mbm / "problems" / "bookshelf_thin_ur5";
+  ASSERT_TRUE(std::filesystem::exists(folder)) << folder;
+  const Scene scene = loadMoveItProblem(folder / "scene0096.yaml", folder / "request0096.yaml",
+                                        MoveItRobot{mbm / "ur5.urdf", mbm / "ur5.srdf"})
+                          .scene;
+  const auto model = makeCollisionModel(scene);
+  arcplan::robot::Vector6 goal, far;
+  goal << -2.6422480885010451, -2.7863450927102522, -1.072622018509686, 0.71299994230454822, 0.85403413340651801,
+      0.001225317151130576;
+  far << -2.3185111775478138, -2.3376145266195096, -1.7929964724107323, 0.57388401071543271, 0.27231406646958334,
+      -0.033808006542669411;
+  const auto si = makeSpaceInformation(model, {}, kClearance, {goal});
+  const auto& rule =
+      dynamic_cast<const CollisionStateValidityChecker&>(*si->getStateValidityChecker()).requiredClearance();
+  ASSERT_EQ(rule.zones().size(), 1u);
+  CollisionData data(*model);
+  const auto at = [&](double s) -> arcplan::robot::Vector6 { return goal + s * (far - goal); };
+  // Dense exact sampling: the smallest distance outside the zone, and the last fraction inside it.
+  double outside = 1.0, lastInside = 0.0, inside = 1.0;
+  for (int k = 0; k <= 2000; ++k) {
+    const double s = k / 2000.0, d = distance(*model, data, at(s)).minimum();
+    if (rule.displacement(goal, at(s)) <= kApproachZoneLength) {
+      lastInside = s;
+      inside = std::min(inside, d);
+    } else {
+      outside = std::min(outside, d);
+    }
+  }
+  EXPECT_GT(distance(*model, data, far).minimum(), kClearance) << "the end state is valid";
+  EXPECT_LT(outside, 0.006) << "5.4 mm from the shelf outside the zone, where states need 1 cm";
+  EXPECT_GT(inside, rule.zones()[0].motionClearance + 0.001) << "inside the zone it keeps more than the zone asks";
+  EXPECT_FALSE(motionValid(si, goal, far));
+  EXPECT_FALSE(motionValid(si, far, goal));
+  // Its part inside the zone is accepted, and every state of it is valid (OMPL takes them as such).
+  const double part = 0.8 * lastInside;
+  ASSERT_TRUE(motionValid(si, goal, at(part)));
+  ob::ScopedState<> state(si);
+  for (int k = 0; k <= 200; ++k) {
+    for (int j = 0; j < 6; ++j) state[j] = at(part * k / 200.0)[j];
+    EXPECT_TRUE(si->isValid(state.get())) << k;
   }
 }
 

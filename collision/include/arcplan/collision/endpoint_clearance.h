@@ -10,8 +10,8 @@
 // certified motion check bounds it (max over robot bodies of Σ_j |q_j − endpoint_j|·D_jL), is at
 // most kApproachZoneLength. Inside a zone a state needs min(c, kApproachZoneFraction·e) and a motion
 // min(c_m, kApproachZoneFraction·e) (at least the motion check's floor of 1e-5 m); elsewhere c and
-// c_m. A motion that touches a zone anywhere is certified with the zone's (smallest) clearance over
-// its whole length; its end state must still be valid where it lies. An endpoint in contact (e <= 0)
+// c_m. The motion validator certifies a motion piece by piece (motionPieces: inside a zone the zone's
+// motion clearance, elsewhere c_m), so every state of an accepted motion is valid. An endpoint in contact (e <= 0)
 // gets no zone: it stays invalid, and callers report it instead of planning.
 #include <vector>
 
@@ -28,6 +28,12 @@ inline constexpr double kApproachZoneLength = 0.10;  // m
 // Zone states keep half of the endpoint's own clearance: the way in may pass a little closer than the
 // endpoint (fingers sliding past an edge), and the endpoint never sits exactly on its own limit.
 inline constexpr double kApproachZoneFraction = 0.5;
+
+// A part [from, to] of a motion (fractions of it, 0 at its start) and the clearance it keeps [m].
+struct MotionPiece {
+  double from = 0.0, to = 1.0;
+  double clearance = 0.0;
+};
 
 struct ApproachZone {
   robot::JointVector endpoint;
@@ -58,16 +64,26 @@ public:
   // The smallest such bound along the straight motion qa -> qb (s in [0, 1]) [m].
   double closestApproach(const robot::JointRef& endpoint, const robot::JointRef& qa, const robot::JointRef& qb) const;
 
+  // The motion qa -> qb in pieces, cut where it enters and leaves each zone: a piece inside a zone
+  // keeps the zone's motionClearance, the others motionClearance(). So every state of a motion certified
+  // piece by piece keeps what stateClearanceAt asks of it, and so does every part of such a motion: OMPL
+  // takes the states and sub-motions of a valid motion as valid (its simplifier makes waypoints of them).
+  // Pieces in order, covering [0, 1], neighbours with different clearances.
+  std::vector<MotionPiece> motionPieces(const robot::JointRef& qa, const robot::JointRef& qb) const;
+
   // What the state q must keep [m].
   double stateClearanceAt(const robot::JointRef& q) const;
   // What the motion qa -> qb must keep [m]: the smallest requirement of the zones it touches, else
   // motionClearance().
   double motionClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const;
   // The states on the motion qa -> qb: the smallest state requirement of the zones it touches, else
-  // clearance() (what the motion validator certified them for, so what a path is judged by).
+  // clearance(): what a path is judged by (no more than the validator certifies them for, motionPieces).
   double stateClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const;
 
 private:
+  // The s in [0, 1] where the displacement from `endpoint` along qa -> qb is smallest.
+  double nearestFraction(const robot::JointRef& endpoint, const robot::JointRef& qa, const robot::JointRef& qb) const;
+
   double clearance_, motionClearance_;
   std::vector<ApproachZone> zones_;
   Eigen::MatrixXd reach_;  // bodies × joints: D_jL of the certified motion check (motion_bounds.h)

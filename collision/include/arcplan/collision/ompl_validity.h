@@ -55,8 +55,8 @@ private:
 class JointMotionValidator : public ompl::base::MotionValidator {
 public:
   // Checks motions with isMotionCollisionFree(model, ..., options); throws arcplan::Error for
-  // options out of range. With `required`, a motion's minimumClearance is required->motionClearanceAlong
-  // (the motion) instead of options.minimumClearance.
+  // options out of range. With `required`, the motion is checked piece by piece (required->motionPieces),
+  // each with its piece's clearance as minimumClearance instead of options.minimumClearance.
   JointMotionValidator(ompl::base::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
                        MotionCheckOptions options = {}, std::shared_ptr<const EndpointClearance> required = nullptr);
 
@@ -74,7 +74,8 @@ public:
   int segmentCount(const ompl::base::State* s1, const ompl::base::State* s2) const;
 
 private:
-  MotionCheckOptions optionsFor(const robot::JointRef& q1, const robot::JointRef& q2) const;
+  // isMotionCollisionFree with options_, or with `required`, on each of its motionPieces at that piece's clearance.
+  bool motionFree(const robot::JointRef& q1, const robot::JointRef& q2, double* lastValidFraction) const;
 
   CollisionDataPool pool_;
   MotionCheckOptions options_;
