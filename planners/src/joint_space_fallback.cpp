@@ -83,8 +83,10 @@ std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& q
   planner.setup();
   if (planner.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) return std::nullopt;
   og::PathGeometric path(*problem->getSolutionPath()->as<og::PathGeometric>());
-  // simplifyMax, but within the caller's time
-  makeSeededSimplifier(si, *problem, seeds.simplifier)->simplify(path, query.ptc);
+  // simplifyMax, but within the caller's time. OMPL's default (atLeastOnce) runs a whole pass after the
+  // condition fired (up to 490 more certified motion checks on forearm-beam-009); without it the step
+  // under way when time is up is the last.
+  makeSeededSimplifier(si, *problem, seeds.simplifier)->simplify(path, query.ptc, false);
   return collision::waypointsOf(path);
 }
 
@@ -147,11 +149,17 @@ struct Segment {
   double lineLength = 0.0;
 };
 
-std::vector<Segment> segmentsOf(const ArcQuery& query, const std::vector<robot::Vector6>& simplified) {
+// With `asLines`, each segment also as its TCP line where that validates (a walk each, cut short by the
+// termination condition); without, joint motions only.
+std::vector<Segment> segmentsOf(const ArcQuery& query, const std::vector<robot::Vector6>& simplified, bool asLines) {
   std::vector<Segment> segments;
   for (std::size_t i = 1; i < simplified.size(); ++i) {
     Segment segment{simplified[i - 1], simplified[i]};
     segment.jointTcpLength = tcpLengthOf(query.model.robot(), segment.from, segment.to);
+    if (!asLines) {
+      segments.push_back(std::move(segment));
+      continue;
+    }
     const ArcPath line(robot::tipPose(query.model.robot(), segment.from),
                        robot::tipPose(query.model.robot(), segment.to));
     JointConversionResult here;
@@ -200,19 +208,21 @@ ArcOutcome pathOf(const ArcQuery& query, const std::vector<Segment>& segments, c
 // executes fastest at the speed limit: turning a joint motion into a TCP line can make it slower (the
 // line's corners slow the tool down, its joints may move farther), so lines are kept only where they
 // pay. Mixes: from the faster of the two, one segment at a time switched where that is faster.
+// `jointTime` is the joint path's, timed by the caller. Each candidate costs a time scaling (10-60 ms on
+// MBM): once time is up, none is timed and the joint path is kept.
 ArcOutcome fastestPath(const ArcQuery& query, const std::vector<Segment>& segments,
-                       const ExecutionTimeOf& executionTime) {
+                       const ExecutionTimeOf& executionTime, double jointTime) {
   const auto timeOf = [&](const std::vector<bool>& asLine) {
     return executionTime(pathOf(query, segments, asLine).path.joints);
   };
-  std::vector<bool> allLines;
-  for (const Segment& segment : segments) allLines.push_back(segment.line.has_value());
   const std::vector<bool> jointPath(segments.size(), false);
-  const double jointTime = timeOf(jointPath), lineTime = timeOf(allLines);
+  std::vector<bool> allLines;
+  for (const Segment& segment : segments) allLines.push_back(segment.line.has_value() && !query.ptc());
+  const double lineTime = allLines == jointPath ? jointTime : timeOf(allLines);
   std::vector<bool> kept = lineTime <= jointTime ? allLines : jointPath;
   double keptTime = std::min(lineTime, jointTime);
-  for (std::size_t k = 0; k < segments.size(); ++k) {
-    if (!segments[k].line) continue;
+  for (std::size_t k = 0; k < segments.size() && !query.ptc(); ++k) {
+    if (!allLines[k]) continue;
     std::vector<bool> mixed = kept;
     mixed[k] = !mixed[k];
     const double time = timeOf(mixed);
@@ -244,13 +254,15 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
   std::optional<std::vector<robot::Vector6>> fastest;
   double fastestTime = 0.0, fastestPlan = 0.0;  // the path kept so far; the fastest plan as it came
   int plans = 0;
+  // Once time is up the fallback returns the best path it has timed: a later plan that ends after the
+  // limit is dropped untimed (a time scaling costs 10-60 ms on MBM), and no line is tried.
   for (std::uint_fast32_t k = 0; k < kJointPlans && (k == 0 || !query.ptc()); ++k) {
     std::optional<std::vector<robot::Vector6>> planned = simplifiedJointPath(query, si, seed + k);
-    if (!planned) continue;
+    if (!planned || (fastest && query.ptc())) continue;
     const double planTime = executionTime(*planned);
     fastestPlan = plans++ == 0 ? planTime : std::min(fastestPlan, planTime);
     std::vector<robot::Vector6> shortcut = tcpShortcuts(query, si, *planned, seed + k);
-    const double shortcutTime = executionTime(shortcut);
+    const double shortcutTime = shortcut == *planned ? planTime : executionTime(shortcut);
     if (shortcutTime < planTime) *planned = std::move(shortcut);
     const double time = std::min(planTime, shortcutTime);
     if (fastest && time >= fastestTime) continue;
@@ -258,7 +270,7 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
     fastestTime = time;
   }
   if (!fastest) return failure("the joint-space fallback found no path either");
-  ArcOutcome outcome = fastestPath(query, segmentsOf(query, *fastest), executionTime);
+  ArcOutcome outcome = fastestPath(query, segmentsOf(query, *fastest, !query.ptc()), executionTime, fastestTime);
   outcome.fallbackTimes.jointPath = fastestPlan;
   std::ostringstream plansText;
   plansText << " (with shortcuts for the TCP where they pay; the fastest of " << plans

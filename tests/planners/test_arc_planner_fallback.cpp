@@ -1,7 +1,7 @@
 // The arc planner's joint-space fallback: RRTConnect (seeded by the planner as a benchmark run seeds
 // RRTConnect) + OMPL's simplifier, then the fastest at the speed limit of that joint path, its segments
-// as TCP lines where they validate, and mixes of the two; valid, repeatable, and never slower to execute
-// than RRTConnect + simplifier of the same seed.
+// as TCP lines where they validate, and mixes of the two; valid, repeatable, within its time limit, and
+// never slower to execute than RRTConnect + simplifier of the same seed.
 #include <gtest/gtest.h>
 #include <ompl/base/PlannerStatus.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -16,7 +17,9 @@
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/endpoint_clearance.h"
+#include "arcplan/collision/ompl_validity.h"
 #include "arcplan/planners/arc_planner.h"
+#include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/seeded_sampling.h"
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
@@ -252,6 +255,92 @@ TEST(ArcPlannerFallback, ItsFirstPlanIsRRTConnectAndSimplifierOfTheSameSeed) {
   EXPECT_NEAR(arcplan::trajectory::scaleToTcpSpeed(arcplan::robot::ur10e(), solutionJoints(problem)).duration(),
               result.fallbackTimes.kept, 1e-9);
   EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);
+}
+
+// The problem's certified motion validator, counting the motions it checks: the work a planner does
+// after its termination condition fires is measured in motion checks, not in seconds.
+class CountingMotionValidator : public arcplan::collision::JointMotionValidator {
+public:
+  using JointMotionValidator::JointMotionValidator;
+  bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
+    ++checks;
+    return JointMotionValidator::checkMotion(s1, s2);
+  }
+  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& lastValid) const override {
+    ++checks;
+    return JointMotionValidator::checkMotion(s1, s2, lastValid);
+  }
+  mutable long checks = 0;
+};
+
+struct BudgetedRun {
+  ob::PlannerStatus status;
+  long checks = 0, checksAfterTheLimit = 0;
+  ArcPlannerResult result;
+  std::vector<arcplan::robot::Vector6> joints;
+};
+
+// forearm-beam-009 at 1 cm solved by the arc planner (no search deadline, so only the budget decides)
+// under a termination condition that fires once `budget` motions have been checked.
+BudgetedRun solveWithinMotionChecks(long budget) {
+  auto problem = centimetreProblem(elbowBeamScene());
+  const auto si = problem.setup->getSpaceInformation();
+  const auto* checker =
+      dynamic_cast<const arcplan::collision::CollisionStateValidityChecker*>(si->getStateValidityChecker().get());
+  const auto* validator = dynamic_cast<const arcplan::collision::JointMotionValidator*>(si->getMotionValidator().get());
+  if (checker == nullptr || validator == nullptr) throw std::runtime_error("the problem has no collision validators");
+  auto counting = std::make_shared<CountingMotionValidator>(
+      si.get(), problem.collisionModel, validator->options(),
+      std::make_shared<const arcplan::collision::EndpointClearance>(checker->requiredClearance()));
+  si->setMotionValidator(counting);
+  problem.setup->clear();
+  auto planner =
+      arcplan::planners::makePlanner("arc", si, problem.plannerContext(), {{"deadline", "0"}, {"seed", "5"}});
+  problem.setup->setPlanner(planner);
+  problem.setup->setup();
+  BudgetedRun run;
+  run.status = problem.setup->solve(ob::PlannerTerminationCondition([&] { return counting->checks >= budget; }));
+  run.checks = counting->checks;
+  run.checksAfterTheLimit = std::max(0L, counting->checks - budget);
+  run.result = arcOf(planner).lastResult();
+  if (run.status == ob::PlannerStatus::EXACT_SOLUTION) {
+    run.joints = solutionJoints(problem);
+    const auto path = problem.setup->getProblemDefinition()->getSolutionPath()->as<ompl::geometric::PathGeometric>();
+    for (std::size_t i = 1; i < path->getStateCount(); ++i) {
+      if (!counting->JointMotionValidator::checkMotion(path->getState(i - 1), path->getState(i)))
+        throw std::runtime_error("the path returned has an invalid motion");
+    }
+  }
+  return run;
+}
+
+// A limit that fires while the fallback simplifies, shortcuts or converts its path ends that work within
+// one OMPL simplifier step, and the path found so far is returned. Bound: the largest step on this
+// path, smoothBSpline's 3 subdivisions of <= 10 states, checks at most 2 * (8 + 17 + 35) = 120 motions;
+// before the fix the rest of a whole simplifier pass ran, 490 motion checks at the worst budget here.
+TEST(ArcPlannerFallback, StopsAtItsTimeLimitWithTheBestPathSoFar) {
+  const BudgetedRun unlimited = solveWithinMotionChecks(std::numeric_limits<long>::max());
+  ASSERT_EQ(unlimited.status, ob::PlannerStatus::EXACT_SOLUTION) << unlimited.result.reason;
+  ASSERT_EQ(unlimited.result.mode(), "fallback");
+  // Budgets from 6 % to 44 % of the unlimited run's checks: its first plan (RRTConnect, then the
+  // simplifier) ends at about a quarter of them.
+  bool solvedBefore = false;
+  int solvedWithWorkUnderWay = 0;
+  for (int percent = 6; percent <= 44; percent += 2) {
+    const long budget = unlimited.checks * percent / 100;
+    const BudgetedRun run = solveWithinMotionChecks(budget);
+    EXPECT_LE(run.checksAfterTheLimit, 120) << "budget " << budget << ": " << run.result.reason;
+    const bool solved = run.status == ob::PlannerStatus::EXACT_SOLUTION;
+    // Once a path was found within a budget, every larger budget returns one.
+    EXPECT_TRUE(solved || !solvedBefore) << "budget " << budget << ": " << run.result.reason;
+    solvedBefore = solvedBefore || solved;
+    if (!solved) continue;
+    EXPECT_EQ(run.result.mode(), "fallback");
+    EXPECT_LT((run.joints.front() - unlimited.joints.front()).norm(), 1e-12);
+    EXPECT_LT((run.joints.back() - unlimited.joints.back()).norm(), 1e-12);
+    solvedWithWorkUnderWay += run.checksAfterTheLimit > 0 ? 1 : 0;
+  }
+  EXPECT_GT(solvedWithWorkUnderWay, 0) << "no budget fired while the path was being improved";
 }
 
 }  // namespace
