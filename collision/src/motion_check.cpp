@@ -33,6 +33,11 @@ constexpr double kEarlyMeasurement = 0.5;
 // 0.22 -> 0.31 ms), on RRTConnect's ~3 rad edges they save more than they cost.
 constexpr int kProbes = 3;
 constexpr double kProbedLength = 1.0;
+// Certificates keep minimumClearance m itself: a pair g apart stays at least m apart for (g − m)/rate.
+// A pair measured closer than m + margin(m) rejects the motion, so every step advances by at least
+// margin/rate: a quarter of m (as certificates to 0 advanced by at least m/rate before), at most
+// 0.5 mm, which a motion that keeps m + 2 mm between samples 1 mm apart still passes.
+double margin(double minimumClearance) { return std::min(0.25 * minimumClearance, 5e-4); }
 
 void checkJoints(const CollisionModel& model, const robot::JointRef& qa, const robot::JointRef& qb) {
   if (qa.size() != model.robot().dof() || qb.size() != model.robot().dof()) {
@@ -127,11 +132,12 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     return impl.partPairReach.row(impl.firstPartPair[k] + static_cast<Eigen::Index>(p)).dot(request.step);
   };
   const double minimumClearance = request.minimumClearance;
-  if (group.rigid) return {reachOf(group.rigidDistance - kDistanceSlack, 0.0), group.rigidDistance < minimumClearance};
+  const double enough = minimumClearance + margin(minimumClearance);
+  if (group.rigid) return {kInfinity, group.rigidDistance < enough};
   const double linkGap = detail::linkGap(impl, data, group);
-  const double linkReach = reachOf(linkGap, request.groupRate);
-  // Every bound taken instead of a distance is at least minimumClearance, as in measurePair.
-  if (linkGap >= minimumClearance && linkReach >= request.wanted) return {linkReach, false};
+  const double linkReach = reachOf(linkGap - minimumClearance, request.groupRate);
+  // Every bound taken instead of a distance is at least `enough`, so every reach is at least margin/rate.
+  if (linkGap >= enough && linkReach >= request.wanted) return {linkReach, false};
   auto& order = data.partOrder;
   order.clear();
   double nearest = kInfinity;
@@ -139,16 +145,16 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     const auto [i, j] = group.parts[p];
     const double bound = detail::boundGap(impl, data, i, j, group.self);
     nearest = std::min(nearest, bound);
-    order.push_back({reachOf(bound, rateOf(p)), bound, static_cast<int>(p)});
+    order.push_back({reachOf(bound - minimumClearance, rateOf(p)), bound, static_cast<int>(p)});
   }
   std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
   const double boundsReach = order.empty() ? kInfinity : order.front().key;
-  if (std::max(linkGap, nearest) >= minimumClearance) return {std::max(linkReach, boundsReach), false};
+  if (std::max(linkGap, nearest) >= enough) return {std::max(linkReach, boundsReach), false};
   double best = kInfinity;
   for (const auto& [reach, bound, p] : order) {
-    // A part pair bounded beyond minimumClearance that certifies enough, or no less than the best so
-    // far, keeps its bound; the others are measured (a distance below minimumClearance rejects).
-    if (bound >= minimumClearance && reach >= std::min(request.wanted, best)) {
+    // A part pair bounded beyond `enough` that certifies enough, or no less than the best so far, keeps
+    // its bound; the others are measured (a distance below `enough` rejects).
+    if (bound >= enough && reach >= std::min(request.wanted, best)) {
       best = std::min(best, reach);
       continue;
     }
@@ -156,15 +162,14 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     const auto &first = impl.robotParts[i], &second = detail::secondPart(impl, group, j);
     const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, group, j);
     const double rate = rateOf(p);
-    const double hull =
-        detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), minimumClearance);
-    if (hull >= minimumClearance) {
-      best = std::min(best, reachOf(hull, rate));
+    const double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough);
+    if (hull >= enough) {
+      best = std::min(best, reachOf(hull - minimumClearance, rate));
       continue;
     }
     const double d = detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options());
-    if (d < minimumClearance) return {0.0, true};
-    best = std::min(best, reachOf(d - kDistanceSlack, rate));
+    if (d - kDistanceSlack < enough) return {0.0, true};
+    best = std::min(best, reachOf(d - kDistanceSlack - minimumClearance, rate));
   }
   return {std::max(linkReach, best), false};
 }
@@ -335,7 +340,7 @@ bool PathCertifier::anchorAll(const robot::JointRef& q) {
     const PairMeasurement measured =
         measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], 0.05, minimumClearance_);
     if (measured.tooClose) return false;
-    budget_[k] = measured.gap;
+    budget_[k] = measured.gap - minimumClearance_;  // what the pair may close in before it is m apart
     used_[k] = 0.0;
   }
   last_ = q;
@@ -365,7 +370,7 @@ bool PathCertifier::extend(const robot::JointRef& q) {
     const PairMeasurement measured = measurePair(model_, detail::workspaceOf(data_), *impl.groups[k],
                                                  std::max(bound_[k], minimumClearance_), minimumClearance_);
     if (measured.tooClose) return false;
-    budget_[k] = measured.gap;
+    budget_[k] = measured.gap - minimumClearance_;
     used_[k] = 0.0;
     if (bound_[k] >= budget_[k]) {
       // Not even this one motion: advance along it conservatively, then start afresh at its end.

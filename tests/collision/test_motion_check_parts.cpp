@@ -187,4 +187,38 @@ TEST(CertifiedMotionCheck, LongMbmMotionsAcceptedAreFreeAtEveryExactSample) {
   }
 }
 
+// A motion of an RRTConnect path on MBM bookshelf_thin 0081 (1 cm, seed 18, simplified) that the
+// certified check accepted at minimumClearance 1 cm while passing 9.8 mm from the scene: certificates
+// ran to contact, not to minimumClearance, so between measurements a motion could pass closer than it.
+// They now keep minimumClearance; the expected answer is from 501 exact distances along the motion.
+TEST(CertifiedMotionCheck, AnAcceptedMotionKeepsMinimumClearanceBetweenMeasurements) {
+  const fs::path mbm = arcplan::testing::sharedDataDirectory() / "mbm_ur5";
+  const fs::path folder = mbm / "problems" / "bookshelf_thin_ur5";
+  ASSERT_TRUE(fs::exists(folder)) << folder;
+  const Scene scene = loadMoveItProblem(folder / "scene0081.yaml", folder / "request0081.yaml",
+                                        MoveItRobot{mbm / "ur5.urdf", mbm / "ur5.srdf"})
+                          .scene;
+  const auto model = makeCollisionModel(scene);
+  CollisionData data(*model);
+  Eigen::VectorXd from(6), to(6);
+  from << -0.18017124096981552, 0.078777815922644046, 1.3810103026807332, 0.75038577636865655, 1.2522888875915212,
+      0.87925248731431083;
+  to << -0.062075343504580285, 0.059427600899704933, 1.8268016368820166, 1.1939555137563569, 1.3898775106760048,
+      1.2447343093261072;
+  double closest = 1.0;
+  for (int k = 0; k <= 500; ++k)
+    closest = std::min(closest, distance(*model, data, from + (k / 500.0) * (to - from)).minimum());
+  ASSERT_LT(closest, 0.0099);
+  ASSERT_GT(closest, 0.009);
+  ASSERT_GT(distance(*model, data, from).minimum(), 0.01);
+  ASSERT_GT(distance(*model, data, to).minimum(), 0.01);
+  MotionCheckOptions options;
+  options.minimumClearance = 0.01;
+  EXPECT_FALSE(isMotionCollisionFree(*model, data, from, to, nullptr, options));
+  EXPECT_FALSE(isMotionCollisionFree(*model, data, to, from, nullptr, options));
+  // At 8 mm (1.8 mm below what it keeps, more than the 0.5 mm margin) it is accepted.
+  options.minimumClearance = 0.008;
+  EXPECT_TRUE(isMotionCollisionFree(*model, data, from, to, nullptr, options));
+}
+
 }  // namespace

@@ -5,18 +5,17 @@
 // Latombe's exact collision checking of robot paths): on the motion every point of a link L moves
 // at most M_L = Σ_j |Δq_j|·D_jL, where D_jL bounds the distance of L's geometry from joint j's axis
 // in every configuration (precomputed by CollisionModel). A pair of bodies at distance ≥ g at q(s)
-// therefore stays apart on (s − g/M, s + g/M), M the rate at which the pair can approach (the link's
-// M_L against an obstacle; for two links only the joints that move them relative to each other
-// count). The check measures every non-allowed pair at the two ends and then moves a front from
-// each end, each pair re-measured where its certificate runs out, until the certificates meet.
-// Cheap lower bounds (the capsules of the broad phase) are used where they certify the rest of the
-// motion or are at least `minimumClearance`, exact distances (FCL) below. A pair measured closer
-// than `minimumClearance` rejects the motion. So:
-//   - a motion that collides anywhere is always rejected;
-//   - a motion along which every pair keeps at least minimumClearance is always accepted;
-//   - a motion that comes closer than minimumClearance without touching may go either way.
-// The number of measurements is bounded: each advances a pair's certificate by at least
-// minimumClearance / M.
+// therefore stays at least m = minimumClearance apart on (s − (g − m)/M, s + (g − m)/M), M the rate
+// at which the pair can approach (the link's M_L against an obstacle; for two links only the joints
+// that move them relative to each other count). The check measures every non-allowed pair at the two
+// ends and then moves a front from each end, each pair re-measured where its certificate runs out,
+// until the certificates meet. Cheap lower bounds (the capsules of the broad phase) are used where
+// they certify the rest of the motion or are at least m + margin (margin = min(m/4, 0.5 mm)), exact
+// distances (FCL) below. A pair measured closer than m + margin rejects the motion. So:
+//   - an accepted motion keeps at least minimumClearance at every point (so one that collides is rejected);
+//   - a motion along which every pair keeps at least minimumClearance + margin is always accepted;
+//   - a motion that comes closer than that may go either way.
+// The number of measurements is bounded: each advances a pair's certificate by at least margin / M.
 //
 // MotionCheck::Discrete is the classic sampled check (states no joint step more than maxJointStep
 // apart); it can miss an obstacle thinner than what a link sweeps in one step (a 0.01 rad step of the
@@ -33,7 +32,7 @@ const char* toString(MotionCheck method);
 struct MotionCheckOptions {
   MotionCheck method = MotionCheck::Certified;
   double maxJointStep = 0.01;       // Discrete: largest joint change between checked states [rad]
-  double minimumClearance = 0.001;  // Certified: pairs measured closer reject the motion [m], >= 1e-5
+  double minimumClearance = 0.001;  // Certified: what an accepted motion keeps everywhere [m], >= 1e-5
 };
 
 // Throws arcplan::Error naming the field when maxJointStep or minimumClearance is out of range.
