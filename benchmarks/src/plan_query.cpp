@@ -4,6 +4,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <sstream>
@@ -15,6 +16,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/planning_problem.h"
+#include "arcplan/planners/seeded_sampling.h"
 #include "arcplan/trajectory/metric_descriptors.h"
 
 namespace arcplan::benchmarks {
@@ -120,6 +122,15 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
       planners::makePlanner(plannerName, setup.getSpaceInformation(), problem.plannerContext(), options.parameters);
   setup.setPlanner(planner);
   setup.setup();
+  if (options.seed) {
+    // What a campaign run with run seed S draws (job_runner.cpp): samplers and simplifier seeded from S,
+    // and the arc planner's `seed` S unless given, so `plan --seed S` repeats that run's path.
+    planners::seedSampling(setup, *options.seed);
+    const bool seedGiven = std::any_of(options.parameters.begin(), options.parameters.end(),
+                                       [](const auto& parameter) { return parameter.first == "seed"; });
+    if (!seedGiven && planner->params().hasParam("seed"))
+      planner->params().setParam("seed", std::to_string(*options.seed));
+  }
   const ompl::base::PlannerStatus status = setup.solve(options.timeLimit);
   const bool haveExact = setup.haveExactSolutionPath();
   const bool havePath = setup.haveSolutionPath();

@@ -25,7 +25,9 @@ struct PlanQueryOptions {
   std::string planner = "arc";                                  // any spelling the registry accepts
   std::vector<std::pair<std::string, std::string>> parameters;  // (name, value) as `--param name=value`
   double timeLimit = 5.0;                                       // s
-  // OMPL's seed is process-global: it is set before the problem exists (planning_problem.h).
+  // OMPL's seed is process-global: it is set before the problem exists (planning_problem.h). The
+  // setup's samplers and simplifier and the arc planner's `seed` (unless given) follow it as a campaign
+  // run with this run seed does (planners/seeded_sampling.h), so the same path comes out.
   std::optional<std::uint32_t> seed;
   std::optional<double> maxTcpSpeed;  // m/s: also time-scale the path (PCHIP) and measure the scaled metrics
   double clearance = 0.0;             // m every state and motion keeps (a suite's `clearance`); 0: no contact
