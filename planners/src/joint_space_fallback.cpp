@@ -154,7 +154,9 @@ struct Segment {
 std::vector<Segment> segmentsOf(const ArcQuery& query, const std::vector<robot::Vector6>& simplified, bool asLines) {
   std::vector<Segment> segments;
   for (std::size_t i = 1; i < simplified.size(); ++i) {
-    Segment segment{simplified[i - 1], simplified[i]};
+    Segment segment;
+    segment.from = simplified[i - 1];
+    segment.to = simplified[i];
     segment.jointTcpLength = tcpLengthOf(query.model.robot(), segment.from, segment.to);
     if (!asLines) {
       segments.push_back(std::move(segment));

@@ -59,16 +59,24 @@ Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefi
   const WaypointCheck check = [&](const robot::Vector6& from, const robot::Vector6& q, double) {
     if (stop_ && stop_()) return false;
     if (!certify_) return waypointValid_(q);
-    const double clearance = required_.motionClearanceAlong(from, q);
-    if (!certifier || clearance != certifierClearance) {
-      certifier.emplace(model_, data_, clearance);
-      certifierClearance = clearance;
-      if (!certifier->start(from)) {
-        certifier.reset();
-        return false;
+    // Piece by piece, as the problem's motion validator certifies (EndpointClearance::motionPieces): the
+    // part of a motion inside an approach zone keeps the zone's clearance, the rest the margin.
+    const robot::Vector6 delta = q - from;
+    double clearance = 0.0;
+    for (const collision::MotionPiece& piece : required_.motionPieces(from, q)) {
+      const robot::Vector6 pieceStart = from + piece.from * delta;
+      const robot::Vector6 pieceEnd = piece.to == 1.0 ? q : robot::Vector6(from + piece.to * delta);
+      clearance = piece.clearance;
+      if (!certifier || clearance != certifierClearance) {
+        certifier.emplace(model_, data_, clearance);
+        certifierClearance = clearance;
+        if (!certifier->start(pieceStart)) {
+          certifier.reset();
+          return false;
+        }
       }
+      if (!certifier->extend(pieceEnd)) return false;
     }
-    if (!certifier->extend(q)) return false;
     // A motion certified for a zone's smaller clearance: its end keeps what a state there must.
     const double state = required_.stateClearanceAt(q);
     return state <= clearance || collision::PathCertifier(model_, data_, state).start(q);

@@ -1,8 +1,8 @@
 #pragma once
 // Validating a TCP path for the whole robot while converting it to joints (cartesian_to_joint.h):
 // certified, every motion between consecutive waypoints proven to keep the clearance the endpoint rule
-// asks of it (collision::EndpointClearance::motionClearanceAlong: the margin, or an approach zone's
-// less near a start or goal closer than that; collision::PathCertifier, the check of the
+// asks of it, piece by piece (collision::EndpointClearance::motionPieces: the margin, or inside an
+// approach zone the zone's less near a start or goal closer than that; collision::PathCertifier, the check of the
 // SpaceInformation's motion validator), or
 // only the waypoints themselves (a caller's state check, as MoveIt's Cartesian paths do). A walk
 // stops at the first waypoint that fails and returns the motion it refused; explain() names the
@@ -50,7 +50,7 @@ class PathValidator {
 public:
   using StateCheck = std::function<bool(const robot::Vector6&)>;
   using StopRequest = std::function<bool()>;
-  // Certified by `required` (every motion its motionClearanceAlong; a motion in an approach zone also
+  // Certified by `required` (every motion piece by piece, motionPieces; a motion in an approach zone also
   // checks that its end keeps stateClearanceAt) when `certify`, else every waypoint by `waypointValid`.
   // `stop` (the planner's termination condition) rejects the next waypoint once it returns true.
   PathValidator(const collision::CollisionModel& model, const robot::UrInverseKinematics& ik,
