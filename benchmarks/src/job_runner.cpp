@@ -289,7 +289,6 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   if (suite.iterationBudget && !configuration.parameters.count("deadline") && planner->params().hasParam("deadline")) {
     planner->params().setParam("deadline", "0");
   }
-  const bool seededByRun = planner->params().hasParam("seed") && !configuration.parameters.count("seed");
   std::shared_ptr<IterationBudgetPlanner> budgeted;
   if (suite.iterationBudget) {
     budgeted = std::make_shared<IterationBudgetPlanner>(planner, *suite.iterationBudget);
@@ -338,8 +337,7 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
     currentSeed = runSeed(seed, currentRun);
     ompl::RNG::setSeed(currentSeed);  // OMPL's output is off inside benchmark()
     // Samplers, simplifier and the arc planner's `seed` (unless the suite sets it) follow the run seed too.
-    planners::seedSampling(setup, currentSeed);
-    if (seededByRun) running->params().setParam("seed", std::to_string(currentSeed));
+    planners::seedRun(setup, *running, currentSeed, configuration.parameters.count("seed") > 0);
   });
   benchmark.setPostRunEvent([&](const ob::PlannerPtr&, ompl::tools::Benchmark::RunProperties& run) {
     run["run seed INTEGER"] = std::to_string(currentSeed);
@@ -378,7 +376,9 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   ompl::tools::Benchmark::Request request(suite.timeLimit, 4096.0, suite.runs);
   request.displayProgress = false;
   request.saveConsoleOutput = false;
-  request.simplify = simplifiesSolution(plannerName);  // as `arcplan plan` does
+  // As `arcplan plan` does, but inside OMPL's Benchmark, which keeps the simplifier's path even when it fails
+  // the motion validator: the clearance judgement in the post-run event then counts the run as not solved.
+  request.simplify = simplifiesSolution(plannerName);
   benchmark.benchmark(request);
   benchmark.setRecordedSeed(seed);
 

@@ -14,6 +14,7 @@
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/joint_states.h"
 #include "arcplan/common/error.h"
+#include "arcplan/planners/certified_simplification.h"
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/planning_problem.h"
 #include "arcplan/planners/seeded_sampling.h"
@@ -125,19 +126,18 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
   if (options.seed) {
     // What a campaign run with run seed S draws (job_runner.cpp): samplers and simplifier seeded from S,
     // and the arc planner's `seed` S unless given, so `plan --seed S` repeats that run's path.
-    planners::seedSampling(setup, *options.seed);
     const bool seedGiven = std::any_of(options.parameters.begin(), options.parameters.end(),
                                        [](const auto& parameter) { return parameter.first == "seed"; });
-    if (!seedGiven && planner->params().hasParam("seed"))
-      planner->params().setParam("seed", std::to_string(*options.seed));
+    planners::seedRun(setup, *planner, *options.seed, seedGiven);
   }
   const ompl::base::PlannerStatus status = setup.solve(options.timeLimit);
   const bool haveExact = setup.haveExactSolutionPath();
   const bool havePath = setup.haveSolutionPath();
   const auto* arc = dynamic_cast<const planners::ArcPlanner*>(planner.get());
 
-  // The arc path is already the TCP path; sampling planners' paths get OMPL's shortcutting.
-  if (havePath && simplifiesSolution(plannerName)) setup.simplifySolution();
+  // The arc path is already the TCP path; sampling planners' paths get OMPL's shortcutting, kept only
+  // where the motion validator accepts every motion of the result (certified_simplification.h).
+  if (havePath && simplifiesSolution(plannerName)) planners::simplifySolutionKeepingCertified(setup);
 
   planned.status = haveExact                                                   ? PlanStatus::Exact
                    : status == ompl::base::PlannerStatus::APPROXIMATE_SOLUTION ? PlanStatus::Approximate
@@ -156,6 +156,7 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
     MeasuredSolution measured = measureSolution(problem, planned.path, scaling);
     planned.measurement = std::move(measured.measurement);
     planned.clearanceMargin = measured.clearanceMargin;
+    planned.clearanceKept = measured.keptClearance();
   }
   return planned;
 }
@@ -182,7 +183,7 @@ nlohmann::json toJson(const PlannedQuery& planned) {
     if (planned.options.maxTcpSpeed) document["vmax_mps"] = *planned.options.maxTcpSpeed;
     document.update(trajectory::toJson(*planned.measurement));
     document["clearance_m"] = planned.options.clearance;
-    document["clearance_kept"] = !(planned.clearanceMargin < 0.0);
+    document["clearance_kept"] = planned.clearanceKept;
   }
   return document;
 }

@@ -1,7 +1,8 @@
 // The arc planner's fallback where no route through via points validates: a certified joint-space
-// path from RRTConnect on the planner's own SpaceInformation, shortened by OMPL's simplifier as `plan`
-// and `bench` shorten RRTConnect's, then (where it pays) with shortcuts for the TCP; then whichever
-// executes fastest of that path, its segments as straight TCP lines where they validate for
+// path from RRTConnect on the problem's SpaceInformation (or one keeping the planner's larger margin,
+// ArcPlanner::fallbackSpace), shortened by OMPL's simplifier as `plan` and `bench` shorten RRTConnect's
+// (kept only where every motion of the result is accepted), then (where it pays) with shortcuts for the
+// TCP; then whichever executes fastest of that path, its segments as straight TCP lines where they validate for
 // the whole robot, and mixes of the two — so the fallback is never slower than its own joint path. The
 // result reports which share of its TCP length is Cartesian (docs/planners.md), so the arc planner
 // is never a disguised RRTConnect. Its random numbers come from generators seeded by the planner's
@@ -20,6 +21,7 @@
 
 #include "arc_planning.h"
 #include "arcplan/collision/joint_states.h"
+#include "arcplan/planners/certified_simplification.h"
 #include "arcplan/planners/seeded_sampling.h"
 #include "arcplan/robot/kinematics.h"
 
@@ -86,7 +88,10 @@ std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& q
   // simplifyMax, but within the caller's time. OMPL's default (atLeastOnce) runs a whole pass after the
   // condition fired (up to 490 more certified motion checks on forearm-beam-009); without it the step
   // under way when time is up is the last.
-  makeSeededSimplifier(si, *problem, seeds.simplifier)->simplify(path, query.ptc, false);
+  // The result only where the motion validator accepts all of it (certified_simplification.h): otherwise
+  // RRTConnect's own path, every motion of which it accepted.
+  const auto simplifier = makeSeededSimplifier(si, *problem, seeds.simplifier);
+  simplifyKeepingCertified(*si, path, [&](og::PathGeometric& p) { return simplifier->simplify(p, query.ptc, false); });
   return collision::waypointsOf(path);
 }
 

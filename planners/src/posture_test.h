@@ -21,8 +21,8 @@ class PostureTest {
 public:
   explicit PostureTest(const ArcQuery& query) : query_(query), data_(query.model) {}
 
-  // The margin as a walk's first waypoint tests it (PathValidator::keepsMargin: a start or goal exactly at
-  // the margin, which lowered it to theirs, passes as the walk passes it); with `slack` (m) more, by the
+  // The margin as a walk's first waypoint tests it (PathValidator::keepsMargin: a posture in an approach
+  // zone is held to the zone's clearance, as a walk holds it); with `slack` (m) more, by the
   // cheapest bounds that decide it (collision::hasClearance: spheres, capsules, hulls before exact
   // distances), the test of the many detour probes.
   bool keepsMargin(const robot::Vector6& q, double slack = 0.0) {

@@ -1,5 +1,7 @@
 #include "arcplan/planners/seeded_sampling.h"
 
+#include <string>
+
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -54,6 +56,11 @@ void seedSampling(og::SimpleSetup& setup, std::uint32_t seed) {
   });
   setup.getPathSimplifier() =
       makeSeededSimplifier(setup.getSpaceInformation(), *setup.getProblemDefinition(), seeds.simplifier);
+}
+
+void seedRun(og::SimpleSetup& setup, ob::Planner& planner, std::uint32_t seed, bool seedGiven) {
+  seedSampling(setup, seed);
+  if (!seedGiven && planner.params().hasParam("seed")) planner.params().setParam("seed", std::to_string(seed));
 }
 
 }  // namespace arcplan::planners

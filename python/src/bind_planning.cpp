@@ -95,7 +95,7 @@ void bindPlanning(py::module_& module) {
       .def_property_readonly("clearance_kept",
                              [](const Planned& p) -> std::optional<bool> {
                                if (!p.measurement) return std::nullopt;
-                               return !(p.clearanceMargin < 0.0);
+                               return p.clearanceKept;
                              })
       .def_property_readonly(trajectory::solveTimeDescriptor().key.c_str(),
                              [](const Planned& p) { return p.solveTime; })
@@ -131,7 +131,8 @@ void bindPlanning(py::module_& module) {
              py::arg("vmax") = py::none(), py::arg("clearance") = 0.0,
              "Plans a scene query as `arcplan plan` does: scene_file a path, a data name or a Scene; query "
              "the query name (default: the first); planner any registry name (arc, RRTConnect, ...) with "
-             "params {name: value}; seed OMPL's process-wide seed; vmax a TCP speed limit (m/s) to also "
+             "params {name: value}; seed a run seed (as `arcplan plan --seed`: OMPL's seed, samplers, simplifier and "
+             "the arc planner's seed); vmax a TCP speed limit (m/s) to also "
              "time-scale the path; clearance (m) what states and motions keep, judged as bench does. A planner that "
              "finds no path gives status 'failed' and a reason.");
   module.def("planner_names", &planners::plannerNames, "Every planner name the registry knows, 'arc' first.");

@@ -50,6 +50,7 @@ struct PlannedQuery {
   std::optional<trajectory::PathMeasurement> measurement;  // when there is a path
   // With a path: its smallest (measured − required) clearance, as bench judges it (solution_measurement.h).
   double clearanceMargin = std::numeric_limits<double>::infinity();
+  bool clearanceKept = true;  // MeasuredSolution::keptClearance(), the verdict JSON, Python and `plan` read
 };
 
 // How the caller names the options in its messages: Python's keywords by default, the command line
