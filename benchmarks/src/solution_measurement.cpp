@@ -16,12 +16,14 @@ MeasuredSolution measureSolution(const planners::PlanningProblem& problem, const
   if (validity == nullptr) throw Error("measuring a solution: the problem has no arcplan validity checker");
   const collision::CollisionModel& model = *problem.collisionModel;
   collision::CollisionData data(model);
-  collision::PathClearance required(validity->requiredClearance(), path);
+  const collision::EndpointClearance& rule = validity->requiredClearance();
   MeasuredSolution solution;
+  // Judged as the validity checker judges a state: what stateClearanceAt(q) asks, kept from obstacles
+  // and between links (minimum()); the metric handed back stays the obstacle distance (min_clearance_m).
   const trajectory::ClearanceFunction clearance = [&](const robot::Vector6& q) {
-    const double measured = collision::distance(model, data, q).obstacleDistance;
-    solution.clearanceMargin = std::min(solution.clearanceMargin, measured - required.next(q));
-    return measured;
+    const collision::DistanceReport measured = collision::distance(model, data, q);
+    solution.clearanceMargin = std::min(solution.clearanceMargin, measured.minimum() - rule.stateClearanceAt(q));
+    return measured.obstacleDistance;
   };
   solution.measurement = trajectory::measurePath(model.robot(), path, scaling, clearance);
   return solution;

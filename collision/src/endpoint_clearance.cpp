@@ -6,12 +6,10 @@
 
 #include "arcplan/common/error.h"
 #include "model_implementation.h"
+#include "motion_clearance.h"
 
 namespace arcplan::collision {
 namespace {
-
-// The motion check's own floor (motion_check.h: minimumClearance >= 1e-5 m).
-constexpr double kMotionClearanceFloor = 1e-5;
 
 void checkDistance(double value, const char* what) {
   if (!std::isfinite(value) || value < 0.0) {
@@ -45,7 +43,7 @@ EndpointClearance::EndpointClearance(const CollisionModel& model, double clearan
     if (!(e > 0.0) || !(e < motionClearance_)) continue;  // in contact (stays invalid), or clear enough
     const double relaxed = kApproachZoneFraction * e;
     zones_.push_back({endpoint, e, std::min(clearance_, relaxed),
-                      std::max(kMotionClearanceFloor, std::min(motionClearance_, relaxed))});
+                      std::max(detail::kSmallestMinimumClearance, std::min(motionClearance_, relaxed))});
   }
 }
 
@@ -144,32 +142,6 @@ double EndpointClearance::motionClearanceAlong(const robot::JointRef& qa, const 
   for (const ApproachZone& zone : zones_) {
     if (zone.motionClearance < required && closestApproach(zone.endpoint, qa, qb) <= kApproachZoneLength)
       required = zone.motionClearance;
-  }
-  return required;
-}
-
-double EndpointClearance::stateClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const {
-  double required = clearance_;
-  for (const ApproachZone& zone : zones_) {
-    if (zone.stateClearance < required && closestApproach(zone.endpoint, qa, qb) <= kApproachZoneLength)
-      required = zone.stateClearance;
-  }
-  return required;
-}
-
-PathClearance::PathClearance(const EndpointClearance& rule, std::vector<robot::Vector6> path)
-    : rule_(rule), path_(std::move(path)) {
-  for (std::size_t k = 0; k + 1 < path_.size(); ++k)
-    motions_.push_back(rule_.stateClearanceAlong(path_[k], path_[k + 1]));
-}
-
-double PathClearance::next(const robot::Vector6& denseWaypoint) {
-  if (motions_.empty()) return rule_.stateClearanceAt(denseWaypoint);
-  double required = motions_[motion_];
-  // A waypoint of the path ends one motion and starts the next (repeated waypoints: several).
-  while (motion_ + 1 < motions_.size() && denseWaypoint == path_[motion_ + 1]) {
-    ++motion_;
-    required = std::min(required, motions_[motion_]);
   }
   return required;
 }

@@ -8,6 +8,7 @@
 #include "arcplan/common/error.h"
 #include "model_implementation.h"
 #include "motion_bounds.h"
+#include "motion_clearance.h"
 
 namespace arcplan::collision {
 namespace {
@@ -93,15 +94,6 @@ Eigen::VectorXd relativeReach(const Implementation& impl, int a, int b) {
   return reach;
 }
 
-// The joint values of a motion bound's ends, with the messages of the motion checks.
-void checkJoints(const CollisionModel& model, const robot::JointRef& qa, const robot::JointRef& qb) {
-  if (qa.size() != model.robot().dof() || qb.size() != model.robot().dof()) {
-    throw Error("motion check: expected " + std::to_string(model.robot().dof()) + " joint values per end, got " +
-                std::to_string(qa.size()) + " and " + std::to_string(qb.size()));
-  }
-  if (!qa.allFinite() || !qb.allFinite()) throw Error("motion check: joint values must be finite numbers");
-}
-
 void checkBody(const CollisionModel& model, int body) {
   if (body < 0 || body >= static_cast<int>(model.linkNames().size())) {
     throw Error("motion bound: link index " + std::to_string(body) + " is not one of the " +
@@ -112,6 +104,14 @@ void checkBody(const CollisionModel& model, int body) {
 }  // namespace
 
 namespace detail {
+
+void checkJoints(const CollisionModel& model, const robot::JointRef& qa, const robot::JointRef& qb) {
+  if (qa.size() != model.robot().dof() || qb.size() != model.robot().dof()) {
+    throw Error("motion check: expected " + std::to_string(model.robot().dof()) + " joint values per end, got " +
+                std::to_string(qa.size()) + " and " + std::to_string(qb.size()));
+  }
+  if (!qa.allFinite() || !qb.allFinite()) throw Error("motion check: joint values must be finite numbers");
+}
 
 void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl) {
   const std::size_t bodies = impl.linkCapsules.size();
@@ -161,14 +161,14 @@ void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl) {
 }  // namespace detail
 
 double motionBound(const CollisionModel& model, int body, const robot::JointRef& qa, const robot::JointRef& qb) {
-  checkJoints(model, qa, qb);
+  detail::checkJoints(model, qa, qb);
   checkBody(model, body);
   return detail::implementationOf(model).jointReach.row(body).transpose().dot((qb - qa).cwiseAbs());
 }
 
 double relativeMotionBound(const CollisionModel& model, int body, int otherBody, const robot::JointRef& qa,
                            const robot::JointRef& qb) {
-  checkJoints(model, qa, qb);
+  detail::checkJoints(model, qa, qb);
   checkBody(model, body);
   checkBody(model, otherBody);
   return relativeReach(detail::implementationOf(model), body, otherBody).dot((qb - qa).cwiseAbs());

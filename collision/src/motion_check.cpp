@@ -9,6 +9,7 @@
 #include "arcplan/common/error.h"
 #include "model_implementation.h"
 #include "motion_bounds.h"
+#include "motion_clearance.h"
 #include "sphere_prefilter.h"
 
 namespace arcplan::collision {
@@ -20,9 +21,6 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Exact distances are GJK's, which docs/collision.md measured exact to 1e-6 m; certificates take
 // them this much smaller so they never rest on an overestimate.
 constexpr double kDistanceSlack = 1e-6;
-// The smallest minimumClearance accepted: it must stay well above kDistanceSlack, or a pair just
-// above it would certify (almost) no step.
-constexpr double kSmallestMinimumClearance = 1e-5;
 // A pair whose certificate runs out within this fraction of its last step after the front is
 // measured again at the front already, so that one forward kinematics serves several pairs. On the
 // long motions of perf/perf_collision.cpp 0 (only the pairs at the front) takes 1.8x the time of
@@ -33,19 +31,11 @@ constexpr double kEarlyMeasurement = 0.5;
 // 0.22 -> 0.31 ms), on RRTConnect's ~3 rad edges they save more than they cost.
 constexpr int kProbes = 3;
 constexpr double kProbedLength = 1.0;
-// Certificates keep minimumClearance m itself: a pair g apart stays at least m apart for (g − m)/rate.
-// A pair measured closer than m + margin(m) rejects the motion, so every step advances by at least
-// margin/rate: a quarter of m (as certificates to 0 advanced by at least m/rate before), at most
-// 0.5 mm, which a motion that keeps m + 2 mm between samples 1 mm apart still passes.
-double margin(double minimumClearance) { return std::min(0.25 * minimumClearance, 5e-4); }
-
-void checkJoints(const CollisionModel& model, const robot::JointRef& qa, const robot::JointRef& qb) {
-  if (qa.size() != model.robot().dof() || qb.size() != model.robot().dof()) {
-    throw Error("motion check: expected " + std::to_string(model.robot().dof()) + " joint values per end, got " +
-                std::to_string(qa.size()) + " and " + std::to_string(qb.size()));
-  }
-  if (!qa.allFinite() || !qb.allFinite()) throw Error("motion check: joint values must be finite numbers");
-}
+// Certificates keep minimumClearance m itself: a pair g apart stays at least m apart for (g − m)/rate;
+// a pair measured closer than m + acceptanceMargin(m) rejects the motion (motion_clearance.h).
+using detail::acceptanceMargin;
+using detail::checkJoints;
+using detail::kSmallestMinimumClearance;
 
 struct PairMeasurement {
   double gap;     // lower bound of the pair's distance [m]
@@ -117,7 +107,7 @@ struct ReachRequest {
 
 struct ReachMeasurement {
   double reach;   // the fraction of the motion, each way from the current state, over which the group is apart
-  bool tooClose;  // an exact distance below minimumClearance
+  bool tooClose;  // an exact distance below minimumClearance + acceptanceMargin
 };
 
 // measurePair for the certified check, in fractions of the motion: each part pair's bound over its own
@@ -132,7 +122,7 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     return impl.partPairReach.row(impl.firstPartPair[k] + static_cast<Eigen::Index>(p)).dot(request.step);
   };
   const double minimumClearance = request.minimumClearance;
-  const double enough = minimumClearance + margin(minimumClearance);
+  const double enough = minimumClearance + acceptanceMargin(minimumClearance);
   if (group.rigid) return {kInfinity, group.rigidDistance < enough};
   const double linkGap = detail::linkGap(impl, data, group);
   const double linkReach = reachOf(linkGap - minimumClearance, request.groupRate);

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include "arcplan/collision/joint_states.h"
 #include "arcplan/common/error.h"
+#include "motion_clearance.h"
 
 namespace arcplan::collision {
 
@@ -63,6 +65,14 @@ JointMotionValidator::JointMotionValidator(ob::SpaceInformation* si, std::shared
                                            std::shared_ptr<const EndpointClearance> required)
     : ob::MotionValidator(si), pool_(std::move(model)), options_(options), required_(std::move(required)) {
   validate(options_);
+  // motionFree certifies pieces with the clearances of `required` in place of options.minimumClearance;
+  // checked here, as options are, so that nothing throws from inside OMPL's checkMotion. A zone's
+  // clearance is never below the floor (endpoint_clearance.cpp), so motionClearance() is the smallest.
+  if (required_ && !(required_->motionClearance() >= detail::kSmallestMinimumClearance)) {
+    throw Error("motion validator: the required motion clearance must be at least " +
+                std::to_string(detail::kSmallestMinimumClearance) + " m (the motion check's floor), got " +
+                std::to_string(required_->motionClearance()));
+  }
 }
 
 bool JointMotionValidator::motionFree(const robot::JointRef& q1, const robot::JointRef& q2,

@@ -2,7 +2,7 @@
 // certificate of motion_check.cpp with states evaluated 8 at a time, coarse to fine.
 //
 // On the motion q(s) = qa + s (qb − qa) a pair whose geometry is at least g apart at s_i stays more
-// than minimumClearance + kSlack apart for |s − s_i| <= r_i = (g − minimumClearance − kSlack) / rate,
+// than `kept` apart for |s − s_i| <= r_i = (g − kept) / rate, kept = keptClearance(minimumClearance),
 // rate being the motion bound of motion_check.h (how fast the pair's distance can shrink per unit of
 // s). The spheres give g (their gaps, less the float margin) for 8 states per kernel call. An interval
 // between two samples is covered for a pair when r_i + r_j >= s_j − s_i; the motion is free when every
@@ -16,6 +16,7 @@
 #include <limits>
 
 #include "model_implementation.h"
+#include "motion_clearance.h"
 #include "sphere_prefilter.h"
 
 namespace arcplan::collision::detail {
@@ -23,9 +24,11 @@ namespace {
 
 using prefilter::kLanes;
 
-// Beyond minimumClearance: the exact check measures distances to 1e-6 m, so with 10 µm more every
-// pair is measured at least minimumClearance apart by it as well and it accepts the motion too.
+// The exact check rejects a pair it measures closer than m + acceptanceMargin(m) (motion_clearance.h)
+// and measures distances to 1e-6 m; a motion along which every pair keeps 10 µm more than that is
+// measured clear by it everywhere, so it accepts the motion too and the two answer alike.
 constexpr double kSlack = 1e-5;
+double keptClearance(double minimumClearance) { return minimumClearance + acceptanceMargin(minimumClearance) + kSlack; }
 // Samples before the exact check takes over (a motion grazing an obstacle would need many).
 constexpr int kMaxSamples = 256;
 // Searching a motion the spheres cannot certify: states at most this far apart (largest joint
@@ -41,7 +44,7 @@ struct Rake {
   SphereWorkspace& work;
   const robot::JointRef& qa;
   const robot::JointRef& qb;
-  double minimumClearance;
+  double kept;  // keptClearance(minimumClearance)
   int pairs;
   bool blocked = false;  // a free state too close for the spheres: they cannot certify the motion
   int exactChecks = 0;
@@ -57,7 +60,7 @@ struct Rake {
         prefilter.loadLane(work, lane, data.motionJoints.data());
       }
       for (int p = 0; p < pairs; ++p)
-        work.enough[p] = static_cast<float>(minimumClearance + kSlack + work.rates[p] * h + prefilter.margin());
+        work.enough[p] = static_cast<float>(kept + work.rates[p] * h + prefilter.margin());
       prefilter.gaps(work);
       // Of the states the spheres do not clear, the closest (the likeliest collision) goes to FCL.
       int closest = -1;
@@ -66,7 +69,7 @@ struct Rake {
         const int sample = work.pending[first + lane];
         double smallest = kInfinity;
         for (int p = 0; p < pairs; ++p) {
-          const double room = static_cast<double>(work.gaps[p * kLanes + lane]) - minimumClearance - kSlack;
+          const double room = static_cast<double>(work.gaps[p * kLanes + lane]) - kept;
           smallest = std::min(smallest, room);
           work.reach[sample * pairs + p] = work.rates[p] > 0.0 ? room / work.rates[p] : kInfinity;
         }
@@ -128,10 +131,10 @@ SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const ro
     work.rates[p] = impl.selfGroups[prefilter.selfGroupOf(p - bodies)].relativeReach.dot(step);
   // The rigid pairs left out of the tables keep their one distance all along the motion.
   for (const auto& group : impl.selfGroups) {
-    if (group.rigid && group.rigidDistance < minimumClearance + kSlack) return SphereMotion::Unknown;
+    if (group.rigid && group.rigidDistance < keptClearance(minimumClearance)) return SphereMotion::Unknown;
   }
 
-  Rake rake{model, prefilter, data, work, qa, qb, minimumClearance, pairs};
+  Rake rake{model, prefilter, data, work, qa, qb, keptClearance(minimumClearance), pairs};
   work.samples.clear();
   work.reach.clear();
   work.pending.clear();

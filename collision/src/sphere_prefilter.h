@@ -75,7 +75,7 @@ bool sphereFree(const SpherePrefilter& prefilter, SphereWorkspace& workspace, co
 
 // What the spheres tell about a straight motion qa -> qb (sphere_motion_check.cpp).
 enum class SphereMotion {
-  Free,      // every pair keeps more than minimumClearance all along: the certified check accepts it too
+  Free,      // every pair keeps more than m + acceptanceMargin(m) all along: the certified check accepts it too
   Collides,  // a state on it collides (FCL said so): the certified check rejects it too
   Unknown    // the certified check decides
 };

@@ -2,6 +2,7 @@
 // on a MotionBenchMaker problem whose goal is a grasp closer than 1 cm to the object, both ask for 1 cm,
 // both relax it in the goal's approach zone (collision/endpoint_clearance.h), so both say the path kept
 // its clearance although it comes closer than 1 cm. A plain 1 cm rule would call that path a failure.
+// And the judgement can fail: a hand-made path through an obstacle is "not kept".
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -9,6 +10,10 @@
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/moveit_scene.h"
+#include "arcplan/collision/scene.h"
+#include "arcplan/benchmarks/solution_measurement.h"
+#include "arcplan/planners/planning_problem.h"
+#include "arcplan/robot/kinematics.h"
 #include "support/command.h"
 #include "support/database_rows.h"
 
@@ -65,6 +70,34 @@ TEST(SolutionClearance, PlanAndBenchJudgeAGoalInsideTheClearanceAlike) {
   EXPECT_EQ(rows[0][0], "1");
   EXPECT_EQ(rows[0][1], "1");
   EXPECT_LT(std::stod(rows[0][2]), 0.01);
+}
+
+// The straight joint path from thesis_free's start to its goal, with a 3 cm sphere centred on the tool
+// flange's position at the path's middle state: by geometry the flange's link overlaps the sphere there,
+// so that state is in contact and the path cannot have kept 1 cm anywhere near it. Start and goal stay
+// more than 1 cm from the sphere (checked), so no approach zone relaxes anything.
+TEST(SolutionClearance, APathThroughAnObstacleIsNotKept) {
+  namespace collision = arcplan::collision;
+  auto scene = std::make_shared<collision::Scene>(
+      collision::loadScene(std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / "scenes" / "thesis_free.yaml"));
+  const auto free = arcplan::planners::makePlanningProblem(scene);
+  const arcplan::robot::Vector6 middle = 0.5 * (free.start + free.goal);
+  collision::Obstacle ball;
+  ball.name = "ball";
+  ball.shape = collision::Obstacle::Shape::Sphere;
+  ball.radius = 0.03;
+  ball.pose.translation() = arcplan::robot::tipPose(free.collisionModel->robot(), middle).translation();
+  scene->obstacles.push_back(ball);
+  arcplan::planners::PlanningProblemOptions options;
+  options.clearance = 0.01;
+  const auto problem = arcplan::planners::makePlanningProblem(scene, "", options);
+  collision::CollisionData data(*problem.collisionModel);
+  ASSERT_GT(collision::distance(*problem.collisionModel, data, problem.start).minimum(), 0.01);
+  ASSERT_GT(collision::distance(*problem.collisionModel, data, problem.goal).minimum(), 0.01);
+
+  const auto solution = arcplan::benchmarks::measureSolution(problem, {problem.start, problem.goal}, std::nullopt);
+  EXPECT_FALSE(solution.keptClearance());
+  EXPECT_LE(solution.clearanceMargin, -0.01);  // in contact at the middle: distance <= 0, 1 cm asked
 }
 
 }  // namespace

@@ -152,6 +152,18 @@ TEST(OmplValidity, SegmentCountFollowsTheLargestJointStep) {
   EXPECT_EQ(validator->segmentCount(stateOf(si, kSolutionA).get(), stateOf(si, kSolutionA).get()), 1);
 }
 
+// A clearance rule that asks motions for less than the motion check's floor (1e-5 m) is refused when the
+// validator is built, not later from inside OMPL's checkMotion; the floor itself is accepted.
+TEST(OmplValidity, MotionValidatorRefusesARuleBelowTheMotionChecksFloor) {
+  const auto si = makeSpaceInformation(sceneModel("thesis_free.yaml"));
+  const auto model = sceneModel("thesis_free.yaml");
+  const auto below = std::make_shared<const EndpointClearance>(0.0, 0.0);
+  EXPECT_THROW(JointMotionValidator(si.get(), model, {}, below), arcplan::Error);
+  const auto floor = std::make_shared<const EndpointClearance>(0.0, 1e-5);
+  const JointMotionValidator validator(si.get(), model, {}, floor);
+  EXPECT_TRUE(validator.checkMotion(stateOf(si, kSolutionA).get(), stateOf(si, kSolutionA).get()));
+}
+
 TEST(OmplValidity, RrtConnectSolvesAToBInTheFreeScene) {
   ompl::RNG::setSeed(7);
   const auto si = makeSpaceInformation(sceneModel("thesis_free.yaml"));

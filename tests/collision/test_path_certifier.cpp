@@ -1,6 +1,8 @@
 // PathCertifier: a path validated motion by motion while it grows. Expected results come from a
 // fine discrete check written here (every 1e-4 rad) and from isMotionCollisionFree.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 
@@ -20,6 +22,17 @@ Scene thesisObstacle() { return loadScene(arcplan::dataDirectory() / "scenes" / 
 
 const VectorXd kSolutionA = (VectorXd(6) << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098).finished();
 const VectorXd kSolutionB = (VectorXd(6) << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399).finished();
+
+// The clearance a certifier keeps (its default, passed explicitly where the tests check it).
+constexpr double kClearance = 0.001;
+
+// The smallest exact distance at 11 states along qa -> qb (4 mrad apart on the tests' 0.04 rad steps).
+double closestAlong(const CollisionModel& model, CollisionData& data, const VectorXd& qa, const VectorXd& qb) {
+  double closest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= 10; ++k)
+    closest = std::min(closest, distance(model, data, qa + (k / 10.0) * (qb - qa)).minimum());
+  return closest;
+}
 
 bool motionCollides(const CollisionModel& model, CollisionData& data, const VectorXd& qa, const VectorXd& qb) {
   const int states = std::max(1, static_cast<int>(std::ceil((qb - qa).cwiseAbs().maxCoeff() / 1e-4)));
@@ -48,7 +61,7 @@ TEST(PathCertifier, AcceptsOnlyPathsWhoseEveryMotionIsFree) {
   int accepted = 0, rejected = 0;
   for (int trial = 0; trial < 40; ++trial) {
     const auto path = randomWalk(random, trial % 2 == 0 ? kSolutionA : kSolutionB, 80, 0.04);
-    PathCertifier certifier(*model, data);
+    PathCertifier certifier(*model, data, kClearance);
     if (!certifier.start(path.front())) continue;
     for (std::size_t i = 1; i < path.size(); ++i) {
       if (!certifier.extend(path[i])) {
@@ -57,6 +70,9 @@ TEST(PathCertifier, AcceptsOnlyPathsWhoseEveryMotionIsFree) {
       }
       ++accepted;
       ASSERT_FALSE(motionCollides(*model, reference, path[i - 1], path[i])) << "trial " << trial << " motion " << i;
+      // Not just free: the certifier's budget is g − m, so every accepted motion keeps its clearance.
+      ASSERT_GE(closestAlong(*model, reference, path[i - 1], path[i]), kClearance - 1e-6)
+          << "trial " << trial << " motion " << i;
     }
   }
   // Both outcomes occur, or the test proves nothing.

@@ -20,6 +20,7 @@
 #include "arcplan/robot/primitive_mesh.h"
 #include "model_implementation.h"  // collision/src
 #include "sphere_prefilter.h"
+#include "support/joint_states.h"
 
 namespace {
 
@@ -27,15 +28,6 @@ using namespace arcplan::collision;
 using Eigen::VectorXd;
 
 Scene sceneFile(const char* name) { return loadScene(arcplan::dataDirectory() / "scenes" / name); }
-
-VectorXd randomState(const arcplan::robot::RobotModel& robot, std::mt19937_64& random) {
-  VectorXd q(robot.dof());
-  for (int j = 0; j < robot.dof(); ++j) {
-    const auto& limits = robot.joints()[j].limits;
-    q[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
-  }
-  return q;
-}
 
 // A seeded workcell: the table of the thesis and `count` obstacles of every kind in reach of the arm.
 Scene randomScene(unsigned seed, int count) {
@@ -140,7 +132,7 @@ TEST(SpherePrefilter, FloatGapsAgreeWithDoubleWithinTheMargin) {
   for (int batch = 0; batch < 200; ++batch) {
     std::vector<VectorXd> qs;
     for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
-      qs.push_back(randomState(model->robot(), random));
+      qs.push_back(arcplan::testing::randomJointState(model->robot(), random));
       prefilter.loadLane(work, lane, qs.back().data());
     }
     prefilter.gaps(work);
@@ -184,7 +176,7 @@ TEST(SpherePrefilter, KernelsAndBatchesTakeTheSameDecisions) {
   for (int batch = 0; batch < 300; ++batch) {
     std::vector<VectorXd> qs;
     for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
-      qs.push_back(randomState(model->robot(), random));
+      qs.push_back(arcplan::testing::randomJointState(model->robot(), random));
       prefilter.loadLane(work, lane, qs.back().data());
     }
     const std::uint32_t portable = detail::prefilter::freeLanesPortable(tables, work.q.data(), 8);
@@ -233,7 +225,7 @@ TEST(SpherePrefilter, PermutedAndGeneralChainPathsAgree) {
   double largest = 0.0;
   for (int batch = 0; batch < 300; ++batch) {
     for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
-      const VectorXd q = randomState(model->robot(), random);
+      const VectorXd q = arcplan::testing::randomJointState(model->robot(), random);
       prefilter.loadLane(work, lane, q.data());
     }
     detail::prefilter::gapsPortable(tables, work.q.data(), work.enough.data(), fast.data());
@@ -263,7 +255,7 @@ void expectSameAnswers(const Scene& scene, unsigned seed, int states, int motion
   Eigen::MatrixXd batch(fast->robot().dof(), states);
   int cleared = 0, valid = 0;
   for (int k = 0; k < states; ++k) {
-    batch.col(k) = randomState(fast->robot(), random);
+    batch.col(k) = arcplan::testing::randomJointState(fast->robot(), random);
     const bool expected = isCollisionFree(*exact, exactData, batch.col(k));
     ASSERT_EQ(isCollisionFree(*fast, fastData, batch.col(k)), expected) << scene.name << " state " << k;
     ASSERT_EQ(collide(*fast, fastData, batch.col(k)).valid, expected);
@@ -277,9 +269,9 @@ void expectSameAnswers(const Scene& scene, unsigned seed, int states, int motion
 
   int freeMotions = 0, certified = 0;
   for (int k = 0; k < motions; ++k) {
-    VectorXd qa = randomState(fast->robot(), random);
+    VectorXd qa = arcplan::testing::randomJointState(fast->robot(), random);
     if (!isCollisionFree(*exact, exactData, qa)) continue;
-    const VectorXd qb = qa + 0.1 * (randomState(fast->robot(), random) - qa) * (1 + k % 4);
+    const VectorXd qb = qa + 0.1 * (arcplan::testing::randomJointState(fast->robot(), random) - qa) * (1 + k % 4);
     const bool expected = isMotionCollisionFree(*exact, exactData, qa, qb);
     ASSERT_EQ(isMotionCollisionFree(*fast, fastData, qa, qb), expected) << scene.name << " motion " << k;
     double fastLast = -1.0, exactLast = -1.0;

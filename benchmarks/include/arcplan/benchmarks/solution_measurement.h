@@ -3,8 +3,9 @@
 // and `bench` (every run of a campaign) do it. The path is measured by trajectory::measurePath
 // (densified, time-scaled when a TCP speed limit is given) with the obstacle clearance at every dense
 // waypoint, and judged by the clearance its problem asked for, relaxed in the approach zones of a start
-// or goal that is itself closer (collision/endpoint_clearance.h): each dense waypoint must keep what
-// the motion it lies on was certified for by the problem's validity checker and motion validator.
+// or goal that is itself closer (collision/endpoint_clearance.h): each dense waypoint must keep, from
+// obstacles and between links, what stateClearanceAt asks of that state, as the problem's validity
+// checker asks of every state (the motion validator certifies every state of a motion for that too).
 #include <limits>
 #include <optional>
 
@@ -17,7 +18,8 @@ namespace arcplan::benchmarks {
 
 struct MeasuredSolution {
   trajectory::PathMeasurement measurement;
-  // The smallest (measured − required) clearance over the dense waypoints [m]; +inf without obstacles.
+  // The smallest (measured − required) clearance over the dense waypoints [m], measured from obstacles
+  // and between links; +inf when nothing is near.
   double clearanceMargin = std::numeric_limits<double>::infinity();
   // Not kept: the path came closer than required somewhere; bench withdraws OMPL's "solved" for it.
   bool keptClearance() const { return !(clearanceMargin < 0.0); }

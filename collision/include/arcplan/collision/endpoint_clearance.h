@@ -76,9 +76,6 @@ public:
   // What the motion qa -> qb must keep [m]: the smallest requirement of the zones it touches, else
   // motionClearance().
   double motionClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const;
-  // The states on the motion qa -> qb: the smallest state requirement of the zones it touches, else
-  // clearance(): what a path is judged by (no more than the validator certifies them for, motionPieces).
-  double stateClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const;
 
 private:
   // The s in [0, 1] where the displacement from `endpoint` along qa -> qb is smallest.
@@ -87,21 +84,6 @@ private:
   double clearance_, motionClearance_;
   std::vector<ApproachZone> zones_;
   Eigen::MatrixXd reach_;  // bodies × joints: D_jL of the certified motion check (motion_bounds.h)
-};
-
-// What the waypoints of a densified `path` must keep, asked in order (the dense path holds every
-// waypoint of `path`, as trajectory::densifyJointPath keeps them): a dense waypoint between path[k]
-// and path[k+1] stateClearanceAlong that motion, a waypoint of `path` the smaller of its two motions'.
-class PathClearance {
-public:
-  PathClearance(const EndpointClearance& rule, std::vector<robot::Vector6> path);
-  double next(const robot::Vector6& denseWaypoint);
-
-private:
-  const EndpointClearance& rule_;
-  std::vector<robot::Vector6> path_;
-  std::vector<double> motions_;  // stateClearanceAlong(path[k], path[k + 1])
-  std::size_t motion_ = 0;       // the motion the last dense waypoint was on
 };
 
 }  // namespace arcplan::collision

@@ -55,8 +55,9 @@ private:
 class JointMotionValidator : public ompl::base::MotionValidator {
 public:
   // Checks motions with isMotionCollisionFree(model, ..., options); throws arcplan::Error for
-  // options out of range. With `required`, the motion is checked piece by piece (required->motionPieces),
-  // each with its piece's clearance as minimumClearance instead of options.minimumClearance.
+  // options out of range, or a `required` whose motionClearance() is below the check's 1e-5 m. With `required`, the
+  // motion is checked piece by piece (required->motionPieces), each with its piece's clearance as minimumClearance
+  // instead of options.minimumClearance.
   JointMotionValidator(ompl::base::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
                        MotionCheckOptions options = {}, std::shared_ptr<const EndpointClearance> required = nullptr);
 
