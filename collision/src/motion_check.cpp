@@ -183,9 +183,9 @@ bool probesClear(const CollisionModel& model, CollisionData& data, const robot::
 }
 
 // Conservative advancement from both ends, or only from the start when the last valid state is
-// wanted. Pair k is proven apart before motionPairs[k].certifiedFromStart and after
-// certifiedFromEnd (open intervals: a pair at distance g at s stays apart on (s − g/rate,
-// s + g/rate)); it is done when the two overlap. The front on each side is the smallest
+// wanted. Pair k is proven to keep minimumClearance m before motionPairs[k].certifiedFromStart and
+// after certifiedFromEnd (open intervals: a pair at distance g at s keeps m on (s − (g − m)/rate,
+// s + (g − m)/rate)); it is done when the two overlap. The front on each side is the smallest
 // certificate of the pairs not done, and the pairs whose certificate ends there (or soon after)
 // are measured there.
 bool certifiedMotionFree(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& qa,

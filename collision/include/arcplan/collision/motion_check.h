@@ -52,7 +52,7 @@ bool isMotionCollisionFree(const CollisionModel& model, CollisionData& data, con
 // waypoint also certifies the following motions as long as the pair's accumulated motion bound
 // stays below it, so a densely sampled path (waypoints 1 cm apart) needs a measurement only every
 // few waypoints instead of two per motion. What it accepts carries the guarantee of the certified
-// check above: no configuration on an accepted motion collides.
+// check above: every configuration on an accepted motion keeps minimumClearance.
 class PathCertifier {
 public:
   // model and data must outlive the certifier; data is used as its workspace.
