@@ -253,8 +253,9 @@ void registerPlanCommand(CLI::App& app) {
       "also time-scale the path (PCHIP) under this TCP speed limit [m/s] and report the scaled metrics");
   command
       ->add_option("--clearance", options->clearance,
-                   "distance every state and motion keeps from obstacles [m], relaxed near a start or goal closer "
-                   "than that as bench does (docs/collision.md); the JSON says whether the path kept it")
+                   "distance every state and motion keeps from obstacles and between links [m], relaxed near a "
+                   "start or goal closer than that as bench does (docs/collision.md); the JSON says whether the "
+                   "path kept it")
       ->capture_default_str();
   command->add_option("--json", options->json, "write the result as JSON to this file ('-' for stdout)");
   command->add_option("--path-csv", options->pathCsv, "write the joint path (q0..q5 per waypoint) as CSV");
