@@ -5,8 +5,8 @@ Reads the campaign's benchmark.db (the database `arcplan bench` builds with ompl
 prints, as markdown:
   1. per problem family: arc success, runs in mode "arc", runs in mode "fallback", median execution times
      and solve times of both planners;
-  2. every problem where the arc planner's fallback ran: its execution time at the campaign's v_max against
-     RRTConnect + simplifier's on the same problem (median, min and max over RRTConnect's runs);
+  2. every run in which the arc planner's fallback ran: its execution time at the campaign's v_max against
+     RRTConnect + simplifier's run of the same problem and run seed;
   3. every problem where the arc planner's median solve time is above `--factor` (5) times RRTConnect's.
 A run succeeds when it is solved and has an execution time (as RunRecord::succeeded; a run that came closer
 than the suite's clearance is not solved). Solve time: the arc planner's own `solve time`, OMPL's `time` for
@@ -43,15 +43,19 @@ def read_runs(db, planner):
     if not os.path.isfile(db):
         sys.exit(f"{db}: no such file (a finished campaign's benchmark.db is expected)")
     connection = sqlite3.connect(f"file:{db}?mode=ro", uri=True)
-    rows = connection.execute(
-        "SELECT e.name, e.problemkind, r.solved, r.execution_time, r.arc_mode, r.solve_time, r.time "
-        "FROM runs r JOIN experiments e ON r.experimentid = e.id JOIN plannerConfigs p ON r.plannerid = p.id "
-        "WHERE p.name IN (?, ?)", (planner, "geometric_" + planner)).fetchall()
+    try:
+        rows = connection.execute(
+            "SELECT e.name, e.problemkind, r.solved, r.execution_time, r.arc_mode, r.solve_time, r.time, "
+            "r.run_seed FROM runs r JOIN experiments e ON r.experimentid = e.id "
+            "JOIN plannerConfigs p ON r.plannerid = p.id WHERE p.name IN (?, ?)",
+            (planner, "geometric_" + planner)).fetchall()
+    except sqlite3.OperationalError as error:
+        sys.exit(f"{db}: not an arcplan campaign database with run seeds ({error})")
     problems = {}
-    for name, family, solved, execution, mode, solve, time in rows:
+    for name, family, solved, execution, mode, solve, time, seed in rows:
         problem = name.split("/", 1)[-1]
         run = {"ok": bool(solved) and execution is not None, "exec": execution, "mode": ARC_MODE.get(mode),
-               "solve": solve if solve is not None else time}
+               "solve": solve if solve is not None else time, "seed": seed}
         problems.setdefault(problem, (family, []))[1].append(run)
     if not problems:
         sys.exit(f"{db}: no runs of planner '{planner}'")
@@ -90,26 +94,28 @@ def family_table(arc, base, arc_label, base_label):
 
 
 def fallback_table(arc, base, arc_label, base_label):
-    print(f"| problem | {arc_label} fallback exec (s) | {base_label} + simplifier exec (s): median [min, max] "
-          f"| fallback <= median? |")
-    print("|---|---:|---:|---|")
+    # Run by run against the base planner's run of the same run seed (one seed per problem and run for
+    # every planner, docs/reproducibility.md): the issue's "same problem and seed".
+    print(f"| problem | run seed | {arc_label} fallback exec (s) | {base_label} + simplifier exec (s), same seed "
+          f"| fallback no slower? |")
+    print("|---|---:|---:|---:|---|")
     slower = 0
-    rows = 0
+    runs_shown = 0
     for problem in sorted(arc):
-        runs = [r for r in arc[problem][1] if r["ok"] and r["mode"] == "fallback"]
-        if not runs:
-            continue
-        rows += 1
-        mine = median([r["exec"] for r in runs])
-        theirs = [r["exec"] for r in base.get(problem, ("", []))[1] if r["ok"]]
-        if theirs:
-            verdict = "yes" if mine <= median(theirs) else "**no**"
-            slower += mine > median(theirs)
-            spread = f"{fmt(median(theirs))} [{fmt(min(theirs))}, {fmt(max(theirs))}]"
-        else:
-            verdict, spread = f"{base_label} never solved it", "-"
-        print(f"| {problem} | {fmt(mine)} | {spread} | {verdict} |")
-    print(f"\n{rows} problem(s) with fallback runs, {slower} of them slower to execute than {base_label}'s median.")
+        theirs = {r["seed"]: r for r in base.get(problem, ("", []))[1]}
+        for run in arc[problem][1]:
+            if not (run["ok"] and run["mode"] == "fallback"):
+                continue
+            runs_shown += 1
+            other = theirs.get(run["seed"])
+            if other is None or not other["ok"]:
+                verdict, their_exec = f"{base_label} did not solve it", "-"
+            else:
+                verdict = "yes" if run["exec"] <= other["exec"] else "**no**"
+                slower += run["exec"] > other["exec"]
+                their_exec = fmt(other["exec"])
+            print(f"| {problem} | {run['seed']} | {fmt(run['exec'])} | {their_exec} | {verdict} |")
+    print(f"\n{runs_shown} fallback run(s), {slower} of them slower to execute than {base_label}'s run of the same seed.")
 
 
 def solve_time_table(arc, base, arc_label, base_label, factor):
