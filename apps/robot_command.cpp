@@ -10,6 +10,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
 #include "arcplan/planners/planning_problem.h"
+#include "arcplan/robot/joint_limits.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/robot_model.h"
@@ -44,14 +45,8 @@ void printVector(const robot::Vector6& q) {
 Eigen::VectorXd parseJoints(const robot::RobotModel& model, const std::string& jointText) {
   const auto values = parseVector(jointText, "--joints", static_cast<std::size_t>(model.dof()));
   const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
-  for (int j = 0; j < model.dof(); ++j) {
-    const auto& limits = model.joints()[j].limits;
-    if (q[j] < limits.lower || q[j] > limits.upper) {
-      throw UsageError("--joints: joint " + std::to_string(j) + " (" + model.joints()[j].name +
-                       ") = " + std::to_string(q[j]) + " is outside its limits [" + std::to_string(limits.lower) +
-                       ", " + std::to_string(limits.upper) + "]");
-    }
-  }
+  if (const auto j = robot::firstJointOutsideLimits(model, q))
+    throw UsageError("--joints: " + robot::outsideLimitsText(model, *j, q[*j], "joint " + std::to_string(*j)));
   return q;
 }
 

@@ -9,6 +9,7 @@
 #include "arcplan/collision/joint_states.h"
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
+#include "arcplan/robot/joint_limits.h"
 #include "arcplan/robot/pose.h"
 
 namespace arcplan::planners {
@@ -33,15 +34,8 @@ robot::Vector6 resolveEndpoint(const collision::QueryEndpoint& endpoint, const c
   collision::CollisionData data(model);
   if (endpoint.joints) {
     const robot::Vector6& q = *endpoint.joints;
-    for (int j = 0; j < 6; ++j) {
-      const auto& limits = robotModel.joints()[j].limits;
-      if (!std::isfinite(q[j]) || q[j] < limits.lower || q[j] > limits.upper) {
-        std::ostringstream message;
-        message << label << ": joint " << j << " (" << robotModel.joints()[j].name << ") = " << q[j]
-                << " rad is outside its limits [" << limits.lower << ", " << limits.upper << "]";
-        throw Error(message.str());
-      }
-    }
+    if (const auto j = robot::firstJointOutsideLimits(robotModel, q))
+      throw Error(label + ": " + robot::outsideLimitsText(robotModel, *j, q[*j], "joint " + std::to_string(*j)));
     const collision::CollisionReport report = collision::collide(model, data, q);
     if (!report.valid)
       throw Error(label + ": the joint configuration is in collision (" + collision::describeCollisions(report) + ")");

@@ -9,6 +9,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_formatting.h"
 #include "arcplan/common/text_parsing.h"
+#include "arcplan/robot/joint_limits.h"
 
 namespace arcplan::trajectory {
 namespace {
@@ -19,15 +20,8 @@ constexpr double kLimitTolerance = 1e-9;
 
 // Message for the first joint of q outside the model's limits, or empty.
 std::string limitViolation(const robot::RobotModel& model, const robot::Vector6& q) {
-  for (int j = 0; j < 6; ++j) {
-    const auto& joint = model.joints()[j];
-    if (q[j] < joint.limits.lower - kLimitTolerance || q[j] > joint.limits.upper + kLimitTolerance) {
-      return "q" + std::to_string(j) + " (" + joint.name + ") = " + formatNumber(q[j], 9) +
-             " rad is outside its limits [" + formatNumber(joint.limits.lower, 9) + ", " +
-             formatNumber(joint.limits.upper, 9) + "]";
-    }
-  }
-  return {};
+  const auto j = robot::firstJointOutsideLimits(model, q, kLimitTolerance);
+  return j ? robot::outsideLimitsText(model, *j, q[*j], "q" + std::to_string(*j)) : std::string();
 }
 
 void requireSixJoints(const robot::RobotModel& model) {
