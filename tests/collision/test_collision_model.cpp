@@ -15,6 +15,7 @@
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "support/command.h"
 #include "support/joint_states.h"
+#include "support/obstacles.h"
 
 namespace {
 
@@ -27,15 +28,6 @@ Scene thesisScene(const char* name = "thesis_obstacle.yaml") {
 
 // The elbow-up, wrist-down IK solution of pose A.
 const Vector6 kSolutionA = (Vector6() << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098).finished();
-
-Obstacle sphereAt(const std::string& name, const Eigen::Vector3d& centre, double radius) {
-  Obstacle sphere;
-  sphere.name = name;
-  sphere.shape = Obstacle::Shape::Sphere;
-  sphere.radius = radius;
-  sphere.pose.translation() = centre;
-  return sphere;
-}
 
 bool hasPair(const CollisionReport& report, const std::string& a, const std::string& b) {
   for (const auto& [first, second] : report.collisions) {
@@ -106,7 +98,7 @@ TEST(CollisionModel, ParticleAtTool0Collides) {
   Scene scene = thesisScene("thesis_free.yaml");
   const auto& robot = arcplan::robot::ur10e();
   const Eigen::Vector3d tool0 = arcplan::robot::tipPose(robot, kSolutionA).translation();
-  scene.obstacles.push_back(sphereAt("particle", tool0, 0.01));
+  scene.obstacles.push_back(arcplan::testing::sphere("particle", tool0, 0.01));
   const auto model = makeCollisionModel(scene);
   CollisionData data(*model);
   EXPECT_FALSE(isCollisionFree(*model, data, kSolutionA));
@@ -126,7 +118,7 @@ TEST(CollisionModel, ParticleInsideALinkCollidesAlthoughNoSurfaceIsHit) {
   arcplan::robot::forwardKinematics(robot, kSolutionA, kinematics);
   const Eigen::Vector3d inside =
       kinematics.linkPoses[robot.linkIndex("upper_arm_link")] * Eigen::Vector3d(-0.3, 0, 0.1762);
-  scene.obstacles.push_back(sphereAt("particle", inside, 0.01));
+  scene.obstacles.push_back(arcplan::testing::sphere("particle", inside, 0.01));
   for (bool convex : {true, false}) {
     CollisionModelOptions options;
     options.convexCollision = options.convexDistance = convex;
@@ -144,7 +136,7 @@ TEST(CollisionModel, DistanceToTheFlangeFaceIsExact) {
   Scene scene = thesisScene("thesis_free.yaml");
   const auto& robot = arcplan::robot::ur10e();
   const Eigen::Isometry3d tool0 = arcplan::robot::tipPose(robot, kSolutionA);
-  scene.obstacles.push_back(sphereAt("ball", tool0 * Eigen::Vector3d(0, 0, 0.1), 0.01));
+  scene.obstacles.push_back(arcplan::testing::sphere("ball", tool0 * Eigen::Vector3d(0, 0, 0.1), 0.01));
   AllowedCollisionMatrix allowed = defaultAllowedCollisions(robot);
   for (const auto& link : {"base_link_inertia", "shoulder_link", "upper_arm_link", "forearm_link", "wrist_1_link",
                            "wrist_2_link", "wrist_3_link"}) {
@@ -191,7 +183,7 @@ TEST(CollisionModel, ClearanceMatchesSphereToCylinderByHand) {
   const Eigen::Vector3d side = pivot + Eigen::Vector3d(0.3, 0, 0), above = pivot + Eigen::Vector3d(0, 0, 0.5);
   for (const auto& centre : {side, above}) {
     Scene scene;
-    scene.obstacles.push_back(sphereAt("ball", centre, 0.05));
+    scene.obstacles.push_back(arcplan::testing::sphere("ball", centre, 0.05));
     for (bool convex : {true, false}) {
       CollisionModelOptions options;
       options.convexDistance = convex;

@@ -15,6 +15,7 @@
 #include "arcplan/robot/robot_model.h"
 #include "support/command.h"
 #include "support/error_message.h"
+#include "support/robot_files.h"
 
 namespace {
 
@@ -32,10 +33,7 @@ MoveItRobot ur10e() { return {arcplan::robot::ur10eUrdfPath(), {}}; }
 
 // The UR10e with a stand: root link "stand", base_link 1 m above it and turned 90° about z.
 MoveItRobot ur10eOnStand(const std::filesystem::path& dir) {
-  std::ifstream in(arcplan::robot::ur10eUrdfPath());
-  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string meshes = (arcplan::robot::ur10eUrdfPath().parent_path() / "meshes/").string();
-  urdf = std::regex_replace(urdf, std::regex("filename=\"meshes/"), "filename=\"" + meshes);
+  std::string urdf = arcplan::testing::ur10eUrdfText();
   const std::string stand =
       "<link name=\"stand\"/><joint name=\"stand_joint\" type=\"fixed\"><parent link=\"stand\"/>"
       "<child link=\"base_link\"/><origin xyz=\"0 0 1\" rpy=\"0 0 1.5707963267948966\"/></joint>";

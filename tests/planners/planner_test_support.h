@@ -19,6 +19,7 @@
 #include "arcplan/planners/planning_problem.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/pose.h"
+#include "support/obstacles.h"
 
 namespace arcplan::testing {
 
@@ -50,24 +51,6 @@ inline std::pair<ompl::base::PlannerPtr, ompl::base::PlannerStatus> solve(
   problem.setup->setup();
   const auto status = problem.setup->solve(time);
   return {instance, status};
-}
-
-inline collision::Obstacle sphere(const std::string& name, const Eigen::Vector3d& center, double radius) {
-  collision::Obstacle obstacle;
-  obstacle.name = name;
-  obstacle.shape = collision::Obstacle::Shape::Sphere;
-  obstacle.radius = radius;
-  obstacle.pose.translation() = center;
-  return obstacle;
-}
-
-inline collision::Obstacle box(const std::string& name, const Eigen::Vector3d& center, const Eigen::Vector3d& size) {
-  collision::Obstacle obstacle;
-  obstacle.name = name;
-  obstacle.shape = collision::Obstacle::Shape::Box;
-  obstacle.size = size;
-  obstacle.pose.translation() = center;
-  return obstacle;
 }
 
 // A shelf unit (back, two sides, bottom, middle and top panels, 2 cm thick, turned -59 degrees about z)

@@ -3,30 +3,16 @@
 
 #include <cmath>
 
+#include "support/obstacles.h"
 #include "via_points.h"
 
 namespace {
 
 using arcplan::collision::Obstacle;
 using namespace arcplan::planners;
+using arcplan::testing::box;
+using arcplan::testing::sphere;
 using Eigen::Vector3d;
-
-Obstacle boxAt(const std::string& name, const Vector3d& center, const Vector3d& size) {
-  Obstacle box;
-  box.name = name;
-  box.shape = Obstacle::Shape::Box;
-  box.size = size;
-  box.pose.translation() = center;
-  return box;
-}
-
-Obstacle sphereAt(const std::string& name, const Vector3d& center, double radius) {
-  Obstacle sphere;
-  sphere.name = name;
-  sphere.radius = radius;
-  sphere.pose.translation() = center;
-  return sphere;
-}
 
 double distanceToSegment(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
   const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
@@ -34,7 +20,7 @@ double distanceToSegment(const Vector3d& p, const Vector3d& a, const Vector3d& b
 }
 
 TEST(ViaPoints, HullPointsContainTheBody) {
-  Obstacle rotated = boxAt("box", Vector3d(0.5, 0.1, 0.3), Vector3d(0.2, 0.1, 0.06));
+  Obstacle rotated = box("box", Vector3d(0.5, 0.1, 0.3), Vector3d(0.2, 0.1, 0.06));
   rotated.pose.linear() = Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const auto corners = hullPoints(rotated);
   ASSERT_EQ(corners.size(), 8u);
@@ -57,11 +43,11 @@ TEST(ViaPoints, HullPointsContainTheBody) {
 
 TEST(ViaPoints, TouchingBodiesFormOneClusterAndTheTableIsFloor) {
   const std::vector<Obstacle> obstacles{
-      boxAt("table", Vector3d(0, 0, -0.025), Vector3d(2, 2, 0.05)),
-      boxAt("left", Vector3d(0.6, 0.2, 0.3), Vector3d(0.3, 0.02, 0.6)),
-      sphereAt("far", Vector3d(-0.5, -0.5, 0.4), 0.03),
-      boxAt("right", Vector3d(0.6, -0.2, 0.3), Vector3d(0.3, 0.02, 0.6)),
-      boxAt("top", Vector3d(0.6, 0.0, 0.6), Vector3d(0.3, 0.42, 0.02)),  // bridges left and right
+      box("table", Vector3d(0, 0, -0.025), Vector3d(2, 2, 0.05)),
+      box("left", Vector3d(0.6, 0.2, 0.3), Vector3d(0.3, 0.02, 0.6)),
+      sphere("far", Vector3d(-0.5, -0.5, 0.4), 0.03),
+      box("right", Vector3d(0.6, -0.2, 0.3), Vector3d(0.3, 0.02, 0.6)),
+      box("top", Vector3d(0.6, 0.0, 0.6), Vector3d(0.3, 0.42, 0.02)),  // bridges left and right
   };
   const auto clusters = clusterObstacles(obstacles, 0.1);
   ASSERT_EQ(clusters.size(), 2u);
@@ -73,7 +59,7 @@ TEST(ViaPoints, TouchingBodiesFormOneClusterAndTheTableIsFloor) {
 TEST(ViaPoints, CandidatesPassTheBodyWithClearanceAndMargin) {
   const Vector3d p(0.3, -0.4, 0.3), q(0.5, 0.4, 0.3), center = 0.5 * (p + q);
   const double radius = 0.05, clearance = 0.01;
-  const auto clusters = clusterObstacles({sphereAt("ball", center, radius)}, 0.1);
+  const auto clusters = clusterObstacles({sphere("ball", center, radius)}, 0.1);
   ASSERT_EQ(clusters.size(), 1u);
   const auto candidates = viaCandidates(clusters[0], p, q, clearance);
   ASSERT_GE(candidates.size(), 100u);  // 12 planes x 5 margins x (over + apex)

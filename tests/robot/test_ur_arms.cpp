@@ -19,29 +19,17 @@
 #include "arcplan/robot/ur_description.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "support/command.h"
+#include "support/joint_states.h"
 
 namespace {
 
 using arcplan::robot::RobotModel;
 using arcplan::robot::UrInverseKinematics;
 using arcplan::robot::Vector6;
+using arcplan::testing::angularDistanceModuloTwoPi;
+using arcplan::testing::randomJointState;
 
 std::filesystem::path mbmUr5Urdf() { return arcplan::testing::sharedDataDirectory() / "mbm_ur5" / "ur5.urdf"; }
-
-Vector6 randomInLimits(std::mt19937& random, const RobotModel& model) {
-  Vector6 q;
-  for (int j = 0; j < 6; ++j) {
-    const auto& limits = model.joints()[j].limits;
-    q[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
-  }
-  return q;
-}
-
-double angularDistanceModuloTwoPi(const Vector6& a, const Vector6& b) {
-  double worst = 0.0;
-  for (int j = 0; j < 6; ++j) worst = std::max(worst, std::abs(std::remainder(a[j] - b[j], 2 * M_PI)));
-  return worst;
-}
 
 // Random configurations -> tip pose -> IK: every solution reproduces the pose to 1e-9; returns how
 // many of the configurations are among the solutions (to 1e-9).
@@ -50,7 +38,7 @@ int roundTrips(const RobotModel& model, unsigned seed, int trials) {
   std::mt19937 random(seed);
   int found = 0;
   for (int trial = 0; trial < trials; ++trial) {
-    const Vector6 q = randomInLimits(random, model);
+    const Vector6 q = randomJointState(model, random);
     const auto target = arcplan::robot::tipPose(model, q);
     const auto solutions = ik.solveBranches(target);
     double closest = 1e9;
@@ -161,7 +149,7 @@ void expectFramesMatchYaml(const RobotModel& model, const std::filesystem::path&
   arcplan::robot::KinematicsData data(model);
   std::mt19937 random(seed);
   for (int trial = 0; trial < 50; ++trial) {
-    const Vector6 q = randomInLimits(random, model);
+    const Vector6 q = randomJointState(model, random);
     arcplan::robot::forwardKinematics(model, q, data);
     const auto expected = framesFromYaml(kinematicsFile, q);
     for (int k = 0; k < 7; ++k) {

@@ -11,6 +11,8 @@
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "support/command.h"
+#include "support/joint_states.h"
+#include "support/robot_files.h"
 
 namespace {
 
@@ -19,21 +21,8 @@ using arcplan::robot::ur10e;
 using arcplan::robot::ur10eUrdfPath;
 using arcplan::robot::UrInverseKinematics;
 using arcplan::robot::Vector6;
-
-Vector6 randomInLimits(std::mt19937& random, const arcplan::robot::RobotModel& model) {
-  Vector6 q;
-  for (int j = 0; j < 6; ++j) {
-    std::uniform_real_distribution<double> angle(model.joints()[j].limits.lower, model.joints()[j].limits.upper);
-    q[j] = angle(random);
-  }
-  return q;
-}
-
-double angularDistanceModuloTwoPi(const Vector6& a, const Vector6& b) {
-  double worst = 0.0;
-  for (int j = 0; j < 6; ++j) worst = std::max(worst, std::abs(std::remainder(a[j] - b[j], 2 * M_PI)));
-  return worst;
-}
+using arcplan::testing::angularDistanceModuloTwoPi;
+using arcplan::testing::randomJointState;
 
 void expectReproducesPose(const arcplan::robot::RobotModel& model, const Vector6& q, const Eigen::Isometry3d& target) {
   const auto pose = arcplan::robot::tipPose(model, q);
@@ -57,7 +46,7 @@ TEST(UrInverseKinematics, ThousandRandomConfigurationsRoundTrip) {
   const UrInverseKinematics ik(model);
   std::mt19937 random(2024);
   for (int trial = 0; trial < 1000; ++trial) {
-    const Vector6 q = randomInLimits(random, model);
+    const Vector6 q = randomJointState(model, random);
     const auto target = arcplan::robot::tipPose(model, q);
     const auto solutions = ik.solveBranches(target);
     ASSERT_FALSE(solutions.empty());
@@ -81,10 +70,7 @@ TEST(UrInverseKinematics, SolveAllGivesEveryInLimitRepresentation) {
   EXPECT_EQ(all.size(), 8u * 32u);
   std::set<std::vector<long>> distinct;
   for (const auto& s : all) {
-    for (int j = 0; j < 6; ++j) {
-      EXPECT_GE(s[j], model.joints()[j].limits.lower);
-      EXPECT_LE(s[j], model.joints()[j].limits.upper);
-    }
+    arcplan::testing::expectWithinJointLimits(model, s);
     expectReproducesPose(model, s, target);
     std::vector<long> key;
     for (int j = 0; j < 6; ++j) key.push_back(std::lround(s[j] * 1e6));
@@ -115,7 +101,7 @@ TEST(UrInverseKinematics, NearestPicksTheSeedsBranchAndRepresentation) {
   const UrInverseKinematics ik(model);
   std::mt19937 random(77);
   for (int trial = 0; trial < 200; ++trial) {
-    const Vector6 q = randomInLimits(random, model);
+    const Vector6 q = randomJointState(model, random);
     Vector6 seed = q;
     for (auto& v : seed) v += std::uniform_real_distribution<double>(-0.05, 0.05)(random);
     const auto nearest = ik.solveNearest(arcplan::robot::tipPose(model, q), seed);
@@ -156,13 +142,10 @@ TEST(UrInverseKinematics, OutOfReachGivesNoSolution) {
   EXPECT_TRUE(ik.solveBranches(arcplan::robot::poseFromXyzRpy({0.0, 0.05, 0.5, 0, -M_PI, 0})).empty());
 }
 
-std::string ur10eUrdfText() { return arcplan::testing::readFile(arcplan::robot::ur10eUrdfPath()); }
-
+// The description text (mesh paths absolute) written to a folder of its own.
 std::filesystem::path writeVariant(const std::string& name, const std::string& text) {
   const auto dir = arcplan::testing::freshTempDirectory(name);
-  // Meshes are referenced relative to the URDF: point them back at the real folder.
-  const auto meshes = arcplan::robot::ur10eUrdfPath().parent_path() / "meshes/";
-  std::ofstream(dir / "robot.urdf") << std::regex_replace(text, std::regex("\"meshes/"), "\"" + meshes.string());
+  std::ofstream(dir / "robot.urdf") << text;
   return dir / "robot.urdf";
 }
 
@@ -171,7 +154,7 @@ void expectRoundTrips(const arcplan::robot::RobotModel& model, unsigned seed, do
   const UrInverseKinematics ik(model);
   std::mt19937 random(seed);
   for (int trial = 0; trial < 100; ++trial) {
-    const Vector6 q = randomInLimits(random, model);
+    const Vector6 q = randomJointState(model, random);
     const auto target = arcplan::robot::tipPose(model, q);
     double closest = 1e9;
     for (const auto& s : ik.solveBranches(target)) {
@@ -183,7 +166,7 @@ void expectRoundTrips(const arcplan::robot::RobotModel& model, unsigned seed, do
 }
 
 TEST(UrInverseKinematics, WorksWithAToolFrameBeyondTheFlange) {
-  std::string text = ur10eUrdfText();
+  std::string text = arcplan::testing::ur10eUrdfText();
   text.replace(text.rfind("</robot>"), 8,
                R"(<link name="gripper_tip"/><joint name="tool0-gripper_tip" type="fixed"><parent link="tool0"/>
 <child link="gripper_tip"/><origin xyz="0.01 0 0.2" rpy="0 0 0.3"/></joint></robot>)");
@@ -193,7 +176,7 @@ TEST(UrInverseKinematics, WorksWithAToolFrameBeyondTheFlange) {
 
 TEST(UrInverseKinematics, WorksWithCalibrationDigitsOfTheRos2Description) {
   // The ROS 2 description writes pi/2 as 1.570796327 and has 1e-11 m offsets: no exact DH chain.
-  std::string text = ur10eUrdfText();
+  std::string text = arcplan::testing::ur10eUrdfText();
   text = std::regex_replace(text, std::regex("xyz=\"0 -0.11985 0\""), "xyz=\"0 -0.11985 -2.458e-11\"");
   text = std::regex_replace(text, std::regex("<origin xyz=\"0 0 0\" rpy=\"1.570796326794897 0 0\"/>"),
                             "<origin xyz=\"0 0 0\" rpy=\"1.570796327 0 0\"/>");
@@ -201,7 +184,7 @@ TEST(UrInverseKinematics, WorksWithCalibrationDigitsOfTheRos2Description) {
   const UrInverseKinematics ik(model);
   std::mt19937 random(4);
   for (int trial = 0; trial < 200; ++trial) {
-    const Vector6 q = randomInLimits(random, model);
+    const Vector6 q = randomJointState(model, random);
     const auto target = arcplan::robot::tipPose(model, q);
     // Every pose of the arm is reachable: no solution at all is a failure, not an empty loop.
     const auto solutions = ik.solveBranches(target);
@@ -236,7 +219,7 @@ TEST(UrInverseKinematics, RejectsAChainThatIsNotUrType) {
 
 TEST(UrInverseKinematics, AMillimetreOffTheUrChainIsRefusedWithTheMismatchAndTolerance) {
   // Wrist 2 one millimetre off its UR place: no URDF rounding explains that.
-  std::string text = ur10eUrdfText();
+  std::string text = arcplan::testing::ur10eUrdfText();
   const std::string wrist2 = "<origin xyz=\"0 -0.11985 0\"";
   ASSERT_NE(text.find(wrist2), std::string::npos);
   text.replace(text.find(wrist2), wrist2.size(), "<origin xyz=\"0.001 -0.11985 0\"");
@@ -259,7 +242,7 @@ TEST(UrInverseKinematics, AMillimetreOffTheUrChainIsRefusedWithTheMismatchAndTol
 
 TEST(UrInverseKinematics, ArmStandingAnywhereInTheBaseFrame) {
   // The chain starts at a world frame; the arm stands at (1, 0.5, 0.2), turned by 0.7 rad and tilted.
-  std::string text = ur10eUrdfText();
+  std::string text = arcplan::testing::ur10eUrdfText();
   text.replace(text.rfind("</robot>"), 8,
                R"(<link name="world"/><joint name="mount" type="fixed"><parent link="world"/>
 <child link="base_link"/><origin xyz="1 0.5 0.2" rpy="0.1 0 0.7"/></joint></robot>)");
@@ -274,7 +257,7 @@ TEST(UrInverseKinematics, TcpOffsetIsTheTipItSolvesFor) {
   const UrInverseKinematics ik(model);
   std::mt19937 random(9);
   for (int trial = 0; trial < 100; ++trial) {
-    const Vector6 q = randomInLimits(random, model);
+    const Vector6 q = randomJointState(model, random);
     // The TCP is tool0 (of arcplan's UR10e) times the offset.
     const auto target = arcplan::robot::tipPose(ur10e(), q) * offset;
     EXPECT_LT((arcplan::robot::tipPose(model, q).matrix() - target.matrix()).norm(), 1e-12);
@@ -294,7 +277,7 @@ TEST(UrInverseKinematics, SolveBranchEqualsThatBranchOfSolveBranches) {
   std::mt19937 random(31);
   int compared = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const Vector6 q = randomInLimits(random, model);
+    const Vector6 q = randomJointState(model, random);
     const auto target = arcplan::robot::tipPose(model, q);
     const auto all = ik.solveBranches(target);
     for (int branch = 0; branch < 8; ++branch) {
