@@ -46,13 +46,18 @@ struct PlanOptions {
 };
 
 // The planner parameters for --help, read from the planners themselves (the arc planner on the
-// robot with no obstacles).
+// robot with no obstacles). OMPL's log is off meanwhile: reading BITstar's and ABITstar's deprecated
+// options warns on stderr, and --help prints the help only.
 std::string plannerParameterHelp() {
   const auto model = collision::makeCollisionModel(collision::Scene{});
   const auto si = collision::makeSpaceInformation(model);
+  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  const auto declared = planners::declaredParameters(si, {model, {}});
+  ompl::msg::setLogLevel(level);
   std::ostringstream text;
   text << "Planner parameters (--param NAME=VALUE; default, declared range):\n";
-  for (const auto& [planner, parameters] : planners::declaredParameters(si, {model, {}})) {
+  for (const auto& [planner, parameters] : declared) {
     text << "  " << planner << ":";
     if (parameters.empty()) text << " (none)";
     for (const auto& parameter : parameters) {

@@ -116,6 +116,21 @@ TEST(ArcplanExitCodes, HelpListsTheExitCodesAndSucceeds) {
   }
 }
 
+// Help is all --help prints: `plan --help` reads every planner's declared parameters, and OMPL warns on
+// stderr when BITstar's deprecated options are read.
+TEST(ArcplanExitCodes, HelpOfEverySubcommandPrintsOnlyTheHelp) {
+  for (const char* command : {"robot", "plan", "scale", "model", "bench", "report"}) {
+    const auto result = runArcplan({command, "--help"});
+    EXPECT_EQ(result.exitCode, 0) << command;
+    EXPECT_EQ(result.err, "") << command;
+    EXPECT_NE(result.out.find(std::string("arcplan ") + command), std::string::npos) << command << ": " << result.out;
+  }
+  // The planner parameters are still listed, the BIT* family's included.
+  const auto plan = runArcplan({"plan", "--help"});
+  EXPECT_NE(plan.out.find("  BITstar:"), std::string::npos) << plan.out;
+  EXPECT_NE(plan.out.find("  ABITstar:"), std::string::npos) << plan.out;
+}
+
 TEST(ArcplanExitCodes, UnknownSubcommandAndMisspelledOptionAreUsageErrors) {
   const auto unknown = runArcplan({"frobnicate"});
   EXPECT_EQ(unknown.exitCode, 2);
