@@ -85,6 +85,8 @@ public:
   CollisionModel& operator=(const CollisionModel&) = delete;
 
   const robot::RobotModel& robot() const { return *robot_; }
+  // Shared, for what keeps the robot beyond the model's lifetime (EndpointClearance's forward kinematics).
+  const std::shared_ptr<const robot::RobotModel>& sharedRobot() const { return robot_; }
   // Links that have collision geometry, in chain order, then the scene's attached bodies (they move with a link).
   const std::vector<std::string>& linkNames() const { return linkNames_; }
   const std::vector<std::string>& obstacleNames() const { return obstacleNames_; }
