@@ -14,14 +14,15 @@
 
 namespace arcplan::collision::detail {
 
-// At most this many meshes (file content × scale × options) are kept, the least recently used dropped
+// At most this many meshes (file content × scale × BVH types) are kept, the least recently used dropped
 // first: a robot has a few dozen mesh files, and a long Python session that loads one description
 // after another must not keep every mesh it ever saw. Models already built keep their parts.
 inline constexpr std::size_t kMeshPartCacheEntries = 64;
 
 // meshParts(robot::loadMesh(file, scale), options), from the cache when a file with the same content
 // (a hash of its bytes and its size: a file rewritten in place, even within the same second, is a new
-// entry), scale and narrow-phase options was built before. Thread-safe. Throws as robot::loadMesh
+// entry), scale and BVH types (options.collisionBoundingVolume, distanceBoundingVolume: the only options
+// meshParts reads) was built before. Thread-safe. Throws as robot::loadMesh
 // does (nothing is cached then).
 std::vector<Part> cachedMeshParts(const std::filesystem::path& file, const Eigen::Vector3d& scale,
                                   const CollisionModelOptions& options);

@@ -4,7 +4,6 @@
 #include <fstream>
 #include <mutex>
 #include <set>
-#include <type_traits>
 #include <sstream>
 
 #include <console_bridge/console.h>
@@ -13,6 +12,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/robot/ur_description.h"
 #include "file_content.h"
+#include "lru_cache.h"
 
 namespace arcplan::collision::detail {
 namespace {
@@ -117,31 +117,59 @@ robot::RobotModel loadModel(const MoveItRobot& robot) {
   return robot::loadUrDescription(robot.urDescription);
 }
 
-template <typename Value>
-std::shared_ptr<const Value> cached(const MoveItRobot& robot) {
-  static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<const Value>> cache;
+// A description's model and frames, each read when first asked for.
+struct Description {
+  std::shared_ptr<const robot::RobotModel> model;
+  std::shared_ptr<const UrdfFrames> frames;
+};
+
+struct DescriptionCache {
+  std::mutex mutex;
+  LruCache<std::string, Description> descriptions{kDescriptionCacheEntries};
+};
+
+DescriptionCache& descriptionCache() {
+  static DescriptionCache instance;
+  return instance;
+}
+
+// The cache entry of `robot`'s description; the caller holds the cache's mutex.
+Description& descriptionOf(DescriptionCache& cache, const MoveItRobot& robot) {
   const std::string key = descriptionKey(robot);
-  const std::lock_guard<std::mutex> lock(mutex);
-  auto& entry = cache[key];
-  if (!entry) {
-    if constexpr (std::is_same_v<Value, robot::RobotModel>) {
-      entry = std::make_shared<const robot::RobotModel>(loadModel(robot));
-    } else if (!robot.urdf.empty() || robot.urDescription.type.empty()) {
-      entry = std::make_shared<const UrdfFrames>(robot.urdf);
-    } else {
-      entry = std::make_shared<const UrdfFrames>(*cached<robot::RobotModel>(robot));
-    }
-  }
-  return entry;
+  if (Description* found = cache.descriptions.find(key)) return *found;
+  return cache.descriptions.insert(key, {});
+}
+
+std::shared_ptr<const robot::RobotModel> modelOf(Description& description, const MoveItRobot& robot) {
+  if (!description.model) description.model = std::make_shared<const robot::RobotModel>(loadModel(robot));
+  return description.model;
 }
 
 }  // namespace
 
 std::shared_ptr<const robot::RobotModel> sharedRobotModel(const MoveItRobot& robot) {
-  return cached<robot::RobotModel>(robot);
+  DescriptionCache& cache = descriptionCache();
+  const std::lock_guard<std::mutex> lock(cache.mutex);
+  return modelOf(descriptionOf(cache, robot), robot);
 }
-std::shared_ptr<const UrdfFrames> sharedUrdfFrames(const MoveItRobot& robot) { return cached<UrdfFrames>(robot); }
+
+std::shared_ptr<const UrdfFrames> sharedUrdfFrames(const MoveItRobot& robot) {
+  DescriptionCache& cache = descriptionCache();
+  const std::lock_guard<std::mutex> lock(cache.mutex);
+  Description& description = descriptionOf(cache, robot);
+  if (!description.frames) {
+    description.frames = !robot.urdf.empty() || robot.urDescription.type.empty()
+                             ? std::make_shared<const UrdfFrames>(robot.urdf)
+                             : std::make_shared<const UrdfFrames>(*modelOf(description, robot));
+  }
+  return description.frames;
+}
+
+std::size_t descriptionCacheSize() {
+  DescriptionCache& cache = descriptionCache();
+  const std::lock_guard<std::mutex> lock(cache.mutex);
+  return cache.descriptions.size();
+}
 
 double UrdfFrames::jointValue(const std::string& joint, const std::map<std::string, double>& joints) const {
   if (const auto mimic = mimics_.find(joint); mimic != mimics_.end()) {

@@ -2,6 +2,7 @@
 // Internal to the MoveIt readers (moveit_scene.h): the URDF's frames as MoveIt sees them (every link
 // of the tree, not only arcplan's arm chain), message fields that ROS tools write in two spellings
 // (a vector as [x, y, z] or {x: .., y: .., z: ..}), and MoveIt bodies converted to obstacles.
+#include <cstddef>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -56,10 +57,15 @@ private:
 };
 
 // The robot model (base_link -> tool0) and frames of a URDF or UR type, loaded once per process and
-// description: a benchmark folder reads hundreds of scenes and requests against the same robot, and
-// loading its meshes dominates reading a message.
+// description (its files' contents, file_content.h): a benchmark folder reads hundreds of scenes and
+// requests against the same robot, and loading its meshes dominates reading a message. At most
+// kDescriptionCacheEntries descriptions are kept, the least recently used dropped first (as the mesh
+// parts, mesh_part_cache.h): a long Python session may read one description after another.
+inline constexpr std::size_t kDescriptionCacheEntries = 64;
 std::shared_ptr<const robot::RobotModel> sharedRobotModel(const MoveItRobot& robot);
 std::shared_ptr<const UrdfFrames> sharedUrdfFrames(const MoveItRobot& robot);
+// How many descriptions the cache holds now (for tests of its bound).
+std::size_t descriptionCacheSize();
 
 // A cone along its local z (tip at +height/2, base disc at -height/2), as a closed triangle mesh whose
 // side polygon is circumscribed, so it contains the true cone.
