@@ -19,10 +19,12 @@
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/common/resources.h"
+#include "support/random_joint_state.h"
 
 namespace {
 
 using namespace arcplan::collision;
+using arcplan::testing::randomJointState;
 
 const Scene& thesisScene() {
   static const Scene scene = loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml");
@@ -42,11 +44,7 @@ const std::vector<Eigen::VectorXd>& states(StateSet set) {
     std::mt19937_64 random(11 + static_cast<int>(wanted));
     std::vector<Eigen::VectorXd> result;
     while (result.size() < 1000) {
-      Eigen::VectorXd q(6);
-      for (int j = 0; j < 6; ++j) {
-        const auto& limits = model->robot().joints()[j].limits;
-        q[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
-      }
+      const Eigen::VectorXd q = randomJointState(model->robot(), random);
       bool keep = wanted == StateSet::Any || isCollisionFree(*model, data, q);
       if (keep && wanted == StateSet::NearContact) keep = distance(*model, data, q).minimum() < 0.02;
       if (keep && wanted == StateSet::FreeSpace) keep = distance(*model, data, q).minimum() >= 0.05;
@@ -184,12 +182,7 @@ void CollisionPrefilterAgreement(benchmark::State& state, const std::string& sui
       Eigen::MatrixXd batch(6, 1000);
       std::vector<bool> free;
       for (int round = 0; round < 100; ++round) {
-        for (Eigen::Index k = 0; k < batch.cols(); ++k) {
-          for (int j = 0; j < 6; ++j) {
-            const auto& limits = fast->robot().joints()[j].limits;
-            batch(j, k) = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
-          }
-        }
+        for (Eigen::Index k = 0; k < batch.cols(); ++k) batch.col(k) = randomJointState(fast->robot(), random);
         areCollisionFree(*fast, fastData, batch, free);
         for (Eigen::Index k = 0; k < batch.cols(); ++k) {
           const bool expected = isCollisionFree(*exact, exactData, batch.col(k));

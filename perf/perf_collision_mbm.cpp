@@ -22,10 +22,12 @@
 #include "arcplan/collision/moveit_scene.h"
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/common/resources.h"
+#include "support/random_joint_state.h"
 
 namespace {
 
 using namespace arcplan::collision;
+using arcplan::testing::randomJointState;
 namespace fs = std::filesystem;
 
 constexpr double kClearance = 0.01;
@@ -63,15 +65,6 @@ const std::vector<std::shared_ptr<const CollisionModel>>& models(Layers layers) 
   return variants[static_cast<int>(layers)];
 }
 
-Eigen::VectorXd randomState(const CollisionModel& model, std::mt19937_64& random) {
-  Eigen::VectorXd q(model.robot().dof());
-  for (int j = 0; j < q.size(); ++j) {
-    const auto& limits = model.robot().joints()[j].limits;
-    q[j] = std::uniform_real_distribution<double>(limits.lower, limits.upper)(random);
-  }
-  return q;
-}
-
 struct Sample {
   std::size_t scene;
   Eigen::VectorXd start, end;  // end unused for states
@@ -83,7 +76,7 @@ const std::vector<Sample>& stateSamples() {
     std::mt19937_64 random(31);
     for (std::size_t s = 0; s < mbmScenes().size(); ++s) {
       for (int k = 0; k < kStatesPerProblem; ++k)
-        result.push_back({s, randomState(*models(Layers::Exact)[s], random), {}});
+        result.push_back({s, randomJointState(models(Layers::Exact)[s]->robot(), random), {}});
     }
     return result;
   }();
@@ -99,7 +92,7 @@ const std::vector<Sample>& motionSamples() {
       const CollisionModel& model = *models(Layers::Exact)[s];
       CollisionData data(model);
       for (int found = 0; found < kMotionsPerProblem;) {
-        const Eigen::VectorXd start = randomState(model, random);
+        const Eigen::VectorXd start = randomJointState(model.robot(), random);
         Eigen::VectorXd direction(start.size());
         for (int j = 0; j < direction.size(); ++j) direction[j] = gaussian(random);
         const Eigen::VectorXd end = start + 0.3 * direction.normalized();
@@ -196,7 +189,7 @@ void CollisionMbmAgreement(benchmark::State& state) {
       CollisionData layeredData(layered), exactData(exact);
       std::mt19937_64 random(2000 + s);
       for (int k = 0; k < 2000; ++k) {
-        const Eigen::VectorXd q = randomState(exact, random);
+        const Eigen::VectorXd q = randomJointState(exact.robot(), random);
         const bool expectedFree = isCollisionFree(exact, exactData, q);
         const bool expectedClear = expectedFree && hasClearance(exact, exactData, q, kClearance);
         disagreements += isCollisionFree(layered, layeredData, q) != expectedFree;
