@@ -87,7 +87,7 @@ TEST(PlanClearance, APathCloserThanTheClearanceBetweenItsWaypointsExitsOneAndWri
       alongMotions = std::min(alongMotions, clearanceAt(Vector6((1 - t) * waypoints[i - 1] + t * waypoints[i])));
     }
   }
-  // The premise: the motions cut closer than any waypoint lies (0.0689 vs 0.0696 m when written).
+  // The premise: the motions cut closer than any waypoint lies (0.06894 vs 0.06955 m when written).
   ASSERT_LT(alongMotions, atWaypoints - 2e-4) << "waypoints " << atWaypoints << " m, motions " << alongMotions << " m";
 
   // Asked to keep a clearance between the two: every waypoint keeps it (the start and goal too, so no

@@ -8,21 +8,25 @@
 
 namespace arcplan::testing {
 
-inline collision::Obstacle sphere(const std::string& name, const Eigen::Vector3d& center, double radius) {
+// An unrotated obstacle of `shape` centred at `center`; its dimensions are set by the builders below.
+inline collision::Obstacle placedAt(const std::string& name, collision::Obstacle::Shape shape,
+                                    const Eigen::Vector3d& center) {
   collision::Obstacle obstacle;
   obstacle.name = name;
-  obstacle.shape = collision::Obstacle::Shape::Sphere;
-  obstacle.radius = radius;
+  obstacle.shape = shape;
   obstacle.pose.translation() = center;
   return obstacle;
 }
 
+inline collision::Obstacle sphere(const std::string& name, const Eigen::Vector3d& center, double radius) {
+  collision::Obstacle obstacle = placedAt(name, collision::Obstacle::Shape::Sphere, center);
+  obstacle.radius = radius;
+  return obstacle;
+}
+
 inline collision::Obstacle box(const std::string& name, const Eigen::Vector3d& center, const Eigen::Vector3d& size) {
-  collision::Obstacle obstacle;
-  obstacle.name = name;
-  obstacle.shape = collision::Obstacle::Shape::Box;
+  collision::Obstacle obstacle = placedAt(name, collision::Obstacle::Shape::Box, center);
   obstacle.size = size;
-  obstacle.pose.translation() = center;
   return obstacle;
 }
 
