@@ -98,6 +98,51 @@ Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefi
   return result;
 }
 
+std::optional<Walk> PathValidator::screen(const TcpPath& path, const JointConversionResult& prefix,
+                                          const std::optional<robot::Vector6>& goal) {
+  if (!certify_) return std::nullopt;  // a waypoint check is as cheap as the screen
+  const JointConversionResult converted =
+      convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_, prefix.arcLengths.back(),
+                      std::numeric_limits<double>::infinity(), {});
+  const std::vector<robot::Vector6>& joints = converted.joints;  // joints[0]: the prefix's last, validated
+  const int last = static_cast<int>(joints.size()) - 1;
+  int refusedAt = 0;
+  for (int k = kScreenStride; refusedAt == 0 && k < last + kScreenStride; k += kScreenStride) {
+    if (refuses(joints[std::min(k, last)])) refusedAt = std::min(k, last);
+  }
+  if (refusedAt == 0) return std::nullopt;
+  // A certified walk breaks off where a pair comes within its acceptance margin of the clearance (motion_check.h):
+  // at the first waypoint within the margin (the stride may have stepped over it), provided the waypoints from there
+  // stay within it up to a refused one. A path that comes within the margin and leaves it again may pass: the walk
+  // decides that. The search decides by the place of the rejection which leg failed.
+  int first = 1;
+  while (!withinMargin(joints[first])) ++first;  // at refusedAt at the latest
+  for (int k = first; !refuses(joints[k]); ++k) {
+    if (!withinMargin(joints[k + 1])) return std::nullopt;
+  }
+  Walk refused;
+  refused.waypoints = prefix;
+  refused.waypoints.status = ConversionStatus::Rejected;
+  refused.waypoints.failedAtArcLength = converted.arcLengths[first];
+  refused.waypoints.refused = joints[first];
+  std::ostringstream reason;
+  reason << "the waypoint at TCP arc length " << converted.arcLengths[first] << " m of " << path.length()
+         << " m is closer than a motion there must keep";
+  refused.waypoints.reason = reason.str();
+  refused.rejected = RejectedMotion{joints[first - 1], joints[first]};
+  return refused;
+}
+
+bool PathValidator::refuses(const robot::Vector6& q) {
+  const double clearance = required_.motionClearanceAlong(q, q) - kScreenTolerance;
+  return clearance > 0.0 && !collision::hasClearance(model_, data_, q, clearance);
+}
+
+bool PathValidator::withinMargin(const robot::Vector6& q) {
+  const double clearance = required_.motionClearanceAlong(q, q);
+  return !collision::hasClearance(model_, data_, q, clearance + std::min(0.25 * clearance, 5e-4));
+}
+
 bool PathValidator::keepsMargin(const robot::Vector6& q) {
   // A certifier's start: the same test as a walk's first waypoint, with pairs far apart settled by
   // their bounding capsules (cheaper than measuring the smallest distance).

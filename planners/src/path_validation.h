@@ -19,6 +19,13 @@
 
 namespace arcplan::planners {
 
+// Waypoints between two the screen tests (1 cm apart at the default resolution): a place where a path comes too
+// close is rarely shorter than 3 cm, and one the screen steps over is still found by the certified walk.
+inline constexpr int kScreenStride = 3;
+// m below a motion's clearance that the screen refuses: distances computed for the same pair by hasClearance and
+// by a certificate may differ by rounding, and the screen must never refuse what the certificate accepts.
+inline constexpr double kScreenTolerance = 1e-6;
+
 // The motion a walk stopped at: from its last accepted waypoint to the one refused (both the same
 // configuration when one was tested on its own, as keepsMargin does).
 struct RejectedMotion {
@@ -28,7 +35,7 @@ struct RejectedMotion {
 
 // What a walk validated, and where it stopped when it did not reach the end.
 struct Walk {
-  JointConversionResult waypoints;         // the prefix, continued up to where the walk stopped
+  JointConversionResult waypoints;         // the prefix, continued up to where the walk stopped (screen: the prefix)
   std::optional<RejectedMotion> rejected;  // status Rejected: the motion refused (also when the stop request ended it)
 
   bool ok() const { return waypoints.ok(); }
@@ -65,6 +72,22 @@ public:
   // where `goal` (if given) must be met; stops at the first waypoint that fails. Returns prefix +
   // continuation, with the status and reason of the conversion and the motion it refused.
   Walk walk(const TcpPath& path, const JointConversionResult& prefix, const std::optional<robot::Vector6>& goal);
+  // A walk's cheap forerunner: the path converted to joints (IK only), then every kScreenStride-th waypoint (and,
+  // after the first that fails, the ones before it back to the last that passed) tested on its own by refuses().
+  // A waypoint it refuses fails every certified walk there or before, so the walk need not be paid for: returned as
+  // a walk rejected there — or at the first of the waypoints just before it that are withinMargin, where the walk
+  // would stop — its waypoints only `prefix` (nothing after it was certified), the motion refused the one to that
+  // waypoint.
+  // Nothing when no tested waypoint is refused: only the certified walk decides then.
+  std::optional<Walk> screen(const TcpPath& path, const JointConversionResult& prefix,
+                             const std::optional<robot::Vector6>& goal);
+  // True when q is closer to an obstacle or between links than a motion ending at q must keep (its approach
+  // zone's clearance, else the margin), less kScreenTolerance: so certainly that no certified motion reaches q
+  // (collision::hasClearance, whose bounds settle pairs far apart; a certificate's measurements cost more).
+  bool refuses(const robot::Vector6& q);
+  // True when q is closer than a motion ending there must keep plus the certificate's acceptance margin
+  // (min(clearance/4, 0.5 mm), motion_check.h): where a certified walk may already stop.
+  bool withinMargin(const robot::Vector6& q);
   // One configuration tested on its own, without a walk up to it: false when it is closer than a
   // motion from it must keep (the margin, or its approach zone's) to an obstacle or between links (explain({q, q}) says
   // why). A cheap test of where a path is likely to fail before the walk; a configuration that passes proves nothing

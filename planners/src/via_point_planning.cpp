@@ -231,10 +231,12 @@ private:
     }
   }
 
-  // The probes first, then the certified walk; a walk rejected away from every suspect adds one.
+  // The probes first, then the screen of the route's waypoints, then the certified walk; a rejection away
+  // from every suspect adds one.
   Walk probeThenWalk(const BlendedPath& path) {
     if (std::optional<Walk> probed = failingProbe(query_, posture_, path, suspects_)) return std::move(*probed);
-    Walk walked = query_.validator.walk(path, query_.startOnly(), query_.goal);
+    std::optional<Walk> screened = query_.validator.screen(path, query_.startOnly(), query_.goal);
+    Walk walked = screened ? std::move(*screened) : query_.validator.walk(path, query_.startOnly(), query_.goal);
     if (!walked.rejected) return walked;
     const Eigen::Vector3d rejectedAt = path.position(walked.waypoints.failedAtArcLength);
     const bool known = std::any_of(suspects_.begin(), suspects_.end(), [&](const Suspect& suspect) {
@@ -351,6 +353,7 @@ private:
       if (orientationHeld_ && !viaPointClear(candidate.points()[i + 1])) return std::nullopt;
     }
     if (failingProbe(query_, posture_, candidate, suspects_)) return std::nullopt;
+    if (query_.validator.screen(candidate, query_.startOnly(), query_.goal)) return std::nullopt;
     Walk walked = query_.validator.walk(candidate, query_.startOnly(), query_.goal);
     if (!walked.ok()) return std::nullopt;
     return walked;

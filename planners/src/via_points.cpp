@@ -114,15 +114,24 @@ std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Ei
   const Eigen::Vector3d along = (q - p) / length;
   const auto inside = [&](double x) { return std::clamp(x, kEndKeepOut, length - kEndKeepOut); };
   const Eigen::Vector3d across = side ? Eigen::Vector3d(*side - side->dot(along) * along) : Eigen::Vector3d::Zero();
+  // Each hull point's place along the leg, once: a link's Minkowski difference has hundreds of points.
+  std::vector<double> xs;
+  xs.reserve(cluster.hull.size());
+  double x0 = length, x1 = 0.0;
+  for (const Eigen::Vector3d& point : cluster.hull) {
+    xs.push_back((point - p).dot(along));
+    x0 = std::min(x0, xs.back());
+    x1 = std::max(x1, xs.back());
+  }
+  const double apexX = inside(0.5 * (x0 + x1));
+  std::vector<double> heights(cluster.hull.size());
   for (int step = 0; step < kPlaneSteps; ++step) {
     const Eigen::Vector3d away = avoidanceDirection(along, 2.0 * M_PI * step / kPlaneSteps);
     if (across.norm() > 1e-6 && away.dot(across.normalized()) < kWithinSide) continue;
-    double x0 = length, x1 = 0.0, height = 0.0;
-    for (const Eigen::Vector3d& point : cluster.hull) {
-      const double x = (point - p).dot(along);
-      x0 = std::min(x0, x);
-      x1 = std::max(x1, x);
-      height = std::max(height, (point - p).dot(away));
+    double height = 0.0;
+    for (std::size_t i = 0; i < cluster.hull.size(); ++i) {
+      heights[i] = (cluster.hull[i] - p).dot(away);
+      height = std::max(height, heights[i]);
     }
     for (const double margin : kMargins) {
       const double offset = height + clearance + margin;
@@ -131,10 +140,9 @@ std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Ei
       if (leave - enter > 1e-3) over.points.push_back(p + leave * along + offset * away);
       candidates.push_back(over);
       // Apex over the middle: each hull point between p and q must stay below both legs.
-      const double apexX = inside(0.5 * (x0 + x1));
       double apex = clearance + margin;
-      for (const Eigen::Vector3d& point : cluster.hull) {
-        const double x = (point - p).dot(along), needed = (point - p).dot(away) + clearance + margin;
+      for (std::size_t i = 0; i < cluster.hull.size(); ++i) {
+        const double x = xs[i], needed = heights[i] + clearance + margin;
         if (x <= 0.0 || x >= length || needed <= 0.0) continue;
         apex = std::max(apex, needed * (x <= apexX ? apexX / x : (length - apexX) / (length - x)));
       }

@@ -1,8 +1,10 @@
 // PathValidator: a walk's certifier never carries over to the next walk (a failed route or detour
-// candidate followed by a valid one), and the one-configuration test behind the route probes.
+// candidate followed by a valid one), the one-configuration test behind the route probes, and the screen
+// that refuses a path where its certified walk would stop, without certifying anything.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/planners/arc_path.h"
@@ -82,6 +84,48 @@ TEST(PathValidation, KeepsMarginTestsOneConfigurationAndExplainsARejection) {
   ASSERT_TRUE(free);
   ASSERT_GE(arcplan::collision::distance(*problem.collisionModel, data, *free).minimum(), kMargin);
   EXPECT_TRUE(validator.keepsMargin(*free));
+}
+
+TEST(PathValidation, TheScreenRefusesAPathWhereItsWalkStopsWithoutCertifyingIt) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
+  const Eigen::Isometry3d a = tcpPoses({problem.start})[0], b = tcpPoses({problem.goal})[0];
+  const ArcPath line(a, b);  // through the particle
+  // Independently: the line's waypoints (IK only) and their distances; the first closer than the margin, and the
+  // first of the waypoints before it that all keep less than the margin plus the certificate's acceptance margin
+  // (min(m/4, 0.5 mm), motion_check.h).
+  const auto converted = arcplan::planners::convertToJoints(ik, line, problem.start, problem.goal, {}, 0.0,
+                                                            std::numeric_limits<double>::infinity(), {});
+  arcplan::collision::CollisionData data(*problem.collisionModel);
+  const auto distanceAt = [&](std::size_t k) {
+    return arcplan::collision::distance(*problem.collisionModel, data, converted.joints[k]).minimum();
+  };
+  std::size_t refused = 1;
+  while (refused < converted.joints.size() && distanceAt(refused) >= kMargin) ++refused;
+  ASSERT_LT(refused, converted.joints.size());
+  std::size_t approach = refused;
+  while (approach > 1 && distanceAt(approach - 1) < kMargin + 0.0005) --approach;
+
+  PathValidator validator = certifyingValidator(problem, ik);
+  const auto screened = validator.screen(line, startOnly(problem.start), problem.goal);
+  ASSERT_TRUE(screened);
+  EXPECT_EQ(screened->waypoints.status, ConversionStatus::Rejected);
+  EXPECT_DOUBLE_EQ(screened->waypoints.failedAtArcLength, converted.arcLengths[approach]);
+  ASSERT_TRUE(screened->rejected);
+  EXPECT_EQ(screened->rejected->to, converted.joints[approach]);
+  EXPECT_EQ(screened->waypoints.joints.size(), 1u) << "nothing after the prefix is certified";
+  EXPECT_TRUE(validator.explain(*screened->rejected).involves("particle"));
+  // The certified walk stops at the same waypoint.
+  const auto walked = validator.walk(line, startOnly(problem.start), problem.goal);
+  EXPECT_EQ(walked.waypoints.status, ConversionStatus::Rejected);
+  EXPECT_DOUBLE_EQ(walked.waypoints.failedAtArcLength, converted.arcLengths[approach]);
+
+  // A path that keeps the margin (the thesis detour, valid by the thesis regression) passes the screen: the walk
+  // decides.
+  const double o = 0.375 * (b.translation() - a.translation()).norm();
+  const ArcPath detour(a, b, {{o, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+  EXPECT_FALSE(validator.screen(detour, startOnly(problem.start), problem.goal));
+  EXPECT_TRUE(validator.walk(detour, startOnly(problem.start), problem.goal).ok());
 }
 
 }  // namespace
