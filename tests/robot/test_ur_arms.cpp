@@ -19,6 +19,7 @@
 #include "arcplan/robot/ur_description.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "support/command.h"
+#include "robot/ur_round_trips.h"
 #include "support/joint_states.h"
 
 namespace {
@@ -26,31 +27,14 @@ namespace {
 using arcplan::robot::RobotModel;
 using arcplan::robot::UrInverseKinematics;
 using arcplan::robot::Vector6;
-using arcplan::testing::angularDistanceModuloTwoPi;
 using arcplan::testing::randomJointState;
 
 std::filesystem::path mbmUr5Urdf() { return arcplan::testing::sharedDataDirectory() / "mbm_ur5" / "ur5.urdf"; }
 
-// Random configurations -> tip pose -> IK: every solution reproduces the pose to 1e-9; returns how
-// many of the configurations are among the solutions (to 1e-9).
+// Random configurations -> tip pose -> IK: how many of the configurations are among the solutions (to
+// 1e-9), every solution reproducing the pose to 1e-9.
 int roundTrips(const RobotModel& model, unsigned seed, int trials) {
-  const UrInverseKinematics ik(model);
-  std::mt19937 random(seed);
-  int found = 0;
-  for (int trial = 0; trial < trials; ++trial) {
-    const Vector6 q = randomJointState(model, random);
-    const auto target = arcplan::robot::tipPose(model, q);
-    const auto solutions = ik.solveBranches(target);
-    double closest = 1e9;
-    for (const auto& s : solutions) {
-      const auto pose = arcplan::robot::tipPose(model, s);
-      EXPECT_LE((pose.translation() - target.translation()).norm(), 1e-9) << model.name() << " " << s.transpose();
-      EXPECT_LE(arcplan::robot::rotationDistance(pose.linear(), target.linear()), 1e-9) << model.name();
-      closest = std::min(closest, angularDistanceModuloTwoPi(s, q));
-    }
-    if (closest < 1e-9) ++found;
-  }
-  return found;
+  return arcplan::testing::urRoundTrips(model, seed, trials, 1e-9);
 }
 
 void expectRoundTrips(const RobotModel& model, unsigned seed, int trials) {

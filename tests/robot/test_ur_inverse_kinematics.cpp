@@ -13,21 +13,21 @@
 #include "support/command.h"
 #include "support/joint_states.h"
 #include "support/robot_files.h"
+#include "robot/ur_round_trips.h"
 
 namespace {
 
-using arcplan::robot::rotationDistance;
 using arcplan::robot::ur10e;
 using arcplan::robot::ur10eUrdfPath;
 using arcplan::robot::UrInverseKinematics;
 using arcplan::robot::Vector6;
 using arcplan::testing::angularDistanceModuloTwoPi;
+using arcplan::testing::expectReproducesPose;
 using arcplan::testing::randomJointState;
 
-void expectReproducesPose(const arcplan::robot::RobotModel& model, const Vector6& q, const Eigen::Isometry3d& target) {
-  const auto pose = arcplan::robot::tipPose(model, q);
-  EXPECT_LE((pose.translation() - target.translation()).norm(), 1e-9) << q.transpose();
-  EXPECT_LE(rotationDistance(pose.linear(), target.linear()), 1e-9) << q.transpose();
+// Every one of `trials` seeded random configurations is among the IK solutions of its tip pose.
+void expectRoundTrips(const arcplan::robot::RobotModel& model, unsigned seed, int trials, double tolerance) {
+  EXPECT_EQ(arcplan::testing::urRoundTrips(model, seed, trials, tolerance), trials) << model.name();
 }
 
 TEST(UrInverseKinematics, ReadsTheDhParametersOffTheUrdf) {
@@ -41,23 +41,7 @@ TEST(UrInverseKinematics, ReadsTheDhParametersOffTheUrdf) {
   EXPECT_NEAR(dh.d6, 0.11655, 1e-12);
 }
 
-TEST(UrInverseKinematics, ThousandRandomConfigurationsRoundTrip) {
-  const auto& model = ur10e();
-  const UrInverseKinematics ik(model);
-  std::mt19937 random(2024);
-  for (int trial = 0; trial < 1000; ++trial) {
-    const Vector6 q = randomJointState(model, random);
-    const auto target = arcplan::robot::tipPose(model, q);
-    const auto solutions = ik.solveBranches(target);
-    ASSERT_FALSE(solutions.empty());
-    double closest = 1e9;
-    for (const auto& s : solutions) {
-      expectReproducesPose(model, s, target);
-      closest = std::min(closest, angularDistanceModuloTwoPi(s, q));
-    }
-    EXPECT_LT(closest, 1e-9) << "original configuration not among the solutions: " << q.transpose();
-  }
-}
+TEST(UrInverseKinematics, ThousandRandomConfigurationsRoundTrip) { expectRoundTrips(ur10e(), 2024, 1000, 1e-9); }
 
 TEST(UrInverseKinematics, SolveAllGivesEveryInLimitRepresentation) {
   const auto& model = ur10e();
@@ -149,29 +133,13 @@ std::filesystem::path writeVariant(const std::string& name, const std::string& t
   return dir / "robot.urdf";
 }
 
-// 100 seeded random configurations: every IK solution reproduces the pose, one is the configuration.
-void expectRoundTrips(const arcplan::robot::RobotModel& model, unsigned seed, double tolerance) {
-  const UrInverseKinematics ik(model);
-  std::mt19937 random(seed);
-  for (int trial = 0; trial < 100; ++trial) {
-    const Vector6 q = randomJointState(model, random);
-    const auto target = arcplan::robot::tipPose(model, q);
-    double closest = 1e9;
-    for (const auto& s : ik.solveBranches(target)) {
-      expectReproducesPose(model, s, target);
-      closest = std::min(closest, angularDistanceModuloTwoPi(s, q));
-    }
-    EXPECT_LT(closest, tolerance);
-  }
-}
-
 TEST(UrInverseKinematics, WorksWithAToolFrameBeyondTheFlange) {
   std::string text = arcplan::testing::ur10eUrdfText();
   text.replace(text.rfind("</robot>"), 8,
                R"(<link name="gripper_tip"/><joint name="tool0-gripper_tip" type="fixed"><parent link="tool0"/>
 <child link="gripper_tip"/><origin xyz="0.01 0 0.2" rpy="0 0 0.3"/></joint></robot>)");
   const auto model = arcplan::robot::loadRobotModel(writeVariant("gripper_tip", text), {"base_link", "gripper_tip"});
-  expectRoundTrips(model, 3, 1e-8);
+  expectRoundTrips(model, 3, 100, 1e-8);
 }
 
 TEST(UrInverseKinematics, WorksWithCalibrationDigitsOfTheRos2Description) {
@@ -181,23 +149,10 @@ TEST(UrInverseKinematics, WorksWithCalibrationDigitsOfTheRos2Description) {
   text = std::regex_replace(text, std::regex("<origin xyz=\"0 0 0\" rpy=\"1.570796326794897 0 0\"/>"),
                             "<origin xyz=\"0 0 0\" rpy=\"1.570796327 0 0\"/>");
   const auto model = arcplan::robot::loadRobotModel(writeVariant("calibration_digits", text));
-  const UrInverseKinematics ik(model);
-  std::mt19937 random(4);
-  for (int trial = 0; trial < 200; ++trial) {
-    const Vector6 q = randomJointState(model, random);
-    const auto target = arcplan::robot::tipPose(model, q);
-    // Every pose of the arm is reachable: no solution at all is a failure, not an empty loop.
-    const auto solutions = ik.solveBranches(target);
-    ASSERT_FALSE(solutions.empty()) << "no IK solution for " << q.transpose();
-    double closest = 1e9;
-    for (const auto& s : solutions) {
-      expectReproducesPose(model, s, target);
-      closest = std::min(closest, angularDistanceModuloTwoPi(s, q));
-    }
-    // The same pose to 1e-9; near a wrist singularity the joints of a not-exactly-DH chain may differ
-    // by a few microradians (1.4e-6 rad seen), far below any branch change.
-    EXPECT_LT(closest, 1e-4) << "the configuration the pose came from is not among the solutions: " << q.transpose();
-  }
+  // Every pose of the arm is reachable; the same pose to 1e-9, but near a wrist singularity the joints
+  // of a not-exactly-DH chain may differ by a few microradians (1.4e-6 rad seen), far below any branch
+  // change.
+  expectRoundTrips(model, 4, 200, 1e-4);
 }
 
 TEST(UrInverseKinematics, RejectsAChainThatIsNotUrType) {
@@ -247,7 +202,7 @@ TEST(UrInverseKinematics, ArmStandingAnywhereInTheBaseFrame) {
                R"(<link name="world"/><joint name="mount" type="fixed"><parent link="world"/>
 <child link="base_link"/><origin xyz="1 0.5 0.2" rpy="0.1 0 0.7"/></joint></robot>)");
   const auto model = arcplan::robot::loadRobotModel(writeVariant("mounted", text), {"world", "tool0"});
-  expectRoundTrips(model, 8, 1e-9);
+  expectRoundTrips(model, 8, 100, 1e-9);
 }
 
 TEST(UrInverseKinematics, TcpOffsetIsTheTipItSolvesFor) {
