@@ -168,6 +168,7 @@ bool partsCollide(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, 
 
 bool detail::groupCollides(const CollisionModel& model, Workspace& data, const Implementation::PairGroup& group) {
   if (group.rigid) return group.rigidCollides;
+  if (group.floor > 0.0) return false;
   const Implementation& impl = detail::implementationOf(model);
   const bool broadPhase = model.options().broadPhase;
   if (broadPhase && linksApart(impl, data, group)) return false;
@@ -189,7 +190,7 @@ bool addOpenPairs(const CollisionModel& model, Workspace& data, int k, double cl
   const Implementation& impl = detail::implementationOf(model);
   const Implementation::PairGroup& group = *impl.groups[k];
   if (group.rigid) return group.rigidDistance >= clearance;
-  if (detail::linkGap(impl, data, group) >= clearance) return true;
+  if (group.floor >= clearance || detail::linkGap(impl, data, group) >= clearance) return true;
   for (std::size_t p = 0; p < group.parts.size(); ++p) {
     const auto [i, j] = group.parts[p];
     const double bound = boundGap(impl, data, i, j, group.self);  // also places both parts
@@ -267,7 +268,8 @@ DistanceReport distance(const CollisionModel& model, CollisionData& workspace, c
   for (std::size_t k = 0; k < impl.partPairs.size(); ++k) {
     const auto& pair = impl.partPairs[k];
     const double bound =
-        model.options().broadPhase ? boundGap(impl, data, pair.first, pair.second, pair.group->self) : 0.0;
+        std::max(model.options().broadPhase ? boundGap(impl, data, pair.first, pair.second, pair.group->self) : 0.0,
+                 pair.group->floor);
     data.distanceOrder.emplace_back(bound, static_cast<int>(k));
   }
   std::sort(data.distanceOrder.begin(), data.distanceOrder.end());
@@ -315,6 +317,11 @@ bool hasClearance(const CollisionModel& model, CollisionData& workspace, const r
     // A pair whose coarse spheres clear it by that much needs no fine spheres (sphere_tables.h).
     std::fill(data.spheres->enough.begin(), data.spheres->enough.end(),
               static_cast<float>(clearance + spheres->margin()));
+    // A pair whose floor answers needs no spheres beyond the coarse ones.
+    const int bodies = spheres->tables().bodyCount;
+    for (int p = 0; p < spheres->tables().selfPairCount; ++p) {
+      if (impl.selfGroups[spheres->selfGroupOf(p)].floor >= clearance) data.spheres->enough[bodies + p] = -1e30f;
+    }
     spheres->gaps(*data.spheres);
   }
   const auto settled = [&](int pair) {
@@ -327,6 +334,7 @@ bool hasClearance(const CollisionModel& model, CollisionData& workspace, const r
   const int obstacleGroups = static_cast<int>(impl.obstacleGroups.size());
   const int bodies = spheres != nullptr ? spheres->tables().bodyCount : 0;
   for (int k = 0; k < static_cast<int>(impl.groups.size()); ++k) {
+    if (impl.groups[k]->floor >= clearance) continue;
     if (k < obstacleGroups ? settled(impl.groups[k]->firstBody)
                            : spheres != nullptr && spheres->kernelPairOf(k - obstacleGroups) >= 0 &&
                                  settled(bodies + spheres->kernelPairOf(k - obstacleGroups)))

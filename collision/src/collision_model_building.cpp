@@ -235,6 +235,7 @@ CollisionModel::CollisionModel(std::shared_ptr<const robot::RobotModel> robot, c
   addPairGroups(allowed_, linkNames_, obstacleNames_, impl);
   detail::computeMotionBounds(*robot_, impl);
   detail::measureRigidPairs(*this, impl);
+  detail::measurePairFloors(*this, impl);
   if (options_.spherePrefilter)
     impl.prefilter = std::make_shared<const detail::SpherePrefilter>(*robot_, impl, linkNames_);
 }

@@ -51,6 +51,11 @@ struct ModelImplementation {
     bool rigid = false;
     bool rigidCollides = false;
     double rigidDistance = 0.0;
+    // A lower bound of the pair's distance in every configuration (0: none known). A self pair that one
+    // joint alone turns against each other (MBM's force sensor on wrist 3 against wrist 2) has a distance
+    // that depends on that joint only: its smallest value over the joint's range is measured when the
+    // model is built (measurePairFloors), and no query measures the pair while its floor answers.
+    double floor = 0.0;
   };
   std::vector<PairGroup> obstacleGroups, selfGroups;
   std::vector<const PairGroup*> groups;  // obstacle groups, then self groups
@@ -167,6 +172,8 @@ bool groupCollides(const CollisionModel& model, Workspace& data, const ModelImpl
 
 // Measures the self pairs whose relativeReach is 0 once and marks them rigid (collision_model_building.cpp).
 void measureRigidPairs(const CollisionModel& model, ModelImplementation& impl);
+// PairGroup::floor of the self pairs one joint alone moves against each other (pair_floors.cpp).
+void measurePairFloors(const CollisionModel& model, ModelImplementation& impl);
 
 // Fills impl.jointReach, impl.movedBy, impl.partPairReach and every group's relativeReach (motion_bounds.cpp).
 void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl);

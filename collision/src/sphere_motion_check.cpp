@@ -36,6 +36,7 @@ constexpr int kMaxSamples = 256;
 constexpr double kSearchStep = 0.02;
 constexpr int kMaxExactChecks = 4;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr float kFar = 1e30f;  // an `enough` every coarse bound reaches: the kernels skip the pair's fine spheres
 
 struct Rake {
   const CollisionModel& model;
@@ -60,7 +61,7 @@ struct Rake {
         prefilter.loadLane(work, lane, data.motionJoints.data());
       }
       for (int p = 0; p < pairs; ++p)
-        work.enough[p] = static_cast<float>(kept + work.rates[p] * h + prefilter.margin());
+        work.enough[p] = work.floored[p] ? -kFar : static_cast<float>(kept + work.rates[p] * h + prefilter.margin());
       prefilter.gaps(work);
       // Of the states the spheres do not clear, the closest (the likeliest collision) goes to FCL.
       int closest = -1;
@@ -69,6 +70,10 @@ struct Rake {
         const int sample = work.pending[first + lane];
         double smallest = kInfinity;
         for (int p = 0; p < pairs; ++p) {
+          if (work.floored[p]) {
+            work.reach[sample * pairs + p] = kInfinity;
+            continue;
+          }
           const double room = static_cast<double>(work.gaps[p * kLanes + lane]) - kept;
           smallest = std::min(smallest, room);
           work.reach[sample * pairs + p] = work.rates[p] > 0.0 ? room / work.rates[p] : kInfinity;
@@ -126,9 +131,13 @@ SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const ro
   const int bodies = prefilter.tables().bodyCount, pairs = prefilter.pairCount();
   const Eigen::VectorXd step = (qb - qa).cwiseAbs();
   work.rates.resize(pairs);
+  work.floored.assign(pairs, 0);
   for (int b = 0; b < bodies; ++b) work.rates[b] = impl.jointReach.row(b).dot(step);
-  for (int p = bodies; p < pairs; ++p)
-    work.rates[p] = impl.selfGroups[prefilter.selfGroupOf(p - bodies)].relativeReach.dot(step);
+  for (int p = bodies; p < pairs; ++p) {
+    const auto& group = impl.selfGroups[prefilter.selfGroupOf(p - bodies)];
+    work.rates[p] = group.relativeReach.dot(step);
+    work.floored[p] = group.floor >= keptClearance(minimumClearance);
+  }
   // The rigid pairs left out of the tables keep their one distance all along the motion.
   for (const auto& group : impl.selfGroups) {
     if (group.rigid && group.rigidDistance < keptClearance(minimumClearance)) return SphereMotion::Unknown;

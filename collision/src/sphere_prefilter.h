@@ -24,6 +24,7 @@ struct SphereWorkspace {
   // Batched motion checks (sphere_motion_check.cpp): sample fractions, per sample and pair the
   // fraction its clearance certifies each way, and the work list of intervals.
   std::vector<double> rates, samples, reach;
+  std::vector<char> floored;  // per pair: its floor (PairGroup::floor) keeps the motion's clearance everywhere
   std::vector<std::pair<int, int>> intervals, next;
   std::vector<int> pending;
 };
