@@ -1,0 +1,139 @@
+// The arc planner (auto mode, its defaults) against RRTConnect on the generated suite's problems, as a
+// campaign plans them (the suite's 1 cm clearance for states and motions, certified motion validator).
+// Issue 23 asks for no arc query over 5x RRTConnect's solve time, issue 22 for an arc median of 0.2 ms:
+// PlannerArcGenerated/<problem> alternates the two planners on one problem and reports both medians and
+// their ratio; PlannerArcGeneratedSuite solves every problem once per iteration and reports the median of
+// the per-problem arc medians, the largest one, and how many problems are over 5x RRTConnect's median.
+// Times are the solving thread's CPU time (both planners are single-threaded): on this shared 2-core machine the
+// wall clock of a millisecond solve moved several-fold with the other engineers' load. RRTConnect's is its solve
+// alone (no simplifier), in process: without the ~0.1 ms of thread and bookkeeping that OMPL's Benchmark adds to
+// its `time` in a campaign (docs/benchmarks.md's table). Run: build/perf/arcplan_perf
+// --benchmark_filter=PlannerArcGenerated
+#include <benchmark/benchmark.h>
+#include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/util/Console.h>
+
+#include <algorithm>
+#include <ctime>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "arcplan/benchmarks/suite.h"
+#include "arcplan/planners/planner_registry.h"
+#include "arcplan/planners/planning_problem.h"
+
+namespace {
+
+using arcplan::planners::PlanningProblem;
+
+// One problem of the generated suite with both planners set up on it.
+struct Case {
+  std::string name;
+  PlanningProblem planning;
+  ompl::base::PlannerPtr arc, rrtConnect;
+};
+
+ompl::base::PlannerPtr plannerOn(PlanningProblem& planning, const std::string& name) {
+  auto instance =
+      arcplan::planners::makePlanner(name, planning.setup->getSpaceInformation(), planning.plannerContext(), {});
+  instance->setProblemDefinition(planning.setup->getProblemDefinition());
+  instance->setup();
+  return instance;
+}
+
+// Every problem of the generated suite, made once per process (generating and setting up takes ~1 s).
+std::vector<Case>& cases() {
+  static std::vector<Case> all = [] {
+    ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+    const arcplan::benchmarks::Suite suite =
+        arcplan::benchmarks::loadSuite(arcplan::benchmarks::findSuite("generated"));
+    std::vector<Case> made;
+    made.reserve(suite.problems.size());
+    for (const arcplan::benchmarks::Problem& problem : suite.problems) {
+      arcplan::planners::PlanningProblemOptions options;
+      options.clearance = suite.clearance;
+      Case one{problem.name,
+               arcplan::planners::makePlanningProblem(std::make_shared<const arcplan::collision::Scene>(problem.scene),
+                                                      problem.query, options),
+               nullptr, nullptr};
+      one.arc = plannerOn(one.planning, "arc");
+      one.rrtConnect = plannerOn(one.planning, "RRTConnect");
+      made.push_back(std::move(one));
+    }
+    return made;
+  }();
+  return all;
+}
+
+double threadMicros() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) * 1e6 + static_cast<double>(now.tv_nsec) * 1e-3;
+}
+
+// One solve from scratch; returns the CPU time it took in microseconds.
+double timedSolve(benchmark::State& state, Case& one, const ompl::base::PlannerPtr& planner) {
+  planner->clear();
+  one.planning.setup->getProblemDefinition()->clearSolutionPaths();
+  const double start = threadMicros();
+  const auto status = planner->solve(ompl::base::timedPlannerTerminationCondition(10.0));
+  const double micros = threadMicros() - start;
+  if (status != ompl::base::PlannerStatus::EXACT_SOLUTION) state.SkipWithError("a planner found no exact solution");
+  return micros;
+}
+
+double median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
+void PlannerArcGenerated(benchmark::State& state, const std::string& name) {
+  auto& all = cases();
+  Case& one = *std::find_if(all.begin(), all.end(), [&](const Case& c) { return c.name == name; });
+  std::vector<double> arcTimes, rrtConnectTimes;
+  for (auto _ : state) {
+    arcTimes.push_back(timedSolve(state, one, one.arc));
+    rrtConnectTimes.push_back(timedSolve(state, one, one.rrtConnect));
+  }
+  state.counters["arc_median_us"] = median(arcTimes);
+  state.counters["rrtconnect_median_us"] = median(rrtConnectTimes);
+  state.counters["ratio"] = median(arcTimes) / median(rrtConnectTimes);
+}
+
+void PlannerArcGeneratedSuite(benchmark::State& state) {
+  auto& all = cases();
+  std::vector<std::vector<double>> arcTimes(all.size()), rrtConnectTimes(all.size());
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      arcTimes[i].push_back(timedSolve(state, all[i], all[i].arc));
+      rrtConnectTimes[i].push_back(timedSolve(state, all[i], all[i].rrtConnect));
+    }
+  }
+  std::vector<double> arcMedians;
+  int over = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    arcMedians.push_back(median(arcTimes[i]));
+    if (arcMedians.back() > 5.0 * median(rrtConnectTimes[i])) ++over;
+  }
+  state.counters["arc_median_of_medians_us"] = median(arcMedians);
+  state.counters["arc_largest_median_us"] = *std::max_element(arcMedians.begin(), arcMedians.end());
+  state.counters["problems_over_5x"] = over;
+  state.counters["problems"] = static_cast<double>(all.size());
+}
+BENCHMARK(PlannerArcGeneratedSuite)->Unit(benchmark::kMillisecond)->Iterations(5);
+
+// Problems of the families the 5x criterion missed on (docs/benchmarks.md, issue 23's table), one each.
+const bool registered = [] {
+  for (const char* name :
+       {"line-box-007", "line-box-016", "line-sphere-006", "line-sphere-039", "line-cylinder-002", "near-end-002",
+        "clutter-004", "wall-002", "lintel-gate-000", "tilted-tool-003", "shelf-002"}) {
+    benchmark::RegisterBenchmark((std::string("PlannerArcGenerated/") + name).c_str(), PlannerArcGenerated,
+                                 std::string(name))
+        ->Unit(benchmark::kMicrosecond)
+        ->Iterations(100);
+  }
+  return true;
+}();
+
+}  // namespace
