@@ -2,20 +2,161 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
+
+#include <fcl/geometry/shape/convex.h>
 
 #include "arcplan/common/error.h"
 #include "model_implementation.h"
 #include "motion_clearance.h"
 
 namespace arcplan::collision {
+namespace detail {
+
+// A robot body (a link with geometry, or an attached object) in its link's frame, as points whose
+// convex hull contains it (its parts' hull vertices, box corners) and balls (a sphere's or cylinder's
+// bounding capsule by its two end balls). Its largest displacement is that of the robot's geometry, or a
+// few millimetres more where a coarse hull stands in for a detailed mesh.
+struct ZoneBody {
+  int link = -1;  // index into robot().links()
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::pair<Eigen::Vector3d, double>> balls;  // centre, radius
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();       // mean of points and ball centres: inside the body's hull
+  double radius = 0.0;                                    // the whole body lies within this of `centre`
+  Eigen::VectorXd reach;  // per joint: the certified motion check's D_jL (motion_bounds.h), for these points
+};
+
+struct ZoneGeometry {
+  std::shared_ptr<const robot::RobotModel> robot;
+  std::vector<ZoneBody> bodies;
+  std::vector<std::vector<Eigen::Isometry3d>> endpointPoses;  // per zone: the link poses at its endpoint
+};
+
+}  // namespace detail
+
 namespace {
+
+using detail::ZoneBody;
+using detail::ZoneGeometry;
+using Poses = std::vector<Eigen::Isometry3d>;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 void checkDistance(double value, const char* what) {
   if (!std::isfinite(value) || value < 0.0) {
     throw Error(std::string("endpoint clearance: ") + what + " must be a finite distance >= 0 m, got " +
                 std::to_string(value));
   }
+}
+
+// The largest distance of any of `points` from its nearest point among `near` [m].
+double farthestFrom(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& near) {
+  double farthest = 0.0;
+  for (const Eigen::Vector3d& point : points) {
+    double nearest = kInfinity;
+    for (const Eigen::Vector3d& other : near) nearest = std::min(nearest, (point - other).squaredNorm());
+    farthest = std::max(farthest, nearest);
+  }
+  return std::sqrt(farthest);
+}
+
+ZoneBody makeBody(const detail::Implementation& impl, std::size_t body) {
+  ZoneBody result;
+  result.link = impl.linkCapsuleLink[body];
+  // Points outside the geometry D_jL was measured on move faster than D_jL per radian, by at most their
+  // distance from it per radian: the reach is raised by the farthest such distance.
+  double outside = 0.0;
+  for (const detail::Part& part : impl.robotParts) {
+    if (part.body != static_cast<int>(body)) continue;
+    const auto hull = std::dynamic_pointer_cast<const fcl::Convexd>(part.hullGeometry);
+    const auto coarse = std::dynamic_pointer_cast<const fcl::Convexd>(part.coarseHullGeometry);
+    std::vector<Eigen::Vector3d> points;
+    if (coarse && hull) {
+      // A mesh with many hull vertices: its coarse containing hull (convex_hull.h), a few millimetres
+      // outside the mesh but with a few dozen vertices, which is what keeps a displacement cheap.
+      points = coarse->getVertices();
+      outside = std::max(outside, farthestFrom(points, hull->getVertices()) + 1e-9);
+    } else if (hull) {
+      points = hull->getVertices();  // pushed out by at most ~1e-12 m against rounding (convex_hull.h)
+      outside = std::max(outside, 1e-9);
+    } else if (!part.hullPoints.empty()) {
+      points = part.hullPoints;  // box corners
+    } else {
+      result.balls.push_back({part.offset * part.capsule.start, part.capsule.radius});
+      result.balls.push_back({part.offset * part.capsule.end, part.capsule.radius});
+    }
+    for (const Eigen::Vector3d& point : points) result.points.push_back(part.offset * point);
+  }
+  result.reach = impl.jointReach.row(static_cast<Eigen::Index>(body)).transpose();
+  for (Eigen::Index j = 0; j < result.reach.size(); ++j) {
+    if (impl.movedBy(static_cast<Eigen::Index>(body), j)) result.reach[j] += outside;
+  }
+  const std::size_t count = result.points.size() + result.balls.size();
+  if (count == 0) return result;
+  for (const auto& point : result.points) result.centre += point;
+  for (const auto& [centre, radius] : result.balls) result.centre += centre;
+  result.centre /= static_cast<double>(count);
+  for (const auto& point : result.points) result.radius = std::max(result.radius, (point - result.centre).norm());
+  for (const auto& [centre, radius] : result.balls)
+    result.radius = std::max(result.radius, (centre - result.centre).norm() + radius);
+  return result;
+}
+
+// ‖R_a − R_b‖ (spectral norm) of two rotations: 2·sin(θ/2), θ the angle of the rotation between them.
+double rotationGap(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return std::sqrt(std::max(0.0, 3.0 - (a.transpose() * b).trace()));
+}
+
+// A point p of the body moves by |(R − R_e)·p + (t − t_e)| from its place at the endpoint, a convex
+// function of p: its largest value over the body is taken at a hull vertex (or on a ball's surface,
+// where it is at most the centre's + gap·radius), and lies between the centre's and that + gap·radius.
+struct Span {
+  double low, high;
+};
+
+Span bodySpan(const ZoneBody& body, const Eigen::Isometry3d& at, const Eigen::Isometry3d& endpoint) {
+  const double centre = (at * body.centre - endpoint * body.centre).norm();
+  return {centre, centre + rotationGap(at.linear(), endpoint.linear()) * body.radius};
+}
+
+double bodyDisplacement(const ZoneBody& body, const Eigen::Isometry3d& at, const Eigen::Isometry3d& endpoint) {
+  const Eigen::Matrix3d turn = at.linear() - endpoint.linear();
+  const Eigen::Vector3d shift = at.translation() - endpoint.translation();
+  double squared = 0.0;
+  for (const Eigen::Vector3d& point : body.points) squared = std::max(squared, (turn * point + shift).squaredNorm());
+  double largest = std::sqrt(squared);
+  const double gap = rotationGap(at.linear(), endpoint.linear());
+  for (const auto& [centre, radius] : body.balls)
+    largest = std::max(largest, (turn * centre + shift).norm() + gap * radius);
+  return largest;
+}
+
+// Bounds of the largest displacement of any body between the two sets of link poses; exact (low ==
+// high) unless the bodies' spans already settle which side of `length` it is on.
+Span largestDisplacement(const ZoneGeometry& geometry, const Poses& at, const Poses& endpoint, double length) {
+  Span largest{0.0, 0.0};
+  for (const ZoneBody& body : geometry.bodies) {
+    const Span span = bodySpan(body, at[body.link], endpoint[body.link]);
+    largest = {std::max(largest.low, span.low), std::max(largest.high, span.high)};
+  }
+  if (largest.low > length || largest.high <= length) return largest;
+  double exact = largest.low;
+  for (const ZoneBody& body : geometry.bodies) {
+    if (bodySpan(body, at[body.link], endpoint[body.link]).high > exact)
+      exact = std::max(exact, bodyDisplacement(body, at[body.link], endpoint[body.link]));
+  }
+  return {exact, exact};
+}
+
+// The certified motion check's bound of the farthest any of the points moves on the straight joint
+// motion between the two: at least the straight-line displacement (docs/collision.md, "Motion bounds").
+double motionBound(const ZoneGeometry& geometry, const robot::JointRef& a, const robot::JointRef& b) {
+  const Eigen::VectorXd steps = (b - a).cwiseAbs();
+  double bound = 0.0;
+  for (const ZoneBody& body : geometry.bodies) bound = std::max(bound, body.reach.dot(steps));
+  return bound;
 }
 
 }  // namespace
@@ -30,9 +171,9 @@ EndpointClearance::EndpointClearance(const CollisionModel& model, double clearan
                                      const std::vector<robot::JointVector>& endpoints)
     : EndpointClearance(clearance, motionClearance) {
   const int dof = model.robot().dof();
-  // The certified motion check's own per-body, per-joint reach (the D_jL of motionBound), built with
-  // the model: the zones bound displacements exactly as the motion check does.
-  reach_ = detail::implementationOf(model).jointReach;
+  // A certified motion rejects a pair measured closer than c_m + its acceptance margin, so an endpoint
+  // closer than that could never be reached or left at c_m, even one a little above c_m.
+  const double reachable = motionClearance_ + detail::acceptanceMargin(motionClearance_);
   CollisionData data(model);
   for (const robot::JointVector& endpoint : endpoints) {
     if (endpoint.size() != dof) {
@@ -40,11 +181,23 @@ EndpointClearance::EndpointClearance(const CollisionModel& model, double clearan
                   std::to_string(dof));
     }
     const double e = distance(model, data, endpoint).minimum();
-    if (!(e > 0.0) || !(e < motionClearance_)) continue;  // in contact (stays invalid), or clear enough
+    if (!(e > 0.0) || !(e < reachable)) continue;  // in contact (stays invalid), or clear enough
     const double relaxed = kApproachZoneFraction * e;
     zones_.push_back({endpoint, e, std::min(clearance_, relaxed),
                       std::max(detail::kSmallestMinimumClearance, std::min(motionClearance_, relaxed))});
   }
+  if (zones_.empty()) return;
+  auto geometry = std::make_shared<ZoneGeometry>();
+  geometry->robot = model.sharedRobot();
+  const detail::Implementation& impl = detail::implementationOf(model);
+  for (std::size_t body = 0; body < impl.linkCapsuleLink.size(); ++body)
+    geometry->bodies.push_back(makeBody(impl, body));
+  robot::KinematicsData poses(model.robot());
+  for (const ApproachZone& zone : zones_) {
+    robot::forwardKinematics(model.robot(), zone.endpoint, poses);
+    geometry->endpointPoses.push_back(poses.linkPoses);
+  }
+  geometry_ = std::move(geometry);
 }
 
 double EndpointClearance::smallestStateClearance() const {
@@ -54,62 +207,82 @@ double EndpointClearance::smallestStateClearance() const {
 }
 
 double EndpointClearance::displacement(const robot::JointRef& endpoint, const robot::JointRef& q) const {
-  if (reach_.size() == 0) return 0.0;
-  return (reach_ * (q - endpoint).cwiseAbs()).maxCoeff();
+  if (!geometry_) return 0.0;
+  robot::KinematicsData at(*geometry_->robot), from(*geometry_->robot);
+  robot::forwardKinematics(*geometry_->robot, q, at);
+  robot::forwardKinematics(*geometry_->robot, endpoint, from);
+  double largest = 0.0;
+  for (const ZoneBody& body : geometry_->bodies)
+    largest = std::max(largest, bodyDisplacement(body, at.linkPoses[body.link], from.linkPoses[body.link]));
+  return largest;
 }
 
-double EndpointClearance::nearestFraction(const robot::JointRef& endpoint, const robot::JointRef& qa,
-                                          const robot::JointRef& qb) const {
-  // f(s) = max over bodies of Σ_j D_jL·|qa_j + s·Δ_j − endpoint_j| is convex in s (a maximum of sums
-  // of absolute values of affine functions), so a ternary search finds its minimum on [0, 1]. After
-  // 80 steps the interval is (2/3)^80 < 1e-14 wide; f changes by at most max_L Σ_j D_jL·|Δ_j| per
-  // unit of s (a few metres), so f there is within 1e-13 m of the true minimum, from above.
-  const robot::JointVector delta = qb - qa;
-  const auto f = [&](double s) { return displacement(endpoint, qa + s * delta); };
-  double low = 0.0, high = 1.0;
-  for (int step = 0; step < 80; ++step) {
-    const double a = low + (high - low) / 3.0, b = high - (high - low) / 3.0;
-    if (f(a) <= f(b)) {
-      high = b;
-    } else {
-      low = a;
-    }
+bool EndpointClearance::inZone(std::size_t zone, const robot::JointRef& q,
+                               std::optional<robot::KinematicsData>& poses) const {
+  // The bound settles most states near the endpoint without forward kinematics.
+  if (motionBound(*geometry_, zones_[zone].endpoint, q) <= kApproachZoneLength) return true;
+  if (!poses) {
+    poses.emplace(*geometry_->robot);
+    robot::forwardKinematics(*geometry_->robot, q, *poses);
   }
-  const double middle = 0.5 * (low + high);
-  if (f(0.0) <= std::min(f(1.0), f(middle))) return 0.0;
-  return f(1.0) <= f(middle) ? 1.0 : middle;
+  return largestDisplacement(*geometry_, poses->linkPoses, geometry_->endpointPoses[zone], kApproachZoneLength).high <=
+         kApproachZoneLength;
 }
 
-double EndpointClearance::closestApproach(const robot::JointRef& endpoint, const robot::JointRef& qa,
-                                          const robot::JointRef& qb) const {
-  return displacement(endpoint, qa + nearestFraction(endpoint, qa, qb) * (qb - qa));
+std::vector<std::pair<double, double>> EndpointClearance::insideParts(std::size_t zone, const robot::JointRef& qa,
+                                                                      const robot::JointRef& qb) const {
+  // Conservative advancement on the displacement d(s) from the endpoint: along the motion no point moves
+  // faster than `rate` per unit of s, so d changes at most that fast. A state measured d <= L proves
+  // the states within (L − d)/rate of it inside the zone; d > L proves those within (d − L)/rate outside.
+  // The steps shrink toward the zone's edge: within kEdgeBand of it a step of kEdgeBand/rate (at least
+  // 1/1024 of the motion) is taken, and a new inside part starts only at d <= L − kEdgeBand, so a motion
+  // crossing the edge once gets one inside part; what is left unproven keeps c_m (conservative).
+  constexpr double kEdgeBand = 2e-3;  // m
+  constexpr double kSmallestStep = 1.0 / 1024.0;
+  const robot::JointVector delta = qb - qa;
+  const double rate = motionBound(*geometry_, qa, qb);
+  const auto within = [&](double length) { return rate > 0.0 ? length / rate : kInfinity; };
+  const double edgeStep = std::max(kSmallestStep, within(kEdgeBand));
+  robot::KinematicsData poses(*geometry_->robot);
+  std::vector<std::pair<double, double>> parts;
+  for (double s = 0.0;;) {
+    robot::forwardKinematics(*geometry_->robot, s == 1.0 ? robot::JointVector(qb) : robot::JointVector(qa + s * delta),
+                             poses);
+    const Span d =
+        largestDisplacement(*geometry_, poses.linkPoses, geometry_->endpointPoses[zone], kApproachZoneLength);
+    double proven = s;  // the motion is settled (inside or outside) up to here
+    if (d.high <= kApproachZoneLength) {
+      const double from = std::max(0.0, s - within(kApproachZoneLength - d.high));
+      const double to = std::min(1.0, s + within(kApproachZoneLength - d.high));
+      if (!parts.empty() && from <= parts.back().second) {
+        parts.back().second = std::max(parts.back().second, to);
+        proven = to;
+      } else if (d.high <= kApproachZoneLength - kEdgeBand) {
+        parts.emplace_back(from, to);
+        proven = to;
+      }
+    } else {
+      proven = std::min(1.0, s + within(d.low - kApproachZoneLength));
+    }
+    if (proven >= 1.0 || s == 1.0) break;
+    s = std::min(1.0, std::max(proven, s + edgeStep));
+  }
+  return parts;
 }
 
 std::vector<MotionPiece> EndpointClearance::motionPieces(const robot::JointRef& qa, const robot::JointRef& qb) const {
-  const robot::JointVector delta = qb - qa;
   struct Interval {
     double from, to, clearance;
   };
   std::vector<Interval> inside;
   std::vector<double> cuts{0.0, 1.0};
-  for (const ApproachZone& zone : zones_) {
-    if (zone.motionClearance >= motionClearance_) continue;
-    const auto inZone = [&](double s) { return displacement(zone.endpoint, qa + s * delta) <= kApproachZoneLength; };
-    const double nearest = nearestFraction(zone.endpoint, qa, qb);
-    if (!inZone(nearest)) continue;
-    // The displacement is convex, so the zone holds one interval of s around `nearest`; its ends are
-    // bisected to 2^-60 and kept on the inside, so every s of the interval lies in the zone.
-    const auto edge = [&](double in, double out) {
-      if (inZone(out)) return out;
-      for (int step = 0; step < 60; ++step) {
-        const double s = 0.5 * (in + out);
-        (inZone(s) ? in : out) = s;
-      }
-      return in;
-    };
-    inside.push_back({edge(nearest, 0.0), edge(nearest, 1.0), zone.motionClearance});
-    cuts.push_back(inside.back().from);
-    cuts.push_back(inside.back().to);
+  for (std::size_t zone = 0; zone < zones_.size(); ++zone) {
+    if (zones_[zone].motionClearance >= motionClearance_) continue;
+    for (const auto& [from, to] : insideParts(zone, qa, qb)) {
+      inside.push_back({from, to, zones_[zone].motionClearance});
+      cuts.push_back(from);
+      cuts.push_back(to);
+    }
   }
   std::sort(cuts.begin(), cuts.end());
   std::vector<MotionPiece> pieces;
@@ -117,8 +290,8 @@ std::vector<MotionPiece> EndpointClearance::motionPieces(const robot::JointRef& 
     const double from = cuts[k], to = cuts[k + 1];
     if (!(to > from)) continue;
     double required = motionClearance_;
-    for (const Interval& zone : inside) {
-      if (zone.from <= from && to <= zone.to) required = std::min(required, zone.clearance);
+    for (const Interval& part : inside) {
+      if (part.from <= from && to <= part.to) required = std::min(required, part.clearance);
     }
     if (!pieces.empty() && pieces.back().clearance == required) {
       pieces.back().to = to;
@@ -131,18 +304,16 @@ std::vector<MotionPiece> EndpointClearance::motionPieces(const robot::JointRef& 
 
 double EndpointClearance::stateClearanceAt(const robot::JointRef& q) const {
   double required = clearance_;
-  for (const ApproachZone& zone : zones_) {
-    if (displacement(zone.endpoint, q) <= kApproachZoneLength) required = std::min(required, zone.stateClearance);
+  std::optional<robot::KinematicsData> poses;
+  for (std::size_t zone = 0; zone < zones_.size(); ++zone) {
+    if (zones_[zone].stateClearance < required && inZone(zone, q, poses)) required = zones_[zone].stateClearance;
   }
   return required;
 }
 
 double EndpointClearance::motionClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const {
   double required = motionClearance_;
-  for (const ApproachZone& zone : zones_) {
-    if (zone.motionClearance < required && closestApproach(zone.endpoint, qa, qb) <= kApproachZoneLength)
-      required = zone.motionClearance;
-  }
+  for (const MotionPiece& piece : motionPieces(qa, qb)) required = std::min(required, piece.clearance);
   return required;
 }
 
