@@ -8,6 +8,10 @@ namespace arcplan::planners {
 
 namespace {
 
+// A clearance plus the certified check's acceptance margin, min(clearance/4, 0.5 mm) (motion_check.h): a pair
+// measured closer than this may be refused by a certificate.
+double withAcceptanceMargin(double clearance) { return clearance + std::min(0.25 * clearance, 5e-4); }
+
 // A rejection without a named pair was between two waypoints.
 std::string pairsText(const collision::CollisionReport& report) {
   const std::string text = collision::describeCollisions(report);
@@ -139,8 +143,7 @@ bool PathValidator::refuses(const robot::Vector6& q) {
 }
 
 bool PathValidator::withinMargin(const robot::Vector6& q) {
-  const double clearance = required_.motionClearanceAlong(q, q);
-  return !collision::hasClearance(model_, data_, q, clearance + std::min(0.25 * clearance, 5e-4));
+  return !collision::hasClearance(model_, data_, q, withAcceptanceMargin(required_.motionClearanceAlong(q, q)));
 }
 
 bool PathValidator::keepsMargin(const robot::Vector6& q) {
@@ -162,8 +165,9 @@ Rejection PathValidator::explain(const RejectedMotion& motion) {
   const collision::DistanceReport atWaypoint = collision::distance(model_, data_, motion.to);
   result.closest = atWaypoint.minimum();
   result.pairs.collisions = {closestPair(atWaypoint)};
-  if (result.closest < required_.motionClearanceAlong(motion.to, motion.to)) return result;
-  // The waypoint keeps the margin but the motion to it could not be certified: 16 states along it.
+  // Closer than the clearance plus the certificate's acceptance margin: a pair the certificate refuses there.
+  if (result.closest < withAcceptanceMargin(required_.motionClearanceAlong(motion.to, motion.to))) return result;
+  // The waypoint keeps that but the motion to it could not be certified: 16 states along it.
   constexpr int kSteps = 16;
   const auto along = [&](int k) -> robot::Vector6 {
     return motion.from + (motion.to - motion.from) * (static_cast<double>(k) / kSteps);

@@ -42,8 +42,8 @@ struct Walk {
 };
 
 // Why a motion was rejected: the pairs in contact at its end, else its closest pair when that is
-// closer than the margin; only when the end itself keeps the margin, the pairs in contact along the
-// motion, else the closest pair along it.
+// closer than the margin plus the certificate's acceptance margin (a pair the certificate may refuse); only
+// when the end itself keeps that, the pairs in contact along the motion, else the closest pair along it.
 struct Rejection {
   collision::CollisionReport pairs;
   bool collides = true;

@@ -128,4 +128,39 @@ TEST(PathValidation, TheScreenRefusesAPathWhereItsWalkStopsWithoutCertifyingIt) 
   EXPECT_TRUE(validator.walk(detour, startOnly(problem.start), problem.goal).ok());
 }
 
+TEST(PathValidation, ARejectionEndingWithinTheAcceptanceMarginIsExplainedByThePairThere) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
+  arcplan::collision::CollisionData data(*problem.collisionModel);
+  const Eigen::Isometry3d a = tcpPoses({problem.start})[0], b = tcpPoses({problem.goal})[0];
+  const auto onTheLine = [&](double fraction) {
+    Eigen::Isometry3d pose = a;
+    pose.translation() = a.translation() + fraction * (b.translation() - a.translation());
+    return *ik.solveBranch(pose, ik.branchOf(problem.start), problem.start[5]);
+  };
+  const auto distanceAt = [&](const arcplan::robot::Vector6& q) {
+    return arcplan::collision::distance(*problem.collisionModel, data, q).minimum();
+  };
+  // The tool at the particle (0.375 of the way, in contact), and a configuration on the way there whose distance
+  // lies between the margin and the margin plus the certificate's acceptance margin (0.5 mm at 1 cm), by bisection.
+  const arcplan::robot::Vector6 inContact = onTheLine(0.375);
+  ASSERT_LE(distanceAt(inContact), 0.0);
+  double low = 0.0, high = 0.375;  // distance above the band at low, below it at high
+  arcplan::robot::Vector6 band = onTheLine(low);
+  for (int k = 0; k < 60 && !(distanceAt(band) >= kMargin + 1e-4 && distanceAt(band) < kMargin + 4e-4); ++k) {
+    const double middle = 0.5 * (low + high);
+    band = onTheLine(middle);
+    (distanceAt(band) >= kMargin + 2.5e-4 ? low : high) = middle;
+  }
+  ASSERT_GE(distanceAt(band), kMargin + 1e-4);
+  ASSERT_LT(distanceAt(band), kMargin + 4e-4);
+  // A motion from the contact to it: the certificate refuses the pair at its end, which names the reason (the states
+  // along the motion, the first of them in contact, are not asked).
+  PathValidator validator = certifyingValidator(problem, ik);
+  const auto rejection = validator.explain({inContact, band});
+  EXPECT_FALSE(rejection.collides);
+  EXPECT_DOUBLE_EQ(rejection.closest, distanceAt(band));
+  EXPECT_TRUE(rejection.involves("particle"));
+}
+
 }  // namespace
