@@ -351,6 +351,7 @@ bool hasClearance(const CollisionModel& model, CollisionData& workspace, const r
                     secondPose(impl, data, *pair.group, pair.second));
   };
   for (const auto& open : data.openPairs) {
+    if (!open.second) continue;  // bounding volumes apart: the parts cannot touch
     const auto [a, poseA, b, poseB] = parts(open);
     if (partsCollide(a, poseA, b, poseB, model.options())) return false;
   }
