@@ -7,8 +7,8 @@
 // A clearance c > 0 (a benchmark suite's `clearance`, docs/benchmarks.md) makes every planner keep
 // the same distance: a state is valid only if every non-allowed pair is at least c apart (one
 // distance query instead of a boolean one), and certified motions reject pairs measured closer than c.
-// Given the problem's endpoints, a start or goal closer than c itself relaxes c in its approach zone
-// (endpoint_clearance.h): the one rule every planner of a problem sees.
+// Given the problem's endpoints, a start or goal closer than c (plus the certified check's acceptance
+// margin) relaxes c in its approach zone (endpoint_clearance.h): the one rule every planner of a problem sees.
 #include <memory>
 #include <utility>
 #include <vector>
