@@ -20,8 +20,10 @@ namespace {
 
 // Floors above this are not refined: clearances asked of a state or motion are smaller.
 constexpr double kFloorCap = 0.05;
-// Cells are narrow enough that the distance changes by at most this within one [m].
+// Cells are narrow enough that the distance changes by at most this within one [m], but no more than
+// kMaxCells of them (a long tool on the last joint: fewer, wider cells, a lower floor, still a bound).
 constexpr double kCellLoss = 5e-4;
+constexpr int kMaxCells = 2048;
 // GJK's distances are exact to about 1e-6 m (docs/collision.md): a lower bound takes them this much smaller.
 constexpr double kDistanceSlack = 1e-6;
 
@@ -61,7 +63,7 @@ double groupFloor(const CollisionModel& model, const Implementation& impl, Works
     to = M_PI;
   }
   const double reach = group.relativeReach[joint];
-  const int cells = std::max(1, static_cast<int>(std::ceil((to - from) * reach / (2.0 * kCellLoss))));
+  const int cells = std::clamp(static_cast<int>(std::ceil((to - from) * reach / (2.0 * kCellLoss))), 1, kMaxCells);
   const double step = (to - from) / cells, loss = reach * step / 2.0;
   robot::JointVector q = robot::JointVector::Zero(model.robot().dof());
   double floor = std::numeric_limits<double>::infinity();
