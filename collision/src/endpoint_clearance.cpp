@@ -173,7 +173,7 @@ EndpointClearance::EndpointClearance(const CollisionModel& model, double clearan
   const int dof = model.robot().dof();
   // A certified motion rejects a pair measured closer than c_m + its acceptance margin, so an endpoint
   // closer than that could never be reached or left at c_m, even one a little above c_m.
-  const double reachable = motionClearance_ + detail::acceptanceMargin(motionClearance_);
+  const double reachable = motionClearance_ + acceptanceMargin(motionClearance_);
   CollisionData data(model);
   for (const robot::JointVector& endpoint : endpoints) {
     if (endpoint.size() != dof) {
@@ -206,17 +206,6 @@ double EndpointClearance::smallestStateClearance() const {
   return smallest;
 }
 
-double EndpointClearance::displacement(const robot::JointRef& endpoint, const robot::JointRef& q) const {
-  if (!geometry_) return 0.0;
-  robot::KinematicsData at(*geometry_->robot), from(*geometry_->robot);
-  robot::forwardKinematics(*geometry_->robot, q, at);
-  robot::forwardKinematics(*geometry_->robot, endpoint, from);
-  double largest = 0.0;
-  for (const ZoneBody& body : geometry_->bodies)
-    largest = std::max(largest, bodyDisplacement(body, at.linkPoses[body.link], from.linkPoses[body.link]));
-  return largest;
-}
-
 bool EndpointClearance::inZone(std::size_t zone, const robot::JointRef& q,
                                std::optional<robot::KinematicsData>& poses) const {
   // The bound settles most states near the endpoint without forward kinematics.
@@ -236,28 +225,34 @@ std::vector<std::pair<double, double>> EndpointClearance::insideParts(std::size_
   // the states within (L − d)/rate of it inside the zone; d > L proves those within (d − L)/rate outside.
   // The steps shrink toward the zone's edge: within kEdgeBand of it a step of kEdgeBand/rate (at least
   // 1/1024 of the motion) is taken, and a new inside part starts only at d <= L − kEdgeBand, so a motion
-  // crossing the edge once gets one inside part; what is left unproven keeps c_m (conservative).
-  constexpr double kEdgeBand = 2e-3;  // m
+  // crossing the edge once gets one inside part; what is left unproven keeps c_m (conservative). A single
+  // state (rate 0) crosses nothing: it is inside whenever d <= L, as stateClearanceAt judges it.
+  // Parts are proven against L − kProofSlack: stateClearanceAt recomputes d at a part's end by another
+  // forward kinematics of an interpolated state, whose rounding must not put it outside (a single state is
+  // not interpolated).
+  constexpr double kEdgeBand = 2e-3;    // m
+  constexpr double kProofSlack = 1e-9;  // m
   constexpr double kSmallestStep = 1.0 / 1024.0;
   const robot::JointVector delta = qb - qa;
   const double rate = motionBound(*geometry_, qa, qb);
   const auto within = [&](double length) { return rate > 0.0 ? length / rate : kInfinity; };
   const double edgeStep = std::max(kSmallestStep, within(kEdgeBand));
+  const double edge = rate > 0.0 ? kApproachZoneLength - kProofSlack : kApproachZoneLength;
+  const double startBelow = rate > 0.0 ? edge - kEdgeBand : edge;
   robot::KinematicsData poses(*geometry_->robot);
   std::vector<std::pair<double, double>> parts;
   for (double s = 0.0;;) {
     robot::forwardKinematics(*geometry_->robot, s == 1.0 ? robot::JointVector(qb) : robot::JointVector(qa + s * delta),
                              poses);
-    const Span d =
-        largestDisplacement(*geometry_, poses.linkPoses, geometry_->endpointPoses[zone], kApproachZoneLength);
+    const Span d = largestDisplacement(*geometry_, poses.linkPoses, geometry_->endpointPoses[zone], edge);
     double proven = s;  // the motion is settled (inside or outside) up to here
-    if (d.high <= kApproachZoneLength) {
-      const double from = std::max(0.0, s - within(kApproachZoneLength - d.high));
-      const double to = std::min(1.0, s + within(kApproachZoneLength - d.high));
+    if (d.high <= edge) {
+      const double from = std::max(0.0, s - within(edge - d.high));
+      const double to = std::min(1.0, s + within(edge - d.high));
       if (!parts.empty() && from <= parts.back().second) {
         parts.back().second = std::max(parts.back().second, to);
         proven = to;
-      } else if (d.high <= kApproachZoneLength - kEdgeBand) {
+      } else if (d.high <= startBelow) {
         parts.emplace_back(from, to);
         proven = to;
       }
@@ -311,9 +306,12 @@ double EndpointClearance::stateClearanceAt(const robot::JointRef& q) const {
   return required;
 }
 
-double EndpointClearance::motionClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const {
+double EndpointClearance::motionClearanceAt(const robot::JointRef& q) const {
   double required = motionClearance_;
-  for (const MotionPiece& piece : motionPieces(qa, qb)) required = std::min(required, piece.clearance);
+  std::optional<robot::KinematicsData> poses;
+  for (std::size_t zone = 0; zone < zones_.size(); ++zone) {
+    if (zones_[zone].motionClearance < required && inZone(zone, q, poses)) required = zones_[zone].motionClearance;
+  }
   return required;
 }
 

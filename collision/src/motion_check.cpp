@@ -34,8 +34,7 @@ constexpr double kProbedLength = 1.0;
 // What PathCertifier asks of a pair at a new anchor beyond minimumClearance [m].
 constexpr double kAnchorBudget = 0.05;
 // Certificates keep minimumClearance m itself: a pair g apart stays at least m apart for (g − m)/rate;
-// a pair measured closer than m + acceptanceMargin(m) rejects the motion (motion_clearance.h).
-using detail::acceptanceMargin;
+// a pair measured closer than m + acceptanceMargin(m) rejects the motion (motion_check.h).
 using detail::checkJoints;
 using detail::kSmallestMinimumClearance;
 

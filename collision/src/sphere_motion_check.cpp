@@ -24,7 +24,7 @@ namespace {
 
 using prefilter::kLanes;
 
-// The exact check rejects a pair it measures closer than m + acceptanceMargin(m) (motion_clearance.h)
+// The exact check rejects a pair it measures closer than m + acceptanceMargin(m) (motion_check.h)
 // and measures distances to 1e-6 m; a motion along which every pair keeps 10 µm more than that is
 // measured clear by it everywhere, so it accepts the motion too and the two answer alike.
 constexpr double kSlack = 1e-5;

@@ -8,9 +8,9 @@ namespace arcplan::planners {
 
 namespace {
 
-// A clearance plus the certified check's acceptance margin, min(clearance/4, 0.5 mm) (motion_check.h): a pair
-// measured closer than this may be refused by a certificate.
-double withAcceptanceMargin(double clearance) { return clearance + std::min(0.25 * clearance, 5e-4); }
+// A clearance plus the certified check's acceptance margin (motion_check.h): a pair measured closer than this may
+// be refused by a certificate.
+double withAcceptanceMargin(double clearance) { return clearance + collision::acceptanceMargin(clearance); }
 
 // A rejection without a named pair was between two waypoints.
 std::string pairsText(const collision::CollisionReport& report) {
@@ -112,18 +112,16 @@ std::optional<Walk> PathValidator::screen(const TcpPath& path, const JointConver
   const int last = static_cast<int>(joints.size()) - 1;
   int refusedAt = 0;
   for (int k = kScreenStride; refusedAt == 0 && k < last + kScreenStride; k += kScreenStride) {
+    if (stop_ && stop_()) return std::nullopt;  // the walk reports the stop request
     if (refuses(joints[std::min(k, last)])) refusedAt = std::min(k, last);
   }
   if (refusedAt == 0) return std::nullopt;
   // A certified walk breaks off where a pair comes within its acceptance margin of the clearance (motion_check.h):
-  // at the first waypoint within the margin (the stride may have stepped over it), provided the waypoints from there
-  // stay within it up to a refused one. A path that comes within the margin and leaves it again may pass: the walk
-  // decides that. The search decides by the place of the rejection which leg failed.
-  int first = 1;
-  while (!withinMargin(joints[first])) ++first;  // at refusedAt at the latest
-  for (int k = first; !refuses(joints[k]); ++k) {
-    if (!withinMargin(joints[k + 1])) return std::nullopt;
-  }
+  // at the first of the waypoints just before the refused one that are all within the margin (the stride may have
+  // stepped over them). Where the path came within the margin earlier and left it again, the walk passed.
+  // The search decides by the place of the rejection which leg failed.
+  int first = refusedAt;
+  while (first > 1 && withinMargin(joints[first - 1])) --first;
   Walk refused;
   refused.waypoints = prefix;
   refused.waypoints.status = ConversionStatus::Rejected;
@@ -138,18 +136,18 @@ std::optional<Walk> PathValidator::screen(const TcpPath& path, const JointConver
 }
 
 bool PathValidator::refuses(const robot::Vector6& q) {
-  const double clearance = required_.motionClearanceAlong(q, q) - kScreenTolerance;
+  const double clearance = required_.motionClearanceAt(q) - kScreenTolerance;
   return clearance > 0.0 && !collision::hasClearance(model_, data_, q, clearance);
 }
 
 bool PathValidator::withinMargin(const robot::Vector6& q) {
-  return !collision::hasClearance(model_, data_, q, withAcceptanceMargin(required_.motionClearanceAlong(q, q)));
+  return !collision::hasClearance(model_, data_, q, withAcceptanceMargin(required_.motionClearanceAt(q)));
 }
 
 bool PathValidator::keepsMargin(const robot::Vector6& q) {
   // A certifier's start: the same test as a walk's first waypoint, with pairs far apart settled by
   // their bounding capsules (cheaper than measuring the smallest distance).
-  return collision::PathCertifier(model_, data_, required_.motionClearanceAlong(q, q)).start(q);
+  return collision::PathCertifier(model_, data_, required_.motionClearanceAt(q)).start(q);
 }
 
 Rejection PathValidator::explain(const RejectedMotion& motion) {
@@ -166,7 +164,7 @@ Rejection PathValidator::explain(const RejectedMotion& motion) {
   result.closest = atWaypoint.minimum();
   result.pairs.collisions = {closestPair(atWaypoint)};
   // Closer than the clearance plus the certificate's acceptance margin: a pair the certificate refuses there.
-  if (result.closest < withAcceptanceMargin(required_.motionClearanceAlong(motion.to, motion.to))) return result;
+  if (result.closest < withAcceptanceMargin(required_.motionClearanceAt(motion.to))) return result;
   // The waypoint keeps that but the motion to it could not be certified: 16 states along it.
   constexpr int kSteps = 16;
   const auto along = [&](int k) -> robot::Vector6 {

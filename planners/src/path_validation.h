@@ -72,18 +72,19 @@ public:
   // where `goal` (if given) must be met; stops at the first waypoint that fails. Returns prefix +
   // continuation, with the status and reason of the conversion and the motion it refused.
   Walk walk(const TcpPath& path, const JointConversionResult& prefix, const std::optional<robot::Vector6>& goal);
-  // A walk's cheap forerunner: the path converted to joints (IK only), then every kScreenStride-th waypoint (and,
-  // after the first that fails, the ones before it back to the last that passed) tested on its own by refuses().
-  // A waypoint it refuses fails every certified walk there or before, so the walk need not be paid for: returned as
-  // a walk rejected there — or at the first of the waypoints just before it that are withinMargin, where the walk
-  // would stop — its waypoints only `prefix` (nothing after it was certified), the motion refused the one to that
-  // waypoint.
-  // Nothing when no tested waypoint is refused: only the certified walk decides then.
+  // A walk's cheap forerunner: the path converted to joints (IK only), then every kScreenStride-th waypoint tested
+  // on its own by refuses() (and, after the first it refuses, the ones before it by withinMargin, going back while
+  // they are within it). A waypoint it refuses fails every certified walk there or before, so the walk need not be
+  // paid for: returned as a walk rejected there — or at the first of the waypoints just before it that are all
+  // withinMargin, where the walk would stop — its waypoints only `prefix` (nothing after it was certified), the
+  // motion refused the one to that waypoint.
+  // Nothing when no tested waypoint is refused, or once `stop` returns true: only the certified walk decides then.
   std::optional<Walk> screen(const TcpPath& path, const JointConversionResult& prefix,
                              const std::optional<robot::Vector6>& goal);
-  // True when q is closer to an obstacle or between links than a motion ending at q must keep (its approach
-  // zone's clearance, else the margin), less kScreenTolerance: so certainly that no certified motion reaches q
-  // (collision::hasClearance, whose bounds settle pairs far apart; a certificate's measurements cost more).
+  // True when q is closer to an obstacle or between links than a motion ending at q must keep
+  // (EndpointClearance::motionClearanceAt: its approach zone's clearance, else the margin), less kScreenTolerance: so
+  // certainly that no certified motion reaches q (collision::hasClearance, whose bounds settle pairs far apart; a
+  // certificate's measurements cost more).
   bool refuses(const robot::Vector6& q);
   // True when q is closer than a motion ending there must keep plus the certificate's acceptance margin
   // (min(clearance/4, 0.5 mm), motion_check.h): where a certified walk may already stop.

@@ -14,6 +14,7 @@
 // bounds"): the farthest point from A's axis is 0.3 + 0.2 + 0.05 away, from the others' 0.25.
 // The sphere's centre stays at z = 0 for every (a, b); the box's underside is at z = 0.053 over
 // x in [0.3, 0.8], y in [-0.2, 0.2]: 3 mm above the sphere wherever the sphere is under it.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -25,6 +26,8 @@
 #include "arcplan/collision/moveit_scene.h"
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/mesh.h"
 #include "support/command.h"
 
 namespace {
@@ -106,11 +109,10 @@ TEST(EndpointClearance, ZoneOfAGoalThreeMillimetresBelowABox) {
   EXPECT_NEAR(zone.stateClearance, kApproachZoneFraction * kGap, 1e-6);
   EXPECT_NEAR(zone.motionClearance, kApproachZoneFraction * kGap, 1e-6);
   EXPECT_NEAR(rule.smallestStateClearance(), kApproachZoneFraction * kGap, 1e-6);
-  // The displacement is the hand-computed one (the sphere's part is padded by 1e-6 m for rounding):
-  // 0.0153 m at (0.1, -0.2), where the motion check's bound is 0.105 m.
-  EXPECT_NEAR(rule.displacement(goal, joints(0.1, -0.2)), sphereDisplacement(0.1, -0.2), 1e-6);
-  EXPECT_NEAR(rule.displacement(goal, joints(-0.3, 0)), 1.1 * std::sin(0.15), 1e-6);
-  EXPECT_NEAR(rule.displacement(goal, joints(0, 0.3)), 0.5 * std::sin(0.15), 1e-6);
+  // The zone is by the hand-computed displacement: 0.0153 m at (0.1, -0.2), where the motion check's bound
+  // is 0.105 m.
+  ASSERT_GT(kReachA * 0.1 + kReachB * 0.2, kApproachZoneLength);
+  EXPECT_NEAR(rule.stateClearanceAt(joints(0.1, -0.2)), kApproachZoneFraction * kGap, 1e-6);
 
   const auto si = makeSpaceInformation(model, {}, kClearance, {start, goal});
   EXPECT_TRUE(valid(si, 0.9, 0)) << "the start keeps 1 cm";
@@ -133,16 +135,16 @@ TEST(EndpointClearance, ZoneOfAGoalThreeMillimetresBelowABox) {
   EXPECT_FALSE(valid(makeSpaceInformation(model, {}, kClearance), 0, 0));
 }
 
-TEST(EndpointClearance, MotionsKeepTheSmallestRequirementAlongThem) {
+TEST(EndpointClearance, MotionsAreCertifiedPieceByPiece) {
   const auto model = sweeperUnderBox();
   const arcplan::robot::Vector6 goal = joints(0, 0), start = joints(0.9, 0);
   const EndpointClearance rule(*model, kClearance, 0.001, {start, goal});
   const double inZone = kApproachZoneFraction * kGap;
-  // At (0, 0.3) the sphere has moved 0.5·sin(0.15) = 0.075 m (inside); from a = 0.5 on 1.1·sin(0.25) =
-  // 0.272 m and more (outside).
-  EXPECT_NEAR(rule.motionClearanceAlong(joints(-0.3, 0.3), joints(0.3, 0.3)), inZone, 1e-9);
-  EXPECT_NEAR(rule.motionClearanceAlong(joints(0, 0.3), joints(0, 0.3)), inZone, 1e-9) << "a single state";
-  EXPECT_DOUBLE_EQ(rule.motionClearanceAlong(joints(0.5, 0), joints(0.9, 0)), kClearance);
+  // At (0, 0.3) the sphere has moved 0.5·sin(0.15) = 0.075 m (inside); at a = 0.5 1.1·sin(0.25) = 0.272 m
+  // (outside).
+  EXPECT_NEAR(rule.motionClearanceAt(joints(0, 0.3)), inZone, 1e-9);
+  EXPECT_DOUBLE_EQ(rule.motionClearanceAt(joints(0.5, 0)), kClearance);
+  EXPECT_DOUBLE_EQ(rule.motionClearanceAt(start), kClearance);
   // The validator certifies a motion piece by piece: 3 mm under the box inside the zone (|a| <= 0.1821),
   // 1 cm outside it. From the zone's edge into the goal the sphere stays 3 mm under the box: accepted.
   // From the start it is 3 mm under the box for a in (0.1821, 0.41] too (0.5·cos a >= 0.3, 0.5·sin a
@@ -169,6 +171,34 @@ TEST(EndpointClearance, PathStatesAreJudgedWhereTheyAre) {
   EXPECT_DOUBLE_EQ(rule.stateClearanceAt(joints(0.19, 0)), kClearance) << "just outside";
   EXPECT_NEAR(rule.stateClearanceAt(joints(0.17, 0)), inZone, 1e-9) << "just inside";
   EXPECT_NEAR(rule.stateClearanceAt(joints(0, 0)), inZone, 1e-9);
+}
+
+// A single state is judged alike by every query: one within 2 mm of the zone's edge (the band in which a
+// motion's inside part is extended but not started, endpoint_clearance.cpp) is inside for a motion ending
+// there too, so the arc planner's screen (motionClearanceAt) never refuses what a walk into it accepts.
+// Along (t, −t) the sphere keeps its orientation and its centre moves on a circle of radius 0.3 about B's
+// axis at the goal: 0.6·sin(t/2) (sphereDisplacement), 1 mm inside the edge at t = 2·asin(0.099 / 0.6).
+TEST(EndpointClearance, AStateInTheZonesEdgeBandIsInsideForStatesAndMotions) {
+  const auto model = sweeperUnderBox();
+  const EndpointClearance rule(*model, kClearance, 0.001, {joints(0.9, 0), joints(0, 0)});
+  const auto along = [](double displacement) {
+    const double t = 2.0 * std::asin(displacement / 0.6);
+    return joints(t, -t);
+  };
+  const arcplan::robot::Vector6 band = along(kApproachZoneLength - 0.001), out = along(kApproachZoneLength + 0.001);
+  ASSERT_NEAR(sphereDisplacement(band[0], band[1]), kApproachZoneLength - 0.001, 1e-12);
+  ASSERT_GT(kReachA * band[0] + kReachB * band[0], kApproachZoneLength) << "decided by the displacement, not the bound";
+  const ApproachZone& zone = rule.zones().at(0);
+  EXPECT_NEAR(rule.stateClearanceAt(band), zone.stateClearance, 1e-12);
+  EXPECT_NEAR(rule.motionClearanceAt(band), zone.motionClearance, 1e-12);
+  const auto single = rule.motionPieces(band, band);
+  ASSERT_EQ(single.size(), 1u);
+  EXPECT_NEAR(single[0].clearance, zone.motionClearance, 1e-12) << "a motion of one state";
+  EXPECT_DOUBLE_EQ(rule.stateClearanceAt(out), kClearance);
+  EXPECT_DOUBLE_EQ(rule.motionClearanceAt(out), kClearance);
+  const auto outside = rule.motionPieces(out, out);
+  ASSERT_EQ(outside.size(), 1u);
+  EXPECT_DOUBLE_EQ(outside[0].clearance, kClearance);
 }
 
 // The zone is where the sphere really moves at most L, not where the motion check's bound says so: turning
@@ -211,6 +241,18 @@ TEST(EndpointClearance, TheZoneFollowsTheRealDisplacementNotItsBound) {
       EXPECT_LT(sphereDisplacement(0.4 * piece.to, -0.4 * piece.to), kApproachZoneLength) << piece.to;
     }
   }
+  // A state at the end of a piece proven inside is judged inside too (stateClearanceAt measures it again),
+  // on motions from the goal that leave the zone in 50 directions of the (a, b) plane.
+  for (int k = 0; k < 50; ++k) {
+    const double angle = 2.0 * M_PI * k / 50.0;
+    const arcplan::robot::Vector6 far = joints(0.8 * std::cos(angle), 0.8 * std::sin(angle));
+    for (const MotionPiece& piece : rule.motionPieces(goal, far)) {
+      if (piece.clearance == kClearance) continue;
+      const arcplan::robot::Vector6 end = goal + piece.to * (far - goal);
+      EXPECT_LT(sphereDisplacement(end[0], end[1]), kApproachZoneLength) << k;
+      EXPECT_NEAR(rule.stateClearanceAt(end), kApproachZoneFraction * kGap, 1e-9) << k << " at " << piece.to;
+    }
+  }
 }
 
 // A certified motion at c_m rejects a pair measured closer than c_m + min(c_m / 4, 0.5 mm): with
@@ -247,6 +289,49 @@ TEST(EndpointClearance, AClearEndpointChangesNothing) {
   EXPECT_DOUBLE_EQ(rule.stateClearanceAt(joints(0, 0)), 0.002);
 }
 
+// The robot's collision geometry as points per link (mesh vertices, box corners) from the URDF (robot/mesh.h),
+// not the zone rule's hulls: the largest displacement of any of them between two states is the robot's [m].
+struct RobotPoints {
+  const arcplan::robot::RobotModel& robot;
+  std::vector<std::vector<Eigen::Vector3d>> points;  // per link, in its frame
+
+  explicit RobotPoints(const arcplan::robot::RobotModel& model) : robot(model), points(model.links().size()) {
+    using arcplan::robot::CollisionGeometry;
+    for (std::size_t link = 0; link < robot.links().size(); ++link) {
+      for (const CollisionGeometry& geometry : robot.links()[link].collisions) {
+        std::vector<Eigen::Vector3d> local;
+        if (geometry.shape == CollisionGeometry::Shape::Mesh) {
+          local = arcplan::robot::loadMesh(geometry.meshFile, geometry.meshScale).vertices;
+        } else {
+          EXPECT_EQ(geometry.shape, CollisionGeometry::Shape::Box) << "the UR5's geometry: meshes and boxes";
+          for (int c = 0; c < 8; ++c)
+            local.push_back(
+                0.5 * geometry.boxSize.cwiseProduct(Eigen::Vector3d(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1)));
+        }
+        for (const Eigen::Vector3d& point : local) points[link].push_back(geometry.origin * point);
+      }
+      // A mesh lists a vertex once per triangle around it: each once is enough.
+      const auto before = [](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+        return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+      };
+      std::sort(points[link].begin(), points[link].end(), before);
+      points[link].erase(std::unique(points[link].begin(), points[link].end()), points[link].end());
+    }
+  }
+
+  double displacement(const arcplan::robot::Vector6& a, const arcplan::robot::Vector6& b) const {
+    arcplan::robot::KinematicsData at(robot), from(robot);
+    arcplan::robot::forwardKinematics(robot, a, from);
+    arcplan::robot::forwardKinematics(robot, b, at);
+    double largest = 0.0;
+    for (std::size_t link = 0; link < points.size(); ++link) {
+      for (const Eigen::Vector3d& point : points[link])
+        largest = std::max(largest, (at.linkPoses[link] * point - from.linkPoses[link] * point).norm());
+    }
+    return largest;
+  }
+};
+
 // The case behind MBM paths that ended in contact (bookshelf_thin_ur5 0096, 1 cm, RRTConnect: OMPL's
 // simplifier cut a motion certified whole at a zone's clearance at a state past the zone). From the goal,
 // 4.9 mm below a shelf (zone: 2.5 mm), this motion (found by sampling straight motions from the goal)
@@ -273,10 +358,11 @@ TEST(EndpointClearance, MbmMotionLeavingAGoalsZoneKeepsTheClearanceOutsideIt) {
   CollisionData data(*model);
   const auto at = [&](double s) -> arcplan::robot::Vector6 { return goal + s * (far - goal); };
   // Dense exact sampling: the smallest distance outside the zone, and the last fraction inside it.
+  const RobotPoints robotPoints(model->robot());
   double outside = 1.0, lastInside = 0.0, inside = 1.0;
   for (int k = 0; k <= 2000; ++k) {
     const double s = k / 2000.0, d = distance(*model, data, at(s)).minimum();
-    if (rule.displacement(goal, at(s)) <= kApproachZoneLength) {
+    if (robotPoints.displacement(goal, at(s)) <= kApproachZoneLength) {
       lastInside = s;
       inside = std::min(inside, d);
     } else {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/planners/arc_path.h"
@@ -161,6 +162,59 @@ TEST(PathValidation, ARejectionEndingWithinTheAcceptanceMarginIsExplainedByThePa
   EXPECT_FALSE(rejection.collides);
   EXPECT_DOUBLE_EQ(rejection.closest, distanceAt(band));
   EXPECT_TRUE(rejection.involves("particle"));
+}
+
+// The screen goes back from the waypoint it refuses only while the waypoints are within the acceptance margin: an
+// earlier place where the path came that close and left again is not where the walk is refused. The thesis detour
+// (h = 0.05) driven from B to A passes the particle twice: 3.78 cm from it, then farther than 4.2 cm, then into
+// it. With a margin of 3.77 cm the first pass lies within the margin plus 0.5 mm (distances measured
+// independently below).
+TEST(PathValidation, TheScreenGoesBackFromTheRefusedWaypointOnlyWhileWithinTheMargin) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
+  const Eigen::Isometry3d a = tcpPoses({problem.start})[0], b = tcpPoses({problem.goal})[0];
+  const double length = (b.translation() - a.translation()).norm();
+  const ArcPath twice(b, a, {{0.625 * length, {0.05, 0.1, 0.05, 0.1}, 0.0}});
+  constexpr double kDipMargin = 0.0377, kBand = kDipMargin + 0.0005;  // + min(m/4, 0.5 mm), motion_check.h
+  const auto converted = arcplan::planners::convertToJoints(ik, twice, problem.goal, problem.start, {}, 0.0,
+                                                            std::numeric_limits<double>::infinity(), {});
+  arcplan::collision::CollisionData data(*problem.collisionModel);
+  std::vector<double> d;
+  for (const auto& q : converted.joints)
+    d.push_back(arcplan::collision::distance(*problem.collisionModel, data, q).minimum());
+  std::size_t refused = 1;
+  while (refused < d.size() && d[refused] >= kDipMargin) ++refused;
+  ASSERT_LT(refused, d.size());
+  std::size_t approach = refused;
+  while (approach > 1 && d[approach - 1] < kBand) --approach;
+  // The profile the case needs: within the band earlier, out of it between.
+  std::size_t earlier = 1;
+  while (earlier < approach && d[earlier] >= kBand) ++earlier;
+  ASSERT_LT(earlier + 1, approach) << "the path comes within the margin before it leaves it again";
+
+  PathValidator validator(
+      *problem.collisionModel, ik, {}, kDipMargin, true, [](const arcplan::robot::Vector6&) { return true; },
+      [] { return false; });
+  const auto screened = validator.screen(twice, startOnly(problem.goal), problem.start);
+  ASSERT_TRUE(screened) << "refused at the second pass";
+  EXPECT_EQ(screened->waypoints.status, ConversionStatus::Rejected);
+  EXPECT_DOUBLE_EQ(screened->waypoints.failedAtArcLength, converted.arcLengths[approach]);
+  ASSERT_TRUE(screened->rejected);
+  EXPECT_EQ(screened->rejected->to, converted.joints[approach]);
+}
+
+// The stop request (the planner's termination condition) ends a screen as it ends a walk.
+TEST(PathValidation, TheScreenHonoursTheStopRequest) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
+  const ArcPath line(tcpPoses({problem.start})[0], tcpPoses({problem.goal})[0]);  // through the particle
+  PathValidator stopped(
+      *problem.collisionModel, ik, {}, kMargin, true, [](const arcplan::robot::Vector6&) { return true; },
+      [] { return true; });
+  EXPECT_FALSE(stopped.screen(line, startOnly(problem.start), problem.goal));
+  EXPECT_EQ(stopped.walk(line, startOnly(problem.start), problem.goal).waypoints.status, ConversionStatus::Rejected);
+  PathValidator running = certifyingValidator(problem, ik);
+  EXPECT_TRUE(running.screen(line, startOnly(problem.start), problem.goal)) << "refused without the stop request";
 }
 
 }  // namespace

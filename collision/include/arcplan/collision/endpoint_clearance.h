@@ -71,9 +71,6 @@ public:
   // The smallest clearance a state may have anywhere (c without zones): `endpoint_clearance_m`.
   double smallestStateClearance() const;
 
-  // Largest displacement of any robot point between `endpoint` and q [m] (0 without zones).
-  double displacement(const robot::JointRef& endpoint, const robot::JointRef& q) const;
-
   // The motion qa -> qb in pieces: a piece proven inside a zone (every state of it within
   // kApproachZoneLength of the endpoint) keeps the zone's motionClearance, the others motionClearance().
   // So every state of a motion certified piece by piece keeps what stateClearanceAt asks of it: OMPL
@@ -83,9 +80,10 @@ public:
 
   // What the state q must keep [m].
   double stateClearanceAt(const robot::JointRef& q) const;
-  // The smallest clearance of the motion's pieces [m]: what a motion qa -> qb (or a single state, qa = qb)
-  // is certified for where it is closest to an endpoint.
-  double motionClearanceAlong(const robot::JointRef& qa, const robot::JointRef& qb) const;
+  // What a motion ending (or starting) at q must keep there [m]: its zone's motionClearance wherever
+  // stateClearanceAt gives it the zone's stateClearance, else motionClearance(). A motion's own
+  // requirement is piece by piece (motionPieces): never the smallest of its pieces for all of it.
+  double motionClearanceAt(const robot::JointRef& q) const;
 
 private:
   // Whether q lies in the zone of endpoint `zone`; q's link poses are computed into `poses` on first need.

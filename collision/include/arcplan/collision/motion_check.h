@@ -20,6 +20,8 @@
 // MotionCheck::Discrete is the classic sampled check (states no joint step more than maxJointStep
 // apart); it can miss an obstacle thinner than what a link sweeps in one step (a 0.01 rad step of the
 // UR10e's base joint moves the wrist up to 1.8 cm), so it is kept for comparisons.
+#include <algorithm>
+
 #include <Eigen/Core>
 
 #include "arcplan/collision/collision_model.h"
@@ -37,6 +39,12 @@ struct MotionCheckOptions {
 
 // Throws arcplan::Error naming the field when maxJointStep or minimumClearance is out of range.
 void validate(const MotionCheckOptions& options);
+
+// The margin above minimumClearance m below which a certified check rejects a pair it measures: a quarter of
+// m, at most 0.5 mm, which a motion that keeps m + 2 mm between samples 1 mm apart still passes; every step
+// advances by at least margin/rate. Callers that place or explain a certificate's stop (approach zones, the
+// arc planner's screen) ask the same rule here.
+inline double acceptanceMargin(double minimumClearance) { return std::min(0.25 * minimumClearance, 5e-4); }
 
 // Whether the straight motion qa -> qb is collision-free. Certified covers the closed motion [0, 1]
 // (qa too); Discrete checks the states at fractions k/n, k = 1..n (qa is taken as valid, as OMPL
