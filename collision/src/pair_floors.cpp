@@ -18,7 +18,7 @@
 namespace arcplan::collision::detail {
 namespace {
 
-// Floors above this are not refined: clearances asked of a state or motion are smaller.
+// Floors stop at this (the planners' clearances are smaller; a larger one measures the pair as before).
 constexpr double kFloorCap = 0.05;
 // Cells are narrow enough that the distance changes by at most this within one [m], but no more than
 // kMaxCells of them (a long tool on the last joint: fewer, wider cells, a lower floor, still a bound).
