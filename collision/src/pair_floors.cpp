@@ -5,7 +5,7 @@
 // bound of motion_bounds.cpp; it bounds every point of the bodies' hulls too, the farthest point of a
 // hull from an axis being one of its vertices). Sampling θ at the centres of cells `step` wide and
 // taking a lower bound b_k of d there gives d(θ) >= b_k − relativeReach_j·step/2 on cell k, so the
-// smallest of those over the joint's range is a lower bound of d in every configuration. On MBM's UR5 the
+// smallest of those over one turn is a lower bound of d in every configuration. On MBM's UR5 the
 // force sensor on wrist 3 turns against wrist 2 at 2.8 cm: without its floor every state check at 1 cm
 // paid a GJK on the sensor's 4848-vertex hull for it (15 % of RRTConnect's collision time on
 // bookshelf_thin 0006).
@@ -24,8 +24,9 @@ constexpr double kFloorCap = 0.05;
 // kMaxCells of them (a long tool on the last joint: fewer, wider cells, a lower floor, still a bound).
 constexpr double kCellLoss = 5e-4;
 constexpr int kMaxCells = 2048;
-// GJK's distances are exact to about 1e-6 m (docs/collision.md): a lower bound takes them this much smaller.
-constexpr double kDistanceSlack = 1e-6;
+// GJK's distances are exact to about 1e-6 m (docs/collision.md): a lower bound takes them ten times that
+// smaller, headroom over the documented tolerance that costs nothing beside centimetre floors.
+constexpr double kDistanceSlack = 1e-5;
 
 // The joint that alone moves the group's bodies against each other, or -1.
 int onlyJoint(const Implementation::PairGroup& group) {
@@ -55,13 +56,9 @@ double partPairLowerBound(const CollisionModel& model, const Implementation& imp
 
 double groupFloor(const CollisionModel& model, const Implementation& impl, Workspace& data,
                   const Implementation::PairGroup& group, int joint) {
-  const auto& limits = model.robot().joints()[joint].limits;
-  double from = limits.lower, to = limits.upper;
-  // The relative pose repeats every turn: one turn covers a joint with a larger range.
-  if (to - from >= 2.0 * M_PI) {
-    from = -M_PI;
-    to = M_PI;
-  }
+  // The relative pose repeats every turn, and queries take any finite angle, inside the joint's limits or not:
+  // one whole turn, whatever the limits, so the floor holds for every state a query can be asked about.
+  const double from = -M_PI, to = M_PI;
   const double reach = group.relativeReach[joint];
   const int cells = std::clamp(static_cast<int>(std::ceil((to - from) * reach / (2.0 * kCellLoss))), 1, kMaxCells);
   const double step = (to - from) / cells, loss = reach * step / 2.0;

@@ -72,13 +72,12 @@ TEST(PairFloors, OneJointPairsOfTheMbmRobotKeepTheirFloorEverywhere) {
       }
     }
     ASSERT_EQ(moving, 1) << first << " - " << second;
-    // 360 angles over the joint's range, the other joints random: the pair's distance depends on that joint
-    // alone, so this samples all of it.
-    const auto& limits = layered->robot().joints()[joint].limits;
+    // 360 angles over one whole turn (queries may ask angles outside the limits), the other joints random: the
+    // pair's distance depends on that joint alone, so this samples all of it.
     double smallest = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 360; ++k) {
       Eigen::VectorXd q = arcplan::testing::randomJointState(layered->robot(), random);
-      q[joint] = limits.lower + (limits.upper - limits.lower) * k / 359.0;
+      q[joint] = -M_PI + 2.0 * M_PI * k / 359.0;
       detail::updateRobot(*exact, data, q);
       const double d = exactGroupDistance(*exact, data, exactGroups[g]);
       EXPECT_GE(d, group.floor) << first << " - " << second << " at q" << joint << " = " << q[joint];
@@ -111,12 +110,16 @@ TEST(PairFloors, QueriesAnswerAsFclWhereTheFloorDecides) {
   exactOptions.hullLayer = false;
   const auto exact = makeCollisionModel(scene, exactOptions);
   CollisionData layeredData(*layered), exactData(*exact);
+  detail::Workspace& exactWorkspace = detail::workspaceOf(exactData);
+  const auto& exactGroup = detail::implementationOf(*exact).selfGroups.at(0);
   std::mt19937_64 random(12);
   int clear[3] = {0, 0, 0};
   const double clearances[3] = {floor - 0.001, floor, 0.03};
   for (int k = 0; k < 200; ++k) {
     const Eigen::VectorXd q = arcplan::testing::randomJointState(layered->robot(), random);
-    const double expected = distance(*exact, exactData, q).minimum();
+    // FCL on every part pair of the group, not the queries under test (which use the floor).
+    detail::updateRobot(*exact, exactWorkspace, q);
+    const double expected = exactGroupDistance(*exact, exactWorkspace, exactGroup);
     EXPECT_NEAR(distance(*layered, layeredData, q).minimum(), expected, 1e-9) << "state " << k;
     EXPECT_TRUE(isCollisionFree(*layered, layeredData, q));
     for (int c = 0; c < 3; ++c) {

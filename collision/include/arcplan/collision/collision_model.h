@@ -149,7 +149,8 @@ struct DistanceReport {
 bool isCollisionFree(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
 // Every colliding pair.
 CollisionReport collide(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
-// Minimum distances (pairs whose bounding capsules are already farther than the best are skipped).
+// Minimum distances (pairs whose bounding capsules or pair floor are already farther than the best are
+// skipped).
 DistanceReport distance(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
 // distance(model, data, q).minimum() >= clearance, answered with the cheapest bounds that decide it
 // (spheres, capsules, hulls; exact distances only for the pairs they leave open): what a planner
