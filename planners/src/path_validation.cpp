@@ -110,16 +110,23 @@ std::optional<Walk> PathValidator::screen(const TcpPath& path, const JointConver
                       std::numeric_limits<double>::infinity(), {});
   const std::vector<robot::Vector6>& joints = converted.joints;  // joints[0]: the prefix's last, validated
   const int last = static_cast<int>(joints.size()) - 1;
+  // Each tested waypoint first by withinMargin (one query where the path keeps its distance), then by refuses.
   int refusedAt = 0;
+  bool near = false, left = false;  // a tested waypoint came within the margin; a later one was out of it again
   for (int k = kScreenStride; refusedAt == 0 && k < last + kScreenStride; k += kScreenStride) {
     if (stop_ && stop_()) return std::nullopt;  // the walk reports the stop request
-    if (refuses(joints[std::min(k, last)])) refusedAt = std::min(k, last);
+    const int at = std::min(k, last);
+    const bool within = withinMargin(joints[at]);
+    left = left || (near && !within);
+    near = near || within;
+    if (within && refuses(joints[at])) refusedAt = at;
   }
-  if (refusedAt == 0) return std::nullopt;
+  // Where the path came within the margin and left it again before the refusal, the walk may stop there already:
+  // it decides then.
+  if (refusedAt == 0 || left) return std::nullopt;
   // A certified walk breaks off where a pair comes within its acceptance margin of the clearance (motion_check.h):
   // at the first of the waypoints just before the refused one that are all within the margin (the stride may have
-  // stepped over them). Where the path came within the margin earlier and left it again, the walk passed.
-  // The search decides by the place of the rejection which leg failed.
+  // stepped over them). The search decides by the place of the rejection which leg failed.
   int first = refusedAt;
   while (first > 1 && withinMargin(joints[first - 1])) --first;
   Walk refused;

@@ -73,12 +73,13 @@ public:
   // continuation, with the status and reason of the conversion and the motion it refused.
   Walk walk(const TcpPath& path, const JointConversionResult& prefix, const std::optional<robot::Vector6>& goal);
   // A walk's cheap forerunner: the path converted to joints (IK only), then every kScreenStride-th waypoint tested
-  // on its own by refuses() (and, after the first it refuses, the ones before it by withinMargin, going back while
-  // they are within it). A waypoint it refuses fails every certified walk there or before, so the walk need not be
-  // paid for: returned as a walk rejected there — or at the first of the waypoints just before it that are all
-  // withinMargin, where the walk would stop — its waypoints only `prefix` (nothing after it was certified), the
-  // motion refused the one to that waypoint.
-  // Nothing when no tested waypoint is refused, or once `stop` returns true: only the certified walk decides then.
+  // on its own by withinMargin and refuses() (and, after the first it refuses, the ones before it by withinMargin,
+  // going back while they are within it). A waypoint it refuses fails every certified walk there or before, so the
+  // walk need not be paid for: returned as a walk rejected there — or at the first of the waypoints just before it
+  // that are all withinMargin, where the walk would stop — its waypoints only `prefix` (nothing after it was
+  // certified), the motion refused the one to that waypoint.
+  // Nothing when no tested waypoint is refused, when a tested waypoint before the refused one came within the margin
+  // and a later one left it (the walk may stop there already), or once `stop` returns true: the walk decides then.
   std::optional<Walk> screen(const TcpPath& path, const JointConversionResult& prefix,
                              const std::optional<robot::Vector6>& goal);
   // True when q is closer to an obstacle or between links than a motion ending at q must keep

@@ -3,6 +3,7 @@
 // that refuses a path where its certified walk would stop, without certifying anything.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -201,6 +202,27 @@ TEST(PathValidation, TheScreenGoesBackFromTheRefusedWaypointOnlyWhileWithinTheMa
   EXPECT_DOUBLE_EQ(screened->waypoints.failedAtArcLength, converted.arcLengths[approach]);
   ASSERT_TRUE(screened->rejected);
   EXPECT_EQ(screened->rejected->to, converted.joints[approach]);
+
+  // With a margin of 3.85 cm the first pass already comes closer than the margin (3.78 cm, between two waypoints
+  // the stride tests, which keep 3.85-3.9 cm): every walk stops there. The screen must not place the rejection at
+  // the second pass (where going back from a refused waypoint would): it leaves the walk to decide or names the
+  // first pass.
+  constexpr double kDeeperMargin = 0.0385;
+  std::size_t firstBelow = 1;
+  while (firstBelow < d.size() && d[firstBelow] >= kDeeperMargin) ++firstBelow;
+  std::size_t out = firstBelow;
+  while (out < d.size() && d[out] < kDeeperMargin + 0.0005) ++out;
+  ASSERT_LT(out, d.size()) << "the path leaves the margin after the first pass";
+  ASSERT_LT(*std::min_element(d.begin() + static_cast<long>(out), d.end()), kDeeperMargin) << "and comes back";
+  PathValidator deeper(
+      *problem.collisionModel, ik, {}, kDeeperMargin, true, [](const arcplan::robot::Vector6&) { return true; },
+      [] { return false; });
+  const auto walked = deeper.walk(twice, startOnly(problem.goal), problem.start);
+  EXPECT_EQ(walked.waypoints.status, ConversionStatus::Rejected);
+  EXPECT_LE(walked.waypoints.failedAtArcLength, converted.arcLengths[firstBelow]);
+  const auto deeperScreen = deeper.screen(twice, startOnly(problem.goal), problem.start);
+  EXPECT_TRUE(!deeperScreen || deeperScreen->waypoints.failedAtArcLength <= converted.arcLengths[firstBelow])
+      << deeperScreen->waypoints.failedAtArcLength << " m";
 }
 
 // The stop request (the planner's termination condition) ends a screen as it ends a walk.
