@@ -1,6 +1,6 @@
 // MoveIt problems read against a UR type built from Universal Robots' description parameters (no URDF):
 // `plan --moveit-scene ... --ur-type T`, suites' `moveit_problems: {ur_type: T}`, and the hand-written
-// problem families in tests/collision/moveit_problems (every shape and field the readers claim, family
+// problem families of support/ur5e_moveit_problems.h (every shape and field the readers claim, family
 // names MBM does not have). Expected poses come from the message definitions and UR's xacro
 // convention (base_link_inertia is base_link turned by pi about z), names from the description files.
 #include <cmath>
@@ -21,6 +21,7 @@
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "support/command.h"
 #include "support/error_message.h"
+#include "support/ur5e_moveit_problems.h"
 
 namespace {
 
@@ -29,7 +30,12 @@ using arcplan::collision::MoveItProblem;
 using arcplan::collision::MoveItRobot;
 using arcplan::collision::Obstacle;
 
-const fs::path kProblems = ARCPLAN_MOVEIT_TEST_PROBLEMS;
+// The hand-written UR5e families (support/ur5e_moveit_problems.h), written once per test process.
+const fs::path& problems() {
+  static const fs::path folder =
+      arcplan::testing::writeUr5eMoveItProblems(arcplan::testing::freshTempDirectory("ur5e_moveit_problems"));
+  return folder;
+}
 
 MoveItRobot urType(const std::string& type) { return {{}, {}, {type, {}, {}}}; }
 
@@ -48,7 +54,7 @@ std::set<std::string> linkNamesOf(const arcplan::robot::RobotModel& model) {
 
 TEST(MoveItUrType, FramesAndNamesAreTheDescriptionsOwn) {
   const MoveItProblem problem = arcplan::collision::loadMoveItProblem(
-      kProblems / "cage_ur5e" / "scene0001.yaml", kProblems / "cage_ur5e" / "request0001.yaml", urType("ur5e"));
+      problems() / "cage_ur5e" / "scene0001.yaml", problems() / "cage_ur5e" / "request0001.yaml", urType("ur5e"));
   const arcplan::collision::Scene& scene = problem.scene;
   EXPECT_EQ(scene.robot.urType, "ur5e");
   EXPECT_TRUE(scene.robot.urdf.empty());
@@ -95,8 +101,8 @@ TEST(MoveItUrType, PlanTakesTheUrTypeOnTheMoveItPath) {
   const auto dir = arcplan::testing::freshTempDirectory("moveit_ur_type_plan");
   const auto json = dir / "plan.json";
   const auto result = arcplan::testing::runArcplan(
-      {"plan", "--moveit-scene", (kProblems / "cage_ur5e" / "scene0001.yaml").string(), "--moveit-request",
-       (kProblems / "cage_ur5e" / "request0001.yaml").string(), "--ur-type", "ur5e", "--planner", "RRTConnect",
+      {"plan", "--moveit-scene", (problems() / "cage_ur5e" / "scene0001.yaml").string(), "--moveit-request",
+       (problems() / "cage_ur5e" / "request0001.yaml").string(), "--ur-type", "ur5e", "--planner", "RRTConnect",
        "--seed", "1", "--json", json.string()});
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const auto document = nlohmann::json::parse(arcplan::testing::readFile(json));
@@ -105,8 +111,8 @@ TEST(MoveItUrType, PlanTakesTheUrTypeOnTheMoveItPath) {
   EXPECT_EQ(document["goal_valid"], true);
   // --kinematics without --ur-type is still a usage error.
   EXPECT_EQ(
-      arcplan::testing::runArcplan({"plan", "--moveit-scene", (kProblems / "cage_ur5e" / "scene0001.yaml").string(),
-                                    "--moveit-request", (kProblems / "cage_ur5e" / "request0001.yaml").string(),
+      arcplan::testing::runArcplan({"plan", "--moveit-scene", (problems() / "cage_ur5e" / "scene0001.yaml").string(),
+                                    "--moveit-request", (problems() / "cage_ur5e" / "request0001.yaml").string(),
                                     "--urdf", arcplan::robot::ur10eUrdfPath().string(), "--kinematics", json.string()})
           .exitCode,
       2);
@@ -114,7 +120,7 @@ TEST(MoveItUrType, PlanTakesTheUrTypeOnTheMoveItPath) {
 
 TEST(MoveItUrType, EveryFamilyOfASuiteLoadsValidAndPlans) {
   const auto dir = arcplan::testing::freshTempDirectory("moveit_ur_type_suite");
-  std::ofstream(dir / "suite.yaml") << "name: families\nmoveit_problems: {folder: " << kProblems.string()
+  std::ofstream(dir / "suite.yaml") << "name: families\nmoveit_problems: {folder: " << problems().string()
                                     << ", ur_type: ur5e}\nplanners: [RRTConnect]\n";
   const arcplan::benchmarks::Suite suite = arcplan::benchmarks::loadSuite(dir / "suite.yaml");
   ASSERT_EQ(suite.problems.size(), 2u);
@@ -136,13 +142,13 @@ TEST(MoveItUrType, EveryFamilyOfASuiteLoadsValidAndPlans) {
   }
   EXPECT_EQ(families, (std::set<std::string>{"cage_ur5e", "shelf_pick_ur5e"}));
   // Both robots, or a calibration without a type: the entry's line and what it expects.
-  std::ofstream(dir / "both.yaml") << "name: both\nmoveit_problems: {folder: " << kProblems.string()
+  std::ofstream(dir / "both.yaml") << "name: both\nmoveit_problems: {folder: " << problems().string()
                                    << ", ur_type: ur5e, urdf: " << arcplan::robot::ur10eUrdfPath().string()
                                    << "}\nplanners: [RRTConnect]\n";
   const std::string both = arcplan::testing::errorMessageOf([&] { arcplan::benchmarks::loadSuite(dir / "both.yaml"); });
   EXPECT_NE(both.find("both.yaml:2:"), std::string::npos) << both;
   EXPECT_NE(both.find("expected either 'urdf' or 'ur_type'"), std::string::npos) << both;
-  std::ofstream(dir / "kinematics.yaml") << "name: k\nmoveit_problems: {folder: " << kProblems.string()
+  std::ofstream(dir / "kinematics.yaml") << "name: k\nmoveit_problems: {folder: " << problems().string()
                                          << ", urdf: " << arcplan::robot::ur10eUrdfPath().string()
                                          << ", kinematics: " << (dir / "suite.yaml").string()
                                          << "}\nplanners: [RRTConnect]\n";
@@ -163,7 +169,7 @@ TEST(MoveItUrType, EveryDescriptionTypePlansAMoveItProblem) {
   ASSERT_GE(types.size(), 7u);
   for (const auto& type : types) {
     const MoveItProblem problem = arcplan::collision::loadMoveItProblem(
-        dir / "floor.yaml", kProblems / "cage_ur5e" / "request0001.yaml", urType(type));
+        dir / "floor.yaml", problems() / "cage_ur5e" / "request0001.yaml", urType(type));
     arcplan::benchmarks::PlanQueryOptions options;
     options.planner = "RRTConnect";
     options.seed = 1;
@@ -225,7 +231,7 @@ TEST(MoveItUrType, ATypeTheFolderDoesNotHaveLoadsMatchesItsDhAndPlans) {
       << "world:\n  collision_objects:\n    - id: floor\n      primitives: [{type: box, "
          "dimensions: [4, 4, 0.02]}]\n      primitive_poses: [{position: [0, 0, -0.03]}]\n";
   const MoveItProblem problem = arcplan::collision::loadMoveItProblem(
-      dir / "floor.yaml", kProblems / "cage_ur5e" / "request0001.yaml", {{}, {}, {"ur20", dir, {}}});
+      dir / "floor.yaml", problems() / "cage_ur5e" / "request0001.yaml", {{}, {}, {"ur20", dir, {}}});
   EXPECT_EQ(problem.scene.robot.urType, "ur20");
   arcplan::benchmarks::PlanQueryOptions options;
   options.planner = "RRTConnect";

@@ -8,15 +8,13 @@
 
 #include "parser_targets.h"
 #include "support/command.h"
+#include "support/ur5e_moveit_problems.h"  // every shape and field the MoveIt readers take
 
 namespace {
 
 const std::filesystem::path kData = ARCPLAN_TEST_DATA_DIR;
 const std::filesystem::path kSeeds = std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / ".." / "tests" / "fuzz" / "seeds";
 const std::filesystem::path kSuites = std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / ".." / "benchmarks" / "suites";
-// Hand-written MoveIt problems using every shape and field the readers take (tests/collision/moveit_problems).
-const std::filesystem::path kMoveIt =
-    std::filesystem::path(ARCPLAN_TEST_DATA_DIR) / ".." / "tests" / "collision" / "moveit_problems";
 
 std::string rtdeLog(char separator) {
   std::string text = "timestamp";
@@ -67,12 +65,11 @@ std::vector<std::string> seedsFor(const std::string& target) {
   }
   if (target == "srdf") return {readFile(kSeeds / "robot.srdf")};
   if (target == "moveit_scene") {
-    return {readFile(kSeeds / "moveit_scene.yaml"), readFile(kMoveIt / "cage_ur5e" / "scene0001.yaml"),
-            readFile(kMoveIt / "shelf_pick_ur5e" / "scene0001.yaml")};
+    return {readFile(kSeeds / "moveit_scene.yaml"), arcplan::testing::cageScene(), arcplan::testing::shelfPickScene()};
   }
   if (target == "moveit_request") {
     return {readFile(kSeeds / "moveit_request.yaml"), readFile(kSeeds / "moveit_pose_request.yaml"),
-            readFile(kMoveIt / "shelf_pick_ur5e" / "request0001.yaml")};
+            arcplan::testing::shelfPickRequest()};
   }
   if (target == "moveit_text_scene") return {readFile(kSeeds / "moveit.scene")};
   if (target == "joint_path") return {"q0,q1,q2,q3,q4,q5\n# a comment\n0,0,0,0,0,0\n0.1,-0.2,0.3,-0.4,0.5,-0.6\n"};
