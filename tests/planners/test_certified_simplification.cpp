@@ -84,6 +84,19 @@ std::vector<std::pair<double, double>> pointsOf(const og::PathGeometric& path) {
   return points;
 }
 
+// The path around the wall given to simplifyKeepingCertified with a stand-in simplifier that turns it into
+// `result` and reports `reported`: whether the result was kept, and the path's points afterwards.
+std::pair<bool, std::vector<std::pair<double, double>>> simplifyAroundTheWallTo(
+    const std::vector<std::pair<double, double>>& result, bool reported) {
+  const auto si = spaceInformation(plane(), true);
+  og::PathGeometric path = pathThrough(si, kAroundTheWall);
+  const bool kept = simplifyKeepingCertified(*si, path, [&](og::PathGeometric& p) {
+    p = pathThrough(si, result);
+    return reported;
+  });
+  return {kept, pointsOf(path)};
+}
+
 TEST(CertifiedSimplification, JudgesEveryStateAndEveryMotion) {
   const auto si = spaceInformation(plane(), true);
   ASSERT_FALSE(entersWall(kAroundTheWall));
@@ -93,39 +106,25 @@ TEST(CertifiedSimplification, JudgesEveryStateAndEveryMotion) {
 }
 
 TEST(CertifiedSimplification, ARejectedResultGivesBackTheUnsimplifiedPath) {
-  const auto si = spaceInformation(plane(), true);
-  og::PathGeometric path = pathThrough(si, kAroundTheWall);
   // A "simplifier" that says its straight result is fine, as OMPL's does before its own check.
-  const bool kept = simplifyKeepingCertified(*si, path, [&](og::PathGeometric& p) {
-    p = pathThrough(si, {{0, 0}, {2, 0}});
-    return true;
-  });
+  const auto [kept, points] = simplifyAroundTheWallTo({{0, 0}, {2, 0}}, true);
   EXPECT_FALSE(kept);
-  EXPECT_EQ(pointsOf(path), kAroundTheWall);
+  EXPECT_EQ(points, kAroundTheWall);
 }
 
 TEST(CertifiedSimplification, ASimplifierThatReportsItsResultInvalidIsNotBelieved) {
-  const auto si = spaceInformation(plane(), true);
-  og::PathGeometric path = pathThrough(si, kAroundTheWall);
   // A valid shorter path, but the simplifier returned false: the caller cannot know which part it doubts.
-  const bool kept = simplifyKeepingCertified(*si, path, [&](og::PathGeometric& p) {
-    p = pathThrough(si, {{0, 0}, {0, 2.8}, {2, 0}});
-    return false;
-  });
+  const auto [kept, points] = simplifyAroundTheWallTo({{0, 0}, {0, 2.8}, {2, 0}}, false);
   EXPECT_FALSE(kept);
-  EXPECT_EQ(pointsOf(path), kAroundTheWall);
+  EXPECT_EQ(points, kAroundTheWall);
 }
 
 TEST(CertifiedSimplification, AnAcceptedResultIsKept) {
-  const auto si = spaceInformation(plane(), true);
-  og::PathGeometric path = pathThrough(si, kAroundTheWall);
   const std::vector<std::pair<double, double>> shorter{{0, 0}, {0.9, 2.7}, {1.1, 2.7}, {2, 0}};  // over the top
-  EXPECT_TRUE(simplifyKeepingCertified(*si, path, [&](og::PathGeometric& p) {
-    p = pathThrough(si, shorter);
-    return true;
-  }));
-  EXPECT_EQ(pointsOf(path), shorter);
   ASSERT_FALSE(entersWall(shorter));  // the premise, checked by geometry
+  const auto [kept, points] = simplifyAroundTheWallTo(shorter, true);
+  EXPECT_TRUE(kept);
+  EXPECT_EQ(points, shorter);
 }
 
 // OMPL's own simplifier on a SpaceInformation without the wall shortcuts through it (checked by geometry
