@@ -14,6 +14,15 @@
 
 namespace arcplan::testing {
 
+// The UR5e's home posture as a moveit_msgs/RobotState joint_state (2-space indent): every scene's robot state
+// and every request's start.
+inline std::string homeJointState() {
+  return "  joint_state:\n"
+         "    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, "
+         "wrist_3_joint]\n"
+         "    position: [0, -1.57, 1.57, -1.57, -1.57, 0]\n";
+}
+
 // A cage around the UR5e: floor (fixed frame "cell"), a post, a ball, a wedge (mesh), a probe held on tool0;
 // ACM matrix and default entries.
 inline std::string cageScene() {
@@ -23,10 +32,8 @@ fixed_frame_transforms:
   - child_frame_id: cell
     transform: {translation: [0, 0, -0.02], rotation: [0, 0, 0, 1]}
 robot_state:
-  joint_state:
-    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint]
-    position: [0, -1.57, 1.57, -1.57, -1.57, 0]
-  attached_collision_objects:
+)" + homeJointState() +
+         R"(  attached_collision_objects:
     - link_name: tool0
       touch_links: [wrist_3_link]
       object:
@@ -89,10 +96,8 @@ planner_id: RRTConnect
 allowed_planning_time: 5
 num_planning_attempts: 1
 start_state:
-  joint_state:
-    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint]
-    position: [0, -1.57, 1.57, -1.57, -1.57, 0]
-goal_constraints:
+)" + homeJointState() +
+         R"(goal_constraints:
   - joint_constraints:
       - {joint_name: shoulder_pan_joint, position: 1.2}
       - {joint_name: shoulder_lift_joint, position: -1.2}
@@ -107,10 +112,8 @@ goal_constraints:
 inline std::string shelfPickScene() {
   return R"(name: shelf_pick
 robot_state:
-  joint_state:
-    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint]
-    position: [0, -1.57, 1.57, -1.57, -1.57, 0]
-world:
+)" + homeJointState() +
+         R"(world:
   collision_objects:
     - id: shelf
       header: {frame_id: world}
@@ -146,10 +149,8 @@ fixed_frame_transforms:
 inline std::string shelfPickRequest() {
   return R"(group_name: manipulator
 start_state:
-  joint_state:
-    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint]
-    position: [0, -1.57, 1.57, -1.57, -1.57, 0]
-goal_constraints:
+)" + homeJointState() +
+         R"(goal_constraints:
   - position_constraints:
       - link_name: tool0
         header: {frame_id: base_link}
