@@ -14,9 +14,12 @@
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "support/command.h"
 #include "support/joint_states.h"
+#include "support/segment_distance.h"
 
 namespace arcplan::benchmarks {
 namespace {
+
+using arcplan::testing::distanceToSegment;
 
 // A small mix of every family keeps the test fast; the full suite uses the same code paths.
 GeneratorSettings smallSettings(std::uint64_t seed) {
@@ -131,11 +134,6 @@ TEST(GeneratedProblems, StartAndGoalAreValidReachableToolDownPoses) {
     // The straight line between them is walked on one IK branch.
     EXPECT_EQ(ik.branchOf(*query.start.joints), ik.branchOf(*query.goal.joints));
   }
-}
-
-double distanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-  return (a + t * (b - a) - p).norm();
 }
 
 TEST(GeneratedProblems, LineObstaclesSitOnOrNearTheStraightTcpLine) {

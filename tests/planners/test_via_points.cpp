@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "support/obstacles.h"
+#include "support/segment_distance.h"
 #include "via_points.h"
 
 namespace {
@@ -11,13 +12,9 @@ namespace {
 using arcplan::collision::Obstacle;
 using namespace arcplan::planners;
 using arcplan::testing::box;
+using arcplan::testing::distanceToSegment;
 using arcplan::testing::sphere;
 using Eigen::Vector3d;
-
-double distanceToSegment(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
-  const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-  return (a + t * (b - a) - p).norm();
-}
 
 TEST(ViaPoints, HullPointsContainTheBody) {
   Obstacle rotated = box("box", Vector3d(0.5, 0.1, 0.3), Vector3d(0.2, 0.1, 0.06));

@@ -1,6 +1,7 @@
 // Densification of joint paths: bounded joint and TCP steps, original waypoints kept, new waypoints
 // on the joint-space segments of sparse paths and on a smooth curve through dense ones, TCP data
 // equal to an independent forward kinematics call.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -10,9 +11,12 @@
 #include "arcplan/robot/robot_model.h"
 #include "arcplan/trajectory/path_densification.h"
 #include "straight_line.h"
+#include "support/segment_distance.h"
 
 namespace arcplan::trajectory {
 namespace {
+
+using arcplan::testing::distanceToSegment;
 
 // A sparse path like an RRTConnect result: 4 waypoints, joint steps up to ~1 rad.
 JointPath sparsePath() {
@@ -22,13 +26,6 @@ JointPath sparsePath() {
   m2 << 0.1, -1.3, 1.6, -2.2, -1.9, 0.9;
   b << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399;
   return {a, m1, m2, b};
-}
-
-// Distance from q to the joint-space segment [a, b].
-double distanceToSegment(const robot::Vector6& q, const robot::Vector6& a, const robot::Vector6& b) {
-  const robot::Vector6 ab = b - a;
-  const double s = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (a + s * ab - q).norm();
 }
 
 TEST(PathDensification, StepsAreBoundedAndWaypointsKept) {
