@@ -94,6 +94,40 @@ Eigen::VectorXd relativeReach(const Implementation& impl, int a, int b) {
   return reach;
 }
 
+// A link's pose in the frame of its rigid root, the nearest link at or above it that its own joint turns
+// (or the chain base): links with the same root never move against each other.
+struct RigidFrame {
+  int root;
+  Eigen::Isometry3d pose;
+};
+
+RigidFrame rigidFrame(const robot::RobotModel& robot, int link) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  while (robot.links()[link].joint < 0 && robot.links()[link].parent >= 0) {
+    pose = robot.links()[link].originInParent * pose;
+    link = robot.links()[link].parent;
+  }
+  return {link, pose};
+}
+
+// Turning `joint` by δ turns everything beyond it about its axis; seen from a body the joint does not
+// move, whose frame holds that axis fixed (the body rigid with the joint's parent link), it is the same
+// relative motion as turning that body by −δ about the axis while the rest stays. The distance between a
+// part beyond the joint and a part of that body then changes by at most the body part's farthest point
+// from the axis times |δ|, whatever the other joints are: a base and the upper arm's end cap next to it
+// change their distance at the base's radius per radian of the shoulder pan, not the cap's. -1 when the
+// axis is not fixed in the body's frame.
+double fixedSideReach(const robot::RobotModel& robot, int bodyLink, int joint, const std::vector<BoundingBall>& balls) {
+  const int mover = robot.joints()[joint].link;
+  const int parent = robot.links()[mover].parent;
+  if (parent < 0) return -1.0;
+  const RigidFrame body = rigidFrame(robot, bodyLink), axisFrame = rigidFrame(robot, parent);
+  if (body.root != axisFrame.root) return -1.0;
+  // The mover's frame before its rotation (its axis passes through its origin), in the body's frame.
+  const Eigen::Isometry3d moverInBody = body.pose.inverse() * axisFrame.pose * robot.links()[mover].originInParent;
+  return farthestFromAxis(balls, moverInBody.inverse(), robot.links()[mover].axis);
+}
+
 void checkBody(const CollisionModel& model, int body) {
   if (body < 0 || body >= static_cast<int>(model.linkNames().size())) {
     throw Error("motion bound: link index " + std::to_string(body) + " is not one of the " +
@@ -146,8 +180,16 @@ void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl) {
     for (int joint = 0; joint < robot.dof(); ++joint) {
       const bool first = impl.movedBy(group->firstBody, joint);
       const bool second = group->self && impl.movedBy(group->secondBody, joint);
-      if (first != second)
-        impl.partPairReach(static_cast<Eigen::Index>(p), joint) = first ? partReach(i, joint) : partReach(j, joint);
+      if (first == second) continue;
+      double reach = first ? partReach(i, joint) : partReach(j, joint);
+      if (group->self) {
+        // The part the joint does not move, where the joint's axis is fixed in its frame (fixedSideReach).
+        const int still = first ? j : i;
+        const double other =
+            fixedSideReach(robot, impl.linkCapsuleLink[impl.robotParts[still].body], joint, partBalls[still]);
+        if (other >= 0.0) reach = std::min(reach, other);
+      }
+      impl.partPairReach(static_cast<Eigen::Index>(p), joint) = reach;
     }
   }
   for (auto* groups : {&impl.obstacleGroups, &impl.selfGroups}) {
