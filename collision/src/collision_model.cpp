@@ -185,16 +185,16 @@ bool detail::groupCollides(const CollisionModel& model, Workspace& data, const I
 }
 
 // Appends to data.openPairs the part pairs of group k (impl.groups) that its capsules (the link's,
-// the parts') do not prove at least `clearance` apart; false if the group is known closer (rigid).
-bool addOpenPairs(const CollisionModel& model, Workspace& data, int k, double clearance) {
+// the parts') do not prove at least `required` apart; false if the group is known closer (rigid).
+bool addOpenPairs(const CollisionModel& model, Workspace& data, int k, double required) {
   const Implementation& impl = detail::implementationOf(model);
   const Implementation::PairGroup& group = *impl.groups[k];
-  if (group.rigid) return group.rigidDistance >= clearance;
-  if (group.floor >= clearance || detail::linkGap(impl, data, group) >= clearance) return true;
+  if (group.rigid) return group.rigidDistance >= required;
+  if (group.floor >= required || detail::linkGap(impl, data, group) >= required) return true;
   for (std::size_t p = 0; p < group.parts.size(); ++p) {
     const auto [i, j] = group.parts[p];
     const double bound = boundGap(impl, data, i, j, group.self);  // also places both parts
-    if (bound >= clearance) continue;
+    if (bound >= required) continue;
     data.openPairs.emplace_back(impl.firstPartPair[k] + static_cast<int>(p), bound <= 0.0);
   }
   return true;
@@ -307,41 +307,51 @@ bool hasClearance(const CollisionModel& model, CollisionData& workspace, const r
   if (!(clearance > 0.0) || !std::isfinite(clearance)) {
     throw Error("clearance query: clearance must be a finite distance > 0 m, got " + std::to_string(clearance));
   }
+  // Every pair keeps what the clearance asks of its kind (requiredDistance): self pairs at most kSelfClearance.
+  return detail::keepsDistances(model, workspace, q, clearance, requiredDistance(true, clearance));
+}
+
+bool detail::keepsDistances(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q,
+                            double obstacleRequired, double selfRequired) {
   Workspace& data = detail::workspaceOf(workspace);
   const Implementation& impl = detail::implementationOf(model);
+  const auto requiredOf = [&](const Implementation::PairGroup& group) {
+    return group.self ? selfRequired : obstacleRequired;
+  };
   // The spheres' gaps per pair (a body against its obstacles, then the self pairs) settle most pairs.
   const detail::SpherePrefilter* spheres = impl.prefilter && impl.prefilter->usable() ? impl.prefilter.get() : nullptr;
+  const int bodies = spheres != nullptr ? spheres->tables().bodyCount : 0;
   if (spheres != nullptr) {
     if (q.size() != model.robot().dof()) updateRobot(model, data, q);  // throws the usual message
     for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) spheres->loadLane(*data.spheres, lane, q.data());
     // A pair whose coarse spheres clear it by that much needs no fine spheres (sphere_tables.h).
-    std::fill(data.spheres->enough.begin(), data.spheres->enough.end(),
-              static_cast<float>(clearance + spheres->margin()));
+    auto& enough = data.spheres->enough;
+    std::fill(enough.begin(), enough.begin() + bodies, static_cast<float>(obstacleRequired + spheres->margin()));
+    std::fill(enough.begin() + bodies, enough.end(), static_cast<float>(selfRequired + spheres->margin()));
     // A pair whose floor answers needs no spheres beyond the coarse ones.
-    const int bodies = spheres->tables().bodyCount;
     for (int p = 0; p < spheres->tables().selfPairCount; ++p) {
-      if (impl.selfGroups[spheres->selfGroupOf(p)].floor >= clearance) data.spheres->enough[bodies + p] = -1e30f;
+      if (impl.selfGroups[spheres->selfGroupOf(p)].floor >= selfRequired) enough[bodies + p] = -1e30f;
     }
     spheres->gaps(*data.spheres);
   }
-  const auto settled = [&](int pair) {
+  const auto settled = [&](int pair, double required) {
     return spheres != nullptr &&
            static_cast<double>(data.spheres->gaps[static_cast<std::size_t>(pair) * detail::prefilter::kLanes]) >=
-               clearance;
+               required;
   };
   data.openPairs.clear();
   bool placed = false;
   const int obstacleGroups = static_cast<int>(impl.obstacleGroups.size());
-  const int bodies = spheres != nullptr ? spheres->tables().bodyCount : 0;
   for (int k = 0; k < static_cast<int>(impl.groups.size()); ++k) {
-    if (impl.groups[k]->floor >= clearance) continue;
-    if (k < obstacleGroups ? settled(impl.groups[k]->firstBody)
+    const double required = requiredOf(*impl.groups[k]);
+    if (impl.groups[k]->floor >= required) continue;
+    if (k < obstacleGroups ? settled(impl.groups[k]->firstBody, required)
                            : spheres != nullptr && spheres->kernelPairOf(k - obstacleGroups) >= 0 &&
-                                 settled(bodies + spheres->kernelPairOf(k - obstacleGroups)))
+                                 settled(bodies + spheres->kernelPairOf(k - obstacleGroups), required))
       continue;
     if (!placed) updateRobot(model, data, q);
     placed = true;
-    if (!addOpenPairs(model, data, k, clearance)) return false;
+    if (!addOpenPairs(model, data, k, required)) return false;
   }
   // A pair in contact answers at once (boolean queries, hulls first, cost a fraction of a distance);
   // else the hulls' distances, and for the pairs they leave open the distances distance() measures.
@@ -357,10 +367,17 @@ bool hasClearance(const CollisionModel& model, CollisionData& workspace, const r
   }
   for (const auto& open : data.openPairs) {
     const auto [a, poseA, b, poseB] = parts(open);
-    if (detail::hullGap(a, poseA, b, poseB, model.options(), clearance) >= clearance) continue;
-    if (partsDistance(a, poseA, b, poseB, open.second, model.options()) < clearance) return false;
+    const double required = requiredOf(*impl.partPairs[open.first].group);
+    if (detail::hullGap(a, poseA, b, poseB, model.options(), required) >= required) continue;
+    if (partsDistance(a, poseA, b, poseB, open.second, model.options()) < required) return false;
   }
   return true;
+}
+
+double clearanceOf(const DistanceReport& report) {
+  // A self pair at or beyond kSelfClearance meets every clearance (requiredDistance); one closer limits it.
+  return std::min(report.obstacleDistance,
+                  report.selfDistance < kSelfClearance ? report.selfDistance : std::numeric_limits<double>::infinity());
 }
 
 }  // namespace arcplan::collision

@@ -171,17 +171,28 @@ EndpointClearance::EndpointClearance(const CollisionModel& model, double clearan
                                      const std::vector<robot::JointVector>& endpoints)
     : EndpointClearance(clearance, motionClearance) {
   const int dof = model.robot().dof();
-  // A certified motion rejects a pair measured closer than c_m + its acceptance margin, so an endpoint
-  // closer than that could never be reached or left at c_m, even one a little above c_m.
-  const double reachable = motionClearance_ + acceptanceMargin(motionClearance_);
+  // A certified motion rejects a pair measured closer than its own m + acceptance margin (m = c_m from
+  // obstacles, requiredDistance(true, c_m) between the robot's own bodies), so an endpoint with a pair
+  // closer than that could never be reached or left at c_m, even one a little above its m.
+  const auto reachable = [&](bool self) {
+    const double m = requiredDistance(self, motionClearance_);
+    return m + acceptanceMargin(m);
+  };
   CollisionData data(model);
   for (const robot::JointVector& endpoint : endpoints) {
     if (endpoint.size() != dof) {
       throw Error("endpoint clearance: an endpoint has " + std::to_string(endpoint.size()) + " joints, the robot " +
                   std::to_string(dof));
     }
-    const double e = distance(model, data, endpoint).minimum();
-    if (!(e > 0.0) || !(e < reachable)) continue;  // in contact (stays invalid), or clear enough
+    const DistanceReport measured = distance(model, data, endpoint);
+    // e: the closest pair a certified motion at c_m cannot leave. That is clearanceOf(measured) (the clearance
+    // the endpoint meets), or a self pair between kSelfClearance and its reachable distance: one that meets
+    // the rule but no motion at c_m may start from (it is then the smaller of the two).
+    const bool selfTooClose = measured.selfDistance < reachable(true);
+    const double e =
+        std::min(clearanceOf(measured), selfTooClose ? measured.selfDistance : std::numeric_limits<double>::infinity());
+    if (!(e > 0.0) || !(selfTooClose || measured.obstacleDistance < reachable(false)))
+      continue;  // in contact (stays invalid), or clear enough
     const double relaxed = kApproachZoneFraction * e;
     zones_.push_back({endpoint, e, std::min(clearance_, relaxed),
                       std::max(detail::kSmallestMinimumClearance, std::min(motionClearance_, relaxed))});

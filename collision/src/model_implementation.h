@@ -56,6 +56,8 @@ struct ModelImplementation {
     // that depends on that joint only: its smallest value over the joint's range is measured when the
     // model is built (measurePairFloors), and no query measures the pair while its floor answers.
     double floor = 0.0;
+    // What a clearance c asks of this pair (requiredDistance, collision_model.h).
+    double required(double clearance) const { return requiredDistance(self, clearance); }
   };
   std::vector<PairGroup> obstacleGroups, selfGroups;
   std::vector<const PairGroup*> groups;  // obstacle groups, then self groups
@@ -166,6 +168,11 @@ inline const Eigen::Isometry3d& secondPose(const Implementation& impl, const Wor
                                            const Implementation::PairGroup& group, int j) {
   return group.self ? data.partPoses[j] : impl.obstacleParts[j].offset;
 }
+
+// Whether at q every robot–obstacle pair is at least obstacleRequired and every self pair at least selfRequired
+// apart (both > 0): hasClearance with the distances given per kind (collision_model.cpp).
+bool keepsDistances(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q,
+                    double obstacleRequired, double selfRequired);
 
 // Whether the group's bodies touch in the current configuration (updateRobot) (collision_model.cpp).
 bool groupCollides(const CollisionModel& model, Workspace& data, const ModelImplementation::PairGroup& group);

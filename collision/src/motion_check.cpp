@@ -33,8 +33,9 @@ constexpr int kProbes = 3;
 constexpr double kProbedLength = 1.0;
 // What PathCertifier asks of a pair at a new anchor beyond minimumClearance [m].
 constexpr double kAnchorBudget = 0.05;
-// Certificates keep minimumClearance m itself: a pair g apart stays at least m apart for (g − m)/rate;
-// a pair measured closer than m + acceptanceMargin(m) rejects the motion (motion_check.h).
+// Certificates keep minimumClearance m itself, each pair its own m_k = requiredDistance(self, m) (a self pair at
+// most kSelfClearance, collision_model.h): a pair g apart stays at least m_k apart for (g − m_k)/rate; a pair
+// measured closer than m_k + acceptanceMargin(m_k) rejects the motion (motion_check.h).
 using detail::checkJoints;
 using detail::kSmallestMinimumClearance;
 
@@ -106,7 +107,7 @@ struct ReachRequest {
   double groupRate;             // the group's relativeReach · step
   const Eigen::VectorXd& step;  // |qb − qa|
   double wanted;                // the reach that would certify the rest of the motion
-  double minimumClearance;
+  double minimumClearance;      // the motion's m (each pair keeps requiredDistance of it)
 };
 
 struct ReachMeasurement {
@@ -125,7 +126,7 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
   const auto rateOf = [&](std::size_t p) {
     return impl.partPairReach.row(impl.firstPartPair[k] + static_cast<Eigen::Index>(p)).dot(request.step);
   };
-  const double minimumClearance = request.minimumClearance;
+  const double minimumClearance = group.required(request.minimumClearance);  // this pair's own m
   const double enough = minimumClearance + acceptanceMargin(minimumClearance);
   if (group.rigid) return {kInfinity, group.rigidDistance < enough};
   if (group.floor >= enough) return {kInfinity, false};  // it keeps `enough` everywhere
@@ -188,11 +189,11 @@ bool probesClear(const CollisionModel& model, CollisionData& data, const robot::
 }
 
 // Conservative advancement from both ends, or only from the start when the last valid state is
-// wanted. Pair k is proven to keep minimumClearance m before motionPairs[k].certifiedFromStart and
-// after certifiedFromEnd (open intervals: a pair at distance g at s keeps m on (s − (g − m)/rate,
-// s + (g − m)/rate)); it is done when the two overlap. The front on each side is the smallest
-// certificate of the pairs not done, and the pairs whose certificate ends there (or soon after)
-// are measured there.
+// wanted. Pair k is proven to keep its own m_k (requiredDistance of minimumClearance) before
+// motionPairs[k].certifiedFromStart and after certifiedFromEnd (open intervals: a pair at distance g at s keeps
+// m_k on (s − (g − m_k)/rate, s + (g − m_k)/rate)); it is done when the two overlap. The front on each side is the
+// smallest certificate of the pairs not done, and the pairs whose certificate ends there (or soon after) are measured
+// there.
 bool certifiedMotionFree(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& qa,
                          const robot::JointRef& qb, double* lastValidFraction, double minimumClearance) {
   const Implementation& impl = detail::implementationOf(model);
@@ -318,6 +319,19 @@ bool isMotionCollisionFree(const CollisionModel& model, CollisionData& data, con
   return certifiedMotionFree(model, data, qa, qb, lastValidFraction, options.minimumClearance);
 }
 
+bool keepsAcceptanceMargin(const CollisionModel& model, CollisionData& data, const robot::JointRef& q,
+                           double minimumClearance) {
+  if (!(minimumClearance > 0.0) || !std::isfinite(minimumClearance)) {
+    throw Error("acceptance margin query: minimumClearance must be a finite distance > 0 m, got " +
+                std::to_string(minimumClearance));
+  }
+  const auto accepted = [&](bool self) {
+    const double m = requiredDistance(self, minimumClearance);
+    return m + acceptanceMargin(m);
+  };
+  return detail::keepsDistances(model, data, q, accepted(false), accepted(true));
+}
+
 PathCertifier::PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance)
     : model_(model), data_(data), minimumClearance_(minimumClearance) {
   validate(MotionCheckOptions{MotionCheck::Certified, 0.01, minimumClearance});
@@ -331,11 +345,12 @@ bool PathCertifier::anchorAll(const robot::JointRef& q) {
   detail::updateRobot(model_, detail::workspaceOf(data_), q);
   ++measurements_;
   for (std::size_t k = 0; k < budget_.size(); ++k) {
+    const double m = impl.groups[k]->required(minimumClearance_);  // this pair's own m
     // The capsule bounds are taken as soon as they leave a few centimetres to spend: enough for several waypoints.
-    const PairMeasurement measured = measurePair(model_, detail::workspaceOf(data_), *impl.groups[k],
-                                                 kAnchorBudget + minimumClearance_, minimumClearance_);
+    const PairMeasurement measured =
+        measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], kAnchorBudget + m, m);
     if (measured.tooClose) return false;
-    budget_[k] = measured.gap - minimumClearance_;  // what the pair may close in before it is m apart
+    budget_[k] = measured.gap - m;  // what the pair may close in before it is m apart
     used_[k] = 0.0;
   }
   last_ = q;
@@ -362,10 +377,10 @@ bool PathCertifier::extend(const robot::JointRef& q) {
       ++measurements_;
       remeasured = true;
     }
-    const PairMeasurement measured = measurePair(model_, detail::workspaceOf(data_), *impl.groups[k],
-                                                 bound_[k] + minimumClearance_, minimumClearance_);
+    const double m = impl.groups[k]->required(minimumClearance_);
+    const PairMeasurement measured = measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], bound_[k] + m, m);
     if (measured.tooClose) return false;
-    budget_[k] = measured.gap - minimumClearance_;
+    budget_[k] = measured.gap - m;
     used_[k] = 0.0;
     if (bound_[k] >= budget_[k]) {
       // Not even this one motion: advance along it conservatively, then start afresh at its end.

@@ -57,7 +57,7 @@ bool CollisionStateValidityChecker::isValid(const ob::State* state, double& clea
 
 double CollisionStateValidityChecker::clearance(const ob::State* state) const {
   const auto lease = pool_.lease();
-  return distance(model(), *lease, jointsOf(state, model().robot().dof())).minimum();
+  return clearanceOf(distance(model(), *lease, jointsOf(state, model().robot().dof())));
 }
 
 JointMotionValidator::JointMotionValidator(ob::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,

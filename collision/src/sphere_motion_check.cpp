@@ -2,7 +2,8 @@
 // certificate of motion_check.cpp with states evaluated 8 at a time, coarse to fine.
 //
 // On the motion q(s) = qa + s (qb − qa) a pair whose geometry is at least g apart at s_i stays more
-// than `kept` apart for |s − s_i| <= r_i = (g − kept) / rate, kept = keptClearance(minimumClearance),
+// than `kept` apart for |s − s_i| <= r_i = (g − kept) / rate, kept = keptClearance(the pair's own m:
+// requiredDistance of minimumClearance, collision_model.h),
 // rate being the motion bound of motion_check.h (how fast the pair's distance can shrink per unit of
 // s). The spheres give g (their gaps, less the float margin) for 8 states per kernel call. An interval
 // between two samples is covered for a pair when r_i + r_j >= s_j − s_i; the motion is free when every
@@ -45,8 +46,8 @@ struct Rake {
   SphereWorkspace& work;
   const robot::JointRef& qa;
   const robot::JointRef& qb;
-  double kept;  // keptClearance(minimumClearance)
-  int pairs;
+  double keptObstacle, keptSelf;  // keptClearance of the motion's m for the bodies' obstacle pairs, the self pairs
+  int bodies, pairs;
   bool blocked = false;  // a free state too close for the spheres: they cannot certify the motion
   int exactChecks = 0;
 
@@ -61,7 +62,7 @@ struct Rake {
         prefilter.loadLane(work, lane, data.motionJoints.data());
       }
       for (int p = 0; p < pairs; ++p)
-        work.enough[p] = work.floored[p] ? -kFar : static_cast<float>(kept + work.rates[p] * h + prefilter.margin());
+        work.enough[p] = work.floored[p] ? -kFar : static_cast<float>(kept(p) + work.rates[p] * h + prefilter.margin());
       prefilter.gaps(work);
       // Of the states the spheres do not clear, the closest (the likeliest collision) goes to FCL.
       int closest = -1;
@@ -74,7 +75,7 @@ struct Rake {
             work.reach[sample * pairs + p] = kInfinity;
             continue;
           }
-          const double room = static_cast<double>(work.gaps[p * kLanes + lane]) - kept;
+          const double room = static_cast<double>(work.gaps[p * kLanes + lane]) - kept(p);
           smallest = std::min(smallest, room);
           work.reach[sample * pairs + p] = work.rates[p] > 0.0 ? room / work.rates[p] : kInfinity;
         }
@@ -93,6 +94,8 @@ struct Rake {
     }
     return SphereMotion::Free;
   }
+
+  double kept(int p) const { return p < bodies ? keptObstacle : keptSelf; }
 
   bool covered(int i, int j) const {
     const double length = work.samples[j] - work.samples[i];
@@ -132,18 +135,19 @@ SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const ro
   const Eigen::VectorXd step = (qb - qa).cwiseAbs();
   work.rates.resize(pairs);
   work.floored.assign(pairs, 0);
+  const double keptSelf = keptClearance(requiredDistance(true, minimumClearance));
   for (int b = 0; b < bodies; ++b) work.rates[b] = impl.jointReach.row(b).dot(step);
   for (int p = bodies; p < pairs; ++p) {
     const auto& group = impl.selfGroups[prefilter.selfGroupOf(p - bodies)];
     work.rates[p] = group.relativeReach.dot(step);
-    work.floored[p] = group.floor >= keptClearance(minimumClearance);
+    work.floored[p] = group.floor >= keptSelf;
   }
   // The rigid pairs left out of the tables keep their one distance all along the motion.
   for (const auto& group : impl.selfGroups) {
-    if (group.rigid && group.rigidDistance < keptClearance(minimumClearance)) return SphereMotion::Unknown;
+    if (group.rigid && group.rigidDistance < keptSelf) return SphereMotion::Unknown;
   }
 
-  Rake rake{model, prefilter, data, work, qa, qb, keptClearance(minimumClearance), pairs};
+  Rake rake{model, prefilter, data, work, qa, qb, keptClearance(minimumClearance), keptSelf, bodies, pairs};
   work.samples.clear();
   work.reach.clear();
   work.pending.clear();

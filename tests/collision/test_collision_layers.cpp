@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <tuple>
 
+#include <fcl/narrowphase/distance.h>
 #include <gtest/gtest.h>
 
 #include "arcplan/collision/collision_model.h"
@@ -15,6 +17,7 @@
 #include "arcplan/collision/moveit_scene.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
+#include "arcplan/robot/kinematics.h"
 #include "convex_hull.h"           // collision/src
 #include "model_implementation.h"  // collision/src
 #include "support/command.h"
@@ -132,12 +135,47 @@ TEST(CollisionLayers, RigidPairsKeepTheirDistance) {
     const Eigen::VectorXd q = arcplan::testing::randomJointState(model->robot(), random);
     const DistanceReport report = distance(*model, data, q);
     EXPECT_LE(report.selfDistance, expected + 1e-9);
-    EXPECT_FALSE(hasClearance(*model, data, q, expected + 0.001));  // the held balls are closer than that
+    // Asked of self pairs too (the per-kind query under hasClearance), the held balls are closer than that; a
+    // clearance asks at most 1 mm of them (collision_model.h), which they keep.
+    EXPECT_FALSE(detail::keepsDistances(*model, data, q, expected + 0.001, expected + 0.001));
+    EXPECT_EQ(hasClearance(*model, data, q, expected + 0.001),
+              report.obstacleDistance >= expected + 0.001 && report.selfDistance >= 0.001);
   }
 }
 
-// The layered model's answers against FCL alone: isCollisionFree, hasClearance against
-// distance().minimum() >= c, and distance() itself, on seeded random states.
+// A rigid pair's distance is the smallest of its part pairs' (measureRigidPairs skips the part pairs whose
+// bounds cannot lower it): against FCL's distance of every part pair, measured here on the meshes and
+// shapes at the home posture. MBM's force sensor against the gripper: several groups of many part pairs.
+TEST(CollisionLayers, RigidPairDistanceIsTheNearestOfAllItsPartPairs) {
+  if (!fs::exists(mbmFolder() / "problems")) GTEST_SKIP() << "no MBM data under " << mbmFolder();
+  const auto model = makeCollisionModel(mbmScenes(1).front());
+  const auto& impl = detail::implementationOf(*model);
+  arcplan::robot::KinematicsData kinematics(model->robot());
+  arcplan::robot::forwardKinematics(model->robot(), Eigen::VectorXd::Zero(model->robot().dof()), kinematics);
+  const auto pose = [&](int i) { return kinematics.linkPoses[impl.robotPartLink[i]] * impl.robotParts[i].offset; };
+  const fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-9);
+  int rigid = 0, partPairs = 0;
+  for (const auto& group : impl.selfGroups) {
+    if (!group.rigid) continue;
+    ++rigid;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& [i, j] : group.parts) {
+      fcl::DistanceResultd result;
+      nearest = std::min(
+          nearest, std::max(0.0, fcl::distance(impl.robotParts[i].distanceGeometry.get(), pose(i),
+                                               impl.robotParts[j].distanceGeometry.get(), pose(j), request, result)));
+      ++partPairs;
+    }
+    EXPECT_NEAR(group.rigidDistance, nearest, 2e-6)
+        << model->linkNames()[group.firstBody] << "–" << model->linkNames()[group.secondBody];
+  }
+  EXPECT_GE(rigid, 5);
+  EXPECT_GT(partPairs, 10 * rigid);  // groups of many part pairs, most of them skipped by their bounds
+}
+
+// The layered model's answers against FCL alone: isCollisionFree, hasClearance against the rule on FCL's
+// distances (obstacles at least c, self pairs at least min(c, 1 mm)), the per-kind query under it with c for
+// both kinds against distance().minimum() >= c, and distance() itself, on seeded random states.
 TEST(CollisionLayers, AnswersAreThoseOfFclOnTheMeshes) {
   for (const Scene& scene : testScenes()) {
     const auto layered = makeCollisionModel(scene), exact = makeCollisionModel(scene, exactOnly());
@@ -150,10 +188,14 @@ TEST(CollisionLayers, AnswersAreThoseOfFclOnTheMeshes) {
       const bool expectedFree = isCollisionFree(*exact, exactData, q);
       ASSERT_EQ(isCollisionFree(*layered, layeredData, q), expectedFree) << scene.name << " state " << k;
       free += expectedFree;
-      const double expectedDistance = distance(*exact, exactData, q).minimum();
+      const DistanceReport expectedReport = distance(*exact, exactData, q);
+      const double expectedDistance = expectedReport.minimum();
       ASSERT_NEAR(distance(*layered, layeredData, q).minimum(), expectedDistance, 1e-9) << scene.name;
       for (const double c : {0.001, 0.01, 0.05}) {
-        ASSERT_EQ(hasClearance(*layered, layeredData, q, c), expectedDistance >= c)
+        const bool rule = expectedReport.obstacleDistance >= c && expectedReport.selfDistance >= std::min(c, 0.001);
+        ASSERT_EQ(hasClearance(*layered, layeredData, q, c), rule)
+            << scene.name << " state " << k << " clearance " << c << " distance " << expectedDistance;
+        ASSERT_EQ(detail::keepsDistances(*layered, layeredData, q, c, c), expectedDistance >= c)
             << scene.name << " state " << k << " clearance " << c << " distance " << expectedDistance;
       }
       clear += expectedDistance >= 0.01;

@@ -65,7 +65,10 @@ TEST(OmplValidity, CheckerAgreesWithTheCollisionModel) {
   const auto checker = si->getStateValidityChecker();
   double clearance = -1.0;
   EXPECT_TRUE(checker->isValid(stateOf(si, kSolutionA).get(), clearance));
-  EXPECT_DOUBLE_EQ(clearance, distance(*model, data, kSolutionA).minimum());
+  // The clearance the state meets: its obstacle distance, as no self pair is closer than 1 mm (collision_model.h).
+  const DistanceReport atA = distance(*model, data, kSolutionA);
+  ASSERT_GE(atA.selfDistance, 0.001);
+  EXPECT_DOUBLE_EQ(clearance, atA.obstacleDistance);
   EXPECT_DOUBLE_EQ(checker->clearance(stateOf(si, folded).get()), 0.0);
 }
 
@@ -105,8 +108,9 @@ TEST(OmplValidity, MotionValidatorCatchesAnObstacleBetweenValidEndpoints) {
 }
 
 TEST(OmplValidity, ClearanceMakesStatesAndMotionsKeepTheirDistance) {
-  // A ball 0.17 m beside tool0 at A (see above); the distance query measures the state's clearance d,
-  // and a required clearance just below / above d accepts / rejects the state.
+  // A ball 0.17 m beside tool0 at A (see above); the distance query measures the state's distance d from the
+  // ball, and a required clearance just below / above d accepts / rejects the state (a clearance asks it of the
+  // obstacles; the arm's own pairs keep at most 1 mm, and here stay farther apart than that).
   auto scene = loadScene(arcplan::dataDirectory() / "scenes" / "thesis_free.yaml");
   Obstacle ball;
   ball.name = "ball";
@@ -117,7 +121,7 @@ TEST(OmplValidity, ClearanceMakesStatesAndMotionsKeepTheirDistance) {
   scene.obstacles.push_back(ball);
   const auto model = makeCollisionModel(scene);
   CollisionData data(*model);
-  const double d = distance(*model, data, kSolutionA).minimum();
+  const double d = distance(*model, data, kSolutionA).obstacleDistance;
   ASSERT_GT(d, 0.05);
   const auto lenient = makeSpaceInformation(model, {}, d - 0.001);
   const auto strict = makeSpaceInformation(model, {}, d + 0.001);
@@ -129,7 +133,9 @@ TEST(OmplValidity, ClearanceMakesStatesAndMotionsKeepTheirDistance) {
   closer[0] += 0.15;
   double closest = d;
   for (int k = 0; k <= 400; ++k) {
-    closest = std::min(closest, distance(*model, data, kSolutionA + (closer - kSolutionA) * (k / 400.0)).minimum());
+    const DistanceReport report = distance(*model, data, kSolutionA + (closer - kSolutionA) * (k / 400.0));
+    ASSERT_GE(report.selfDistance, 0.002);  // the arm's own pairs never decide here
+    closest = std::min(closest, report.obstacleDistance);
   }
   ASSERT_LT(closest, d - 0.02);
   const auto loose = makeSpaceInformation(model, {}, closest - 0.005);

@@ -142,8 +142,27 @@ struct DistanceReport {
   NamePair obstaclePair;                                              // (link, obstacle)
   double selfDistance = std::numeric_limits<double>::infinity();      // robot–robot, non-allowed pairs [m]
   NamePair selfPair;                                                  // (link, link)
+  // The closest pair of any kind; what a clearance asks of a state is clearanceOf below, not this.
   double minimum() const { return std::min(obstacleDistance, selfDistance); }
 };
+
+// What a clearance c asks of each pair (docs/collision.md, "Clearance"): c between the robot (links and
+// attached bodies) and the scene's obstacles; between two of the robot's own bodies ("self pairs") only
+// min(c, kSelfClearance). As MoveIt's padding, a clearance keeps the robot off the world: its own links may
+// come closer. MBM's UR5 has self pairs never more than 1.76 cm (base_link–upper_arm_link) and 1.55 cm
+// (forearm_link–wrist_2_link) apart and under 1 cm in 19 % / 15 % of random configurations, so a 1 cm
+// clearance between them took a third of the joint space. kSelfClearance is the certified motion check's
+// default minimumClearance (motion_check.h): for c <= 1 mm nothing changes. Every query that keeps a
+// clearance (hasClearance, the certified motion checks, PathCertifier, approach zones, the benchmarks' judge)
+// asks requiredDistance per pair; this is the one place that says what it is.
+inline constexpr double kSelfClearance = 0.001;  // m
+inline double requiredDistance(bool selfPair, double clearance) {
+  return selfPair ? std::min(clearance, kSelfClearance) : clearance;
+}
+// The largest clearance the measured state meets under that rule: a state meets c exactly when
+// c <= clearanceOf(report) (obstacleDistance, or selfDistance where that is below kSelfClearance). 0 when
+// any pair touches, +infinity when nothing is measured.
+double clearanceOf(const DistanceReport& report);
 
 // Fast path: stops at the first colliding pair. q has robot().dof() entries.
 bool isCollisionFree(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
@@ -152,9 +171,10 @@ CollisionReport collide(const CollisionModel& model, CollisionData& data, const 
 // Minimum distances (pairs whose bounding capsules or pair floor are already farther than the best are
 // skipped).
 DistanceReport distance(const CollisionModel& model, CollisionData& data, const robot::JointRef& q);
-// distance(model, data, q).minimum() >= clearance, answered with the cheapest bounds that decide it
-// (spheres, capsules, hulls; exact distances only for the pairs they leave open): what a planner
-// keeping a clearance asks of every state. Throws arcplan::Error unless clearance > 0 is finite.
+// clearanceOf(distance(model, data, q)) >= clearance (every robot–obstacle pair at least `clearance` apart,
+// every self pair at least requiredDistance(true, clearance)), answered with the cheapest bounds that decide
+// it (spheres, capsules, hulls; exact distances only for the pairs they leave open): what a planner keeping a
+// clearance asks of every state. Throws arcplan::Error unless clearance > 0 is finite.
 bool hasClearance(const CollisionModel& model, CollisionData& data, const robot::JointRef& q, double clearance);
 
 }  // namespace arcplan::collision

@@ -5,19 +5,21 @@
 // benchmarks' clearance judgement too.
 //
 // A problem asks for clearance c (a suite's `clearance`); certified motions for c_m = max(c, the
-// motion check's minimumClearance). An endpoint (start or goal) whose own exact clearance e is above
-// 0 but below what a certified motion can end at (c_m plus the motion check's acceptance margin) gets
-// an approach zone: the states q in which no point of the robot is farther than kApproachZoneLength
-// from where it is at the endpoint. That displacement is measured on the robot's geometry moved by
-// forward kinematics (each body by the vertices of its parts' convex hulls — coarse containing hulls,
+// motion check's minimumClearance). Each pair keeps what its kind asks of a clearance (requiredDistance,
+// collision_model.h: c from obstacles, min(c, kSelfClearance) between the robot's own bodies). An endpoint
+// (start or goal) with a pair above 0 but below what a certified motion can end at (that pair's m at c_m
+// plus the motion check's acceptance margin) gets an approach zone, e being the closest such pair or the
+// endpoint's own exact clearance (clearanceOf), whichever is smaller: the states q in which no point of the robot is
+// farther than kApproachZoneLength from where it is at the endpoint. That displacement is measured on the robot's
+// geometry moved by forward kinematics (each body by the vertices of its parts' convex hulls — coarse containing hulls,
 // a few millimetres larger, where a mesh's hull has many —, spheres and cylinders by their bounding
 // capsules): exact for rigid bodies up to those millimetres, where the certified motion check's bound
 // (Σ_j |Δq_j|·D_jL) overestimates multi-joint motions 3-5 times. Inside a zone a state needs
 // min(c, kApproachZoneFraction·e) and a motion min(c_m, kApproachZoneFraction·e) (at least the motion
-// check's floor of 1e-5 m); elsewhere c and c_m. The motion validator certifies a motion piece by piece
-// (motionPieces: the zone's motion clearance only on parts proven inside the zone, elsewhere c_m), so
-// every state of an accepted motion keeps what stateClearanceAt asks of it. An endpoint in contact
-// (e <= 0) gets no zone: it stays invalid, and callers report it instead of planning.
+// check's floor of 1e-5 m), self pairs the same rule's min(that, kSelfClearance); elsewhere c and c_m. The motion
+// validator certifies a motion piece by piece (motionPieces: the zone's motion clearance only on parts proven inside
+// the zone, elsewhere c_m), so every state of an accepted motion keeps what stateClearanceAt asks of it. An endpoint in
+// contact (e <= 0) gets no zone: it stays invalid, and callers report it instead of planning.
 #include <memory>
 #include <optional>
 #include <utility>
@@ -49,7 +51,7 @@ struct MotionPiece {
 
 struct ApproachZone {
   robot::JointVector endpoint;
-  double endpointClearance = 0.0;  // e [m]: collision::distance(...).minimum() at the endpoint
+  double endpointClearance = 0.0;  // e [m]: clearanceOf at the endpoint, or a closer self pair no motion leaves
   double stateClearance = 0.0;     // what a state inside the zone keeps [m]
   double motionClearance = 0.0;    // what a motion inside the zone keeps [m]
 };

@@ -4,16 +4,19 @@
 // MotionCheck::Certified proves a motion free ("conservative advancement", after Schwarzer, Saha &
 // Latombe's exact collision checking of robot paths): on the motion every point of a link L moves
 // at most M_L = Σ_j |Δq_j|·D_jL, where D_jL bounds the distance of L's geometry from joint j's axis
-// in every configuration (precomputed by CollisionModel). A pair of bodies at distance ≥ g at q(s)
-// therefore stays at least m = minimumClearance apart on (s − (g − m)/M, s + (g − m)/M), M the rate
-// at which the pair can approach (the link's M_L against an obstacle; for two links only the joints
-// that move them relative to each other count). The check measures every non-allowed pair at the two
-// ends and then moves a front from each end, each pair re-measured where its certificate runs out,
-// until the certificates meet. Cheap lower bounds (the capsules of the broad phase) are used where
-// they certify the rest of the motion or are at least m + margin (margin = min(m/4, 0.5 mm)), exact
-// distances (FCL) below. A pair measured closer than m + margin rejects the motion. So:
-//   - an accepted motion keeps at least minimumClearance at every point (so one that collides is rejected);
-//   - a motion along which every pair keeps at least minimumClearance + margin is always accepted;
+// in every configuration (precomputed by CollisionModel). Each pair keeps its own m: m = minimumClearance
+// between the robot and an obstacle, m = min(minimumClearance, kSelfClearance) between two of the robot's
+// own bodies (requiredDistance, collision_model.h). A pair of bodies at distance ≥ g at q(s) therefore
+// stays at least its m apart on (s − (g − m)/M, s + (g − m)/M), M the rate at which the pair can approach
+// (the link's M_L against an obstacle; for two links only the joints that move them relative to each other
+// count). The check measures every non-allowed pair at the two ends and then moves a front from each end,
+// each pair re-measured where its certificate runs out, until the certificates meet. Cheap lower bounds
+// (the capsules of the broad phase) are used where they certify the rest of the motion or are at least
+// m + margin (margin = acceptanceMargin(m) = min(m/4, 0.5 mm), with the pair's m), exact distances (FCL)
+// below. A pair measured closer than its m + margin rejects the motion. So, per pair with the pair's m:
+//   - an accepted motion keeps every pair at least its m apart at every point (so one that collides is
+//     rejected);
+//   - a motion along which every pair keeps at least its m + margin is always accepted;
 //   - a motion that comes closer than that may go either way.
 // The number of measurements is bounded: each advances a pair's certificate by at least margin / M.
 //
@@ -33,8 +36,11 @@ const char* toString(MotionCheck method);
 
 struct MotionCheckOptions {
   MotionCheck method = MotionCheck::Certified;
-  double maxJointStep = 0.01;       // Discrete: largest joint change between checked states [rad]
-  double minimumClearance = 0.001;  // Certified: what an accepted motion keeps everywhere [m], >= 1e-5
+  double maxJointStep = 0.01;  // Discrete: largest joint change between checked states [rad]
+  // Certified: what an accepted motion keeps everywhere [m], >= 1e-5, between the robot and obstacles; self
+  // pairs keep min(minimumClearance, kSelfClearance) (requiredDistance, collision_model.h). The default is
+  // kSelfClearance: with it every pair keeps the same.
+  double minimumClearance = kSelfClearance;
 };
 
 // Throws arcplan::Error naming the field when maxJointStep or minimumClearance is out of range.
@@ -45,6 +51,12 @@ void validate(const MotionCheckOptions& options);
 // advances by at least margin/rate. Callers that place or explain a certificate's stop (approach zones, the
 // arc planner's screen) ask the same rule here.
 inline double acceptanceMargin(double minimumClearance) { return std::min(0.25 * minimumClearance, 5e-4); }
+
+// Whether every pair at q keeps at least its own m + acceptanceMargin(m) (m per pair as above, of
+// minimumClearance > 0): false where a certified motion at minimumClearance may stop, as it rejects a pair it
+// measures closer. Answered with hasClearance's bounds.
+bool keepsAcceptanceMargin(const CollisionModel& model, CollisionData& data, const robot::JointRef& q,
+                           double minimumClearance);
 
 // Whether the straight motion qa -> qb is collision-free. Certified covers the closed motion [0, 1]
 // (qa too); Discrete checks the states at fractions k/n, k = 1..n (qa is taken as valid, as OMPL
@@ -60,13 +72,14 @@ bool isMotionCollisionFree(const CollisionModel& model, CollisionData& data, con
 // waypoint also certifies the following motions as long as the pair's accumulated motion bound
 // stays below it, so a densely sampled path (waypoints 1 cm apart) needs a measurement only every
 // few waypoints instead of two per motion. What it accepts carries the guarantee of the certified
-// check above: every configuration on an accepted motion keeps minimumClearance.
+// check above: every configuration on an accepted motion keeps each pair at least its own m apart
+// (minimumClearance from obstacles, requiredDistance(true, minimumClearance) between the robot's own bodies).
 class PathCertifier {
 public:
   // model and data must outlive the certifier; data is used as its workspace.
-  PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance = 0.001);
+  PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance = kSelfClearance);
 
-  // Starts a path at q: false if q collides or is closer than minimumClearance to a collision.
+  // Starts a path at q: false if q collides or a pair is closer than its own m (budgets per pair: gap − m).
   bool start(const robot::JointRef& q);
   // Certifies the straight motion from the last accepted configuration to q and accepts q; false
   // (and q not accepted) if the motion cannot be certified.

@@ -5,8 +5,9 @@
 // the SpaceInformation from makeSpaceInformation; all three are safe to call from several threads.
 //
 // A clearance c > 0 (a benchmark suite's `clearance`, docs/benchmarks.md) makes every planner keep
-// the same distance: a state is valid only if every non-allowed pair is at least c apart (one
-// distance query instead of a boolean one), and certified motions reject pairs measured closer than c.
+// the same distance: a state is valid only if the robot is at least c from every obstacle and every
+// non-allowed pair of its own bodies at least min(c, kSelfClearance) apart (requiredDistance,
+// collision_model.h), and certified motions reject pairs measured closer than that.
 // Given the problem's endpoints, a start or goal closer than c (plus the certified check's acceptance
 // margin) relaxes c in its approach zone (endpoint_clearance.h): the one rule every planner of a problem sees.
 #include <memory>
@@ -37,11 +38,12 @@ public:
                                 std::shared_ptr<const EndpointClearance> required);
 
   // Inside the joint bounds, collision-free and (required clearance r > 0 at the state) every pair at
-  // least r apart.
+  // least requiredDistance(self, r) apart.
   bool isValid(const ompl::base::State* state) const override;
   // Same, and `clearance` = the state's clearance().
   bool isValid(const ompl::base::State* state, double& clearance) const override;
-  // Smallest robot–obstacle or robot–robot (non-allowed pair) distance [m]; 0 in collision.
+  // The largest clearance the state meets (clearanceOf: the robot–obstacle distance, or a non-allowed self
+  // pair's distance where that is below kSelfClearance) [m]; 0 in collision.
   double clearance(const ompl::base::State* state) const override;
 
   const CollisionModel& model() const { return pool_.model(); }
