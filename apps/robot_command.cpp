@@ -147,12 +147,15 @@ nlohmann::json checkConfiguration(const collision::CollisionModel& model, const 
     std::cout << "  self          " << distances.selfDistance << " m (" << distances.selfPair.first << " - "
               << distances.selfPair.second << ")\n";
   }
-  std::cout << "  clearance     " << distances.minimum() << " m\n";
+  // The clearance the state meets (a suite's `clearance` up to it is kept), not the closest pair: self pairs
+  // count only below collision::kSelfClearance (docs/collision.md).
+  const double clearance = collision::clearanceOf(distances);
+  std::cout << "  clearance     " << clearance << " m\n";
   std::cout.unsetf(std::ios::floatfield);
   return {{"joints", std::vector<double>(q.data(), q.data() + q.size())},
           {"valid", report.valid},
           {"collisions", collisions},
-          {"clearance_m", finiteOrNull(distances.minimum())},
+          {"clearance_m", finiteOrNull(clearance)},
           {"obstacle_distance_m", finiteOrNull(distances.obstacleDistance)},
           {"obstacle_pair", distances.obstaclePair.first.empty()
                                 ? nlohmann::json()

@@ -18,11 +18,13 @@ MeasuredSolution measureSolution(const planners::PlanningProblem& problem, const
   collision::CollisionData data(model);
   const collision::EndpointClearance& rule = validity->requiredClearance();
   MeasuredSolution solution;
-  // Judged as the validity checker judges a state: what stateClearanceAt(q) asks, kept from obstacles
-  // and between links (minimum()); the metric handed back stays the obstacle distance (min_clearance_m).
+  // Judged as the validity checker judges a state: what stateClearanceAt(q) asks, kept as the one rule says
+  // (clearanceOf: from obstacles, and between the robot's own bodies up to kSelfClearance); the metric handed
+  // back stays the obstacle distance (min_clearance_m).
   const trajectory::ClearanceFunction clearance = [&](const robot::Vector6& q) {
     const collision::DistanceReport measured = collision::distance(model, data, q);
-    solution.clearanceMargin = std::min(solution.clearanceMargin, measured.minimum() - rule.stateClearanceAt(q));
+    solution.clearanceMargin =
+        std::min(solution.clearanceMargin, collision::clearanceOf(measured) - rule.stateClearanceAt(q));
     return measured.obstacleDistance;
   };
   solution.measurement = trajectory::measurePath(model.robot(), path, scaling, clearance);

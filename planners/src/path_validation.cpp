@@ -8,9 +8,25 @@ namespace arcplan::planners {
 
 namespace {
 
-// A clearance plus the certified check's acceptance margin (motion_check.h): a pair measured closer than this may
-// be refused by a certificate.
-double withAcceptanceMargin(double clearance) { return clearance + collision::acceptanceMargin(clearance); }
+// The pair of a distance report nearest to being refused by a certificate keeping `clearance`: each pair's distance
+// less what the certificate accepts of it (its own m = collision::requiredDistance, plus the acceptance margin,
+// motion_check.h), the smallest; below 0 the certificate refuses that pair. With the per-pair rule a self pair at
+// 1.1 mm is nearer to that than an obstacle pair at 1.1 cm (c = 1 cm), although farther.
+struct Nearest {
+  double shortfall;  // m
+  double distance;   // m
+  collision::NamePair pair;
+};
+
+Nearest nearestOf(const collision::DistanceReport& d, double clearance) {
+  const auto accepted = [&](bool self) {
+    const double m = collision::requiredDistance(self, clearance);
+    return m + collision::acceptanceMargin(m);
+  };
+  const double obstacle = d.obstacleDistance - accepted(false), self = d.selfDistance - accepted(true);
+  if (obstacle <= self) return {obstacle, d.obstacleDistance, d.obstaclePair};
+  return {self, d.selfDistance, d.selfPair};
+}
 
 // A rejection without a named pair was between two waypoints.
 std::string pairsText(const collision::CollisionReport& report) {
@@ -148,7 +164,7 @@ bool PathValidator::refuses(const robot::Vector6& q) {
 }
 
 bool PathValidator::withinMargin(const robot::Vector6& q) {
-  return !collision::hasClearance(model_, data_, q, withAcceptanceMargin(required_.motionClearanceAt(q)));
+  return !collision::keepsAcceptanceMargin(model_, data_, q, required_.motionClearanceAt(q));
 }
 
 bool PathValidator::keepsMargin(const robot::Vector6& q) {
@@ -162,16 +178,14 @@ Rejection PathValidator::explain(const RejectedMotion& motion) {
   result.pairs = collision::collide(model_, data_, motion.to);
   if (!result.pairs.valid) return result;  // contact at the rejected waypoint (the usual case)
   result.collides = false;
-  const auto closestPair = [](const collision::DistanceReport& d) {
-    return d.obstacleDistance <= d.selfDistance ? d.obstaclePair : d.selfPair;
-  };
   // Closer than the margin at the rejected waypoint: that pair is the reason, one query suffices
   // (the route search asks this for every rejected route).
-  const collision::DistanceReport atWaypoint = collision::distance(model_, data_, motion.to);
-  result.closest = atWaypoint.minimum();
-  result.pairs.collisions = {closestPair(atWaypoint)};
-  // Closer than the clearance plus the certificate's acceptance margin: a pair the certificate refuses there.
-  if (result.closest < withAcceptanceMargin(required_.motionClearanceAt(motion.to))) return result;
+  const double clearance = required_.motionClearanceAt(motion.to);
+  Nearest nearest = nearestOf(collision::distance(model_, data_, motion.to), clearance);
+  result.closest = nearest.distance;
+  result.pairs.collisions = {nearest.pair};
+  // Closer than its m plus the certificate's acceptance margin: a pair the certificate refuses there.
+  if (nearest.shortfall < 0.0) return result;
   // The waypoint keeps that but the motion to it could not be certified: 16 states along it.
   constexpr int kSteps = 16;
   const auto along = [&](int k) -> robot::Vector6 {
@@ -186,10 +200,11 @@ Rejection PathValidator::explain(const RejectedMotion& motion) {
     }
   }
   for (int k = 0; k < kSteps; ++k) {
-    const collision::DistanceReport d = collision::distance(model_, data_, along(k));
-    if (d.minimum() < result.closest) {
-      result.closest = d.minimum();
-      result.pairs.collisions = {closestPair(d)};
+    const Nearest d = nearestOf(collision::distance(model_, data_, along(k)), clearance);
+    if (d.shortfall < nearest.shortfall) {
+      nearest = d;
+      result.closest = d.distance;
+      result.pairs.collisions = {d.pair};
     }
   }
   return result;

@@ -41,9 +41,10 @@ struct Walk {
   bool ok() const { return waypoints.ok(); }
 };
 
-// Why a motion was rejected: the pairs in contact at its end, else its closest pair when that is
-// closer than the margin plus the certificate's acceptance margin (a pair the certificate may refuse); only
-// when the end itself keeps that, the pairs in contact along the motion, else the closest pair along it.
+// Why a motion was rejected: the pairs in contact at its end, else its pair nearest to what the certificate accepts
+// (its own m, collision::requiredDistance, plus the acceptance margin) when that is closer (a pair the certificate
+// may refuse); only when the end itself keeps that, the pairs in contact along the motion, else the pair nearest to
+// it along the motion.
 struct Rejection {
   collision::CollisionReport pairs;
   bool collides = true;
@@ -82,18 +83,18 @@ public:
   // and a later one left it (the walk may stop there already), or once `stop` returns true: the walk decides then.
   std::optional<Walk> screen(const TcpPath& path, const JointConversionResult& prefix,
                              const std::optional<robot::Vector6>& goal);
-  // True when q is closer to an obstacle or between links than a motion ending at q must keep
+  // True when a pair at q is closer than a motion ending at q must keep of it (collision::requiredDistance)
   // (EndpointClearance::motionClearanceAt: its approach zone's clearance, else the margin), less kScreenTolerance: so
   // certainly that no certified motion reaches q (collision::hasClearance, whose bounds settle pairs far apart; a
   // certificate's measurements cost more).
   bool refuses(const robot::Vector6& q);
-  // True when q is closer than a motion ending there must keep plus the certificate's acceptance margin
-  // (min(clearance/4, 0.5 mm), motion_check.h): where a certified walk may already stop.
+  // True when a pair at q is closer than a motion ending there must keep of it plus the certificate's acceptance
+  // margin (collision::keepsAcceptanceMargin, motion_check.h): where a certified walk may already stop.
   bool withinMargin(const robot::Vector6& q);
   // One configuration tested on its own, without a walk up to it: false when it is closer than a
-  // motion from it must keep (the margin, or its approach zone's) to an obstacle or between links (explain({q, q}) says
-  // why). A cheap test of where a path is likely to fail before the walk; a configuration that passes proves nothing
-  // about the motions around it.
+  // motion from it must keep (the margin, or its approach zone's; per pair, collision::requiredDistance) (explain({q,
+  // q}) says why). A cheap test of where a path is likely to fail before the walk; a configuration that passes proves
+  // nothing about the motions around it.
   bool keepsMargin(const robot::Vector6& q);
   // The bodies behind a refused motion (collision and distance queries: asked only when needed).
   Rejection explain(const RejectedMotion& motion);

@@ -28,6 +28,11 @@ TEST(RobotCheckCommand, ThesisSolutionIsValidWithPositiveClearance) {
   EXPECT_TRUE(json.at("valid").get<bool>());
   EXPECT_TRUE(json.at("collisions").empty());
   EXPECT_GT(json.at("clearance_m").get<double>(), 0.0);
+  // The clearance the state meets: its closest self pair (forearm – wrist 3, ~7 cm) is nearer than the table, but
+  // a clearance asks at most 1 mm of the robot's own links (docs/collision.md#clearance): the obstacle distance.
+  ASSERT_LT(json.at("self_distance_m").get<double>(), json.at("obstacle_distance_m").get<double>());
+  ASSERT_GT(json.at("self_distance_m").get<double>(), 0.001);
+  EXPECT_EQ(json.at("clearance_m").get<double>(), json.at("obstacle_distance_m").get<double>());
   EXPECT_EQ(json.at("scene"), "thesis_obstacle");
 }
 

@@ -108,8 +108,9 @@ inline const Eigen::Vector3d& thesisB() {
   return b;
 }
 
-// Smallest robot distance (obstacles and self) along a joint path, every motion sampled at 2 mrad:
-// a second measurement, independent of the certified check the planner used.
+// The smallest clearance a joint path meets, every motion sampled at 2 mrad: a second measurement, independent of
+// the certified check the planner used, by the rule a clearance asks (collision::clearanceOf: the obstacle
+// distance, a self pair's only below 1 mm; docs/collision.md#clearance).
 inline double closestApproach(const planners::PlanningProblem& problem, const std::vector<robot::Vector6>& joints) {
   collision::CollisionData data(*problem.collisionModel);
   double closest = INFINITY;
@@ -117,7 +118,7 @@ inline double closestApproach(const planners::PlanningProblem& problem, const st
     const int samples = static_cast<int>(std::ceil((joints[i] - joints[i - 1]).cwiseAbs().maxCoeff() / 2e-3)) + 1;
     for (int k = 0; k <= samples; ++k) {
       const robot::Vector6 q = joints[i - 1] + (joints[i] - joints[i - 1]) * (double(k) / samples);
-      closest = std::min(closest, collision::distance(*problem.collisionModel, data, q).minimum());
+      closest = std::min(closest, collision::clearanceOf(collision::distance(*problem.collisionModel, data, q)));
     }
   }
   return closest;

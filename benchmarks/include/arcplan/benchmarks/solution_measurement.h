@@ -3,9 +3,10 @@
 // and `bench` (every run of a campaign) do it. The path is measured by trajectory::measurePath
 // (densified, time-scaled when a TCP speed limit is given) with the obstacle clearance at every dense
 // waypoint, and judged by the clearance its problem asked for, relaxed in the approach zones of a start
-// or goal that is itself closer (collision/endpoint_clearance.h): each dense waypoint must keep, from
-// obstacles and between links, what stateClearanceAt asks of that state, as the problem's validity
-// checker asks of every state (the motion validator certifies every state of a motion for that too).
+// or goal that is itself closer (collision/endpoint_clearance.h): each dense waypoint must keep what
+// stateClearanceAt asks of that state as the one rule reads it (collision::clearanceOf: from obstacles, and
+// between the robot's own bodies up to collision::kSelfClearance), as the problem's validity checker asks of
+// every state (the motion validator certifies every state of a motion for that too).
 #include <limits>
 #include <optional>
 
@@ -18,8 +19,8 @@ namespace arcplan::benchmarks {
 
 struct MeasuredSolution {
   trajectory::PathMeasurement measurement;
-  // The smallest (measured − required) clearance over the dense waypoints [m], measured from obstacles
-  // and between links; +inf when nothing is near.
+  // The smallest (measured − required) clearance over the dense waypoints [m], measured as collision::clearanceOf
+  // (obstacles; self pairs only below kSelfClearance); +inf when nothing is near.
   double clearanceMargin = std::numeric_limits<double>::infinity();
   // Not kept: the path came closer than required somewhere; bench withdraws OMPL's "solved" for it.
   bool keptClearance() const { return !(clearanceMargin < 0.0); }
