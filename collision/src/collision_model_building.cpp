@@ -203,15 +203,24 @@ void addPairGroups(const AllowedCollisionMatrix& allowed, const std::vector<std:
 void detail::measureRigidPairs(const CollisionModel& model, Implementation& impl) {
   Workspace data(model);
   updateRobot(model, data, robot::JointVector::Zero(model.robot().dof()));
+  std::vector<std::pair<double, std::pair<int, int>>> order;
   for (auto& group : impl.selfGroups) {
     if (group.relativeReach.size() > 0 && group.relativeReach.maxCoeff() > 0.0) continue;
     group.rigidCollides = groupCollides(model, data, group);
     group.rigidDistance = std::numeric_limits<double>::infinity();
-    for (const auto& [i, j] : group.parts) {
-      const double bound = boundGap(impl, data, i, j, true);  // places both parts
-      group.rigidDistance =
-          std::min(group.rigidDistance, partsDistance(impl.robotParts[i], data.partPoses[i], impl.robotParts[j],
-                                                      data.partPoses[j], bound <= 0.0, model.options()));
+    // The smallest part-pair distance, nearest bounds first as distance() measures it: a part pair whose
+    // capsule or hull bound is not below the smallest distance so far cannot lower it (MBM's force sensor
+    // against the gripper: 8 groups of up to 19 × 4 part pairs, ~100 ms per model when all were measured).
+    order.clear();
+    for (const auto& [i, j] : group.parts) order.push_back({boundGap(impl, data, i, j, true), {i, j}});  // places both
+    std::sort(order.begin(), order.end());
+    for (const auto& [bound, parts] : order) {
+      double& best = group.rigidDistance;
+      if (bound >= best) break;
+      const auto [i, j] = parts;
+      const Part &a = impl.robotParts[i], &b = impl.robotParts[j];
+      if (hullGap(a, data.partPoses[i], b, data.partPoses[j], model.options(), best) >= best) continue;
+      best = std::min(best, partsDistance(a, data.partPoses[i], b, data.partPoses[j], bound <= 0.0, model.options()));
     }
     group.rigid = true;
   }

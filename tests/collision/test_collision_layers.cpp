@@ -9,7 +9,6 @@
 #include <random>
 #include <tuple>
 
-#include <fcl/narrowphase/distance.h>
 #include <gtest/gtest.h>
 
 #include "arcplan/collision/collision_model.h"
@@ -144,26 +143,25 @@ TEST(CollisionLayers, RigidPairsKeepTheirDistance) {
 }
 
 // A rigid pair's distance is the smallest of its part pairs' (measureRigidPairs skips the part pairs whose
-// bounds cannot lower it): against FCL's distance of every part pair, measured here on the meshes and
-// shapes at the home posture. MBM's force sensor against the gripper: several groups of many part pairs.
+// bounds cannot lower it): against the exact distance (partsDistance, FCL on the meshes and shapes) of
+// every part pair at the home posture. MBM's force sensor against the gripper: several groups of many
+// part pairs.
 TEST(CollisionLayers, RigidPairDistanceIsTheNearestOfAllItsPartPairs) {
-  if (!fs::exists(mbmFolder() / "problems")) GTEST_SKIP() << "no MBM data under " << mbmFolder();
-  const auto model = makeCollisionModel(mbmScenes(1).front());
+  const auto scenes = mbmScenes(1);
+  ASSERT_FALSE(scenes.empty()) << "MBM problems expected under " << mbmFolder();
+  const auto model = makeCollisionModel(scenes.front());
   const auto& impl = detail::implementationOf(*model);
   arcplan::robot::KinematicsData kinematics(model->robot());
   arcplan::robot::forwardKinematics(model->robot(), Eigen::VectorXd::Zero(model->robot().dof()), kinematics);
   const auto pose = [&](int i) { return kinematics.linkPoses[impl.robotPartLink[i]] * impl.robotParts[i].offset; };
-  const fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-9);
   int rigid = 0, partPairs = 0;
   for (const auto& group : impl.selfGroups) {
     if (!group.rigid) continue;
     ++rigid;
     double nearest = std::numeric_limits<double>::infinity();
     for (const auto& [i, j] : group.parts) {
-      fcl::DistanceResultd result;
       nearest = std::min(
-          nearest, std::max(0.0, fcl::distance(impl.robotParts[i].distanceGeometry.get(), pose(i),
-                                               impl.robotParts[j].distanceGeometry.get(), pose(j), request, result)));
+          nearest, detail::partsDistance(impl.robotParts[i], pose(i), impl.robotParts[j], pose(j), true, exactOnly()));
       ++partPairs;
     }
     EXPECT_NEAR(group.rigidDistance, nearest, 2e-6)
