@@ -110,22 +110,54 @@ RigidFrame rigidFrame(const robot::RobotModel& robot, int link) {
   return {link, pose};
 }
 
+// Pivot points closer to a joint's axis than this [m] count as on it (the 2× slack below covers them).
+constexpr double kOnAxis = 1e-9;
+
 // Turning `joint` by δ turns everything beyond it about its axis; seen from a body the joint does not
-// move, whose frame holds that axis fixed (the body rigid with the joint's parent link), it is the same
-// relative motion as turning that body by −δ about the axis while the rest stays. The distance between a
-// part beyond the joint and a part of that body then changes by at most the body part's farthest point
-// from the axis times |δ|, whatever the other joints are: a base and the upper arm's end cap next to it
-// change their distance at the base's radius per radian of the shoulder pan, not the cap's. -1 when the
-// axis is not fixed in the body's frame.
+// move, it is the same relative motion as turning that body by −δ about the axis while the rest stays.
+// The distance between a part beyond the joint and a part of that body then changes by at most how far
+// the body part's points are from the axis times |δ|, whatever the other joints are:
+// - where the body is rigid with the joint's parent link the axis is fixed in the body's frame: the
+//   farthest point from the axis (MBM's base against the upper arm's end cap next to it change their
+//   distance at the base's radius per radian of the shoulder pan, not the cap's);
+// - else, where the axis passes through a point that the joints between the body and the joint do not
+//   move (it lies on their axes: a UR shoulder frame's origin on the base joint's axis), the farthest
+//   point from that pivot (the base against the upper arm's tube per radian of the shoulder lift: 0.14
+//   instead of the tube's far end at 0.36 m). A pivot e off an intermediate axis moves by at most 2e.
+// -1 when neither holds (another branch of the tree).
 double fixedSideReach(const robot::RobotModel& robot, int bodyLink, int joint, const std::vector<BoundingBall>& balls) {
   const int mover = robot.joints()[joint].link;
-  const int parent = robot.links()[mover].parent;
+  int parent = robot.links()[mover].parent;
   if (parent < 0) return -1.0;
-  const RigidFrame body = rigidFrame(robot, bodyLink), axisFrame = rigidFrame(robot, parent);
-  if (body.root != axisFrame.root) return -1.0;
-  // The mover's frame before its rotation (its axis passes through its origin), in the body's frame.
-  const Eigen::Isometry3d moverInBody = body.pose.inverse() * axisFrame.pose * robot.links()[mover].originInParent;
-  return farthestFromAxis(balls, moverInBody.inverse(), robot.links()[mover].axis);
+  const RigidFrame body = rigidFrame(robot, bodyLink);
+  RigidFrame frame = rigidFrame(robot, parent);
+  if (body.root == frame.root) {
+    // The mover's frame before its rotation (its axis passes through its origin), in the body's frame.
+    const Eigen::Isometry3d moverInBody = body.pose.inverse() * frame.pose * robot.links()[mover].originInParent;
+    return farthestFromAxis(balls, moverInBody.inverse(), robot.links()[mover].axis);
+  }
+  // The point of the joint's axis nearest to the next turning axis up the chain (where they cross on a UR
+  // arm), carried up at zero angles to the body's rigid root.
+  const Eigen::Isometry3d moverInFrame = frame.pose * robot.links()[mover].originInParent;
+  Eigen::Vector3d pivot = moverInFrame.translation();
+  const Eigen::Vector3d direction = moverInFrame.linear() * robot.links()[mover].axis;
+  const Eigen::Vector3d& next = robot.links()[frame.root].axis;
+  const double along = direction.dot(next), denominator = 1.0 - along * along;
+  if (denominator > 1e-12) pivot -= ((pivot.dot(direction) - along * pivot.dot(next)) / denominator) * direction;
+  double slack = 0.0;
+  while (frame.root != body.root) {
+    const robot::Link& turning = robot.links()[frame.root];
+    if (turning.parent < 0) return -1.0;  // not below the body: another branch
+    slack += 2.0 * (pivot - pivot.dot(turning.axis) * turning.axis).norm();
+    if (!(slack <= kOnAxis)) return -1.0;
+    pivot = turning.originInParent * pivot;
+    frame = rigidFrame(robot, turning.parent);
+    pivot = frame.pose * pivot;
+  }
+  pivot = body.pose.inverse() * pivot;
+  double farthest = 0.0;
+  for (const auto& ball : balls) farthest = std::max(farthest, (ball.center - pivot).norm() + ball.radius);
+  return farthest + slack;
 }
 
 void checkBody(const CollisionModel& model, int body) {
