@@ -11,8 +11,14 @@
 // bookshelf_thin 0006).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
 
+#include "lru_cache.h"
 #include "model_implementation.h"
 
 namespace arcplan::collision::detail {
@@ -77,14 +83,97 @@ double groupFloor(const CollisionModel& model, const Implementation& impl, Works
   return std::max(floor, 0.0);
 }
 
+// Floors already measured, per process: a benchmark builds one model per problem and job for the same robot,
+// and a floor costs ~20 ms (MBM's sensor pair: ~300 cells of hull GJKs). A group's floor depends only on its
+// parts (their FCL geometries, offsets, capsules and links), the chain above their links, the joint and its
+// reach, and the options that choose the bounds: all of it is written into the key. Parts built from the same
+// mesh share their geometries (mesh_part_cache.h), so their addresses identify them; the entry holds those
+// geometries, so no address is reused by another geometry while the entry exists.
+struct FloorEntry {
+  double floor;
+  std::vector<std::shared_ptr<fcl::CollisionGeometryd>> geometries;
+};
+
+constexpr std::size_t kFloorCacheEntries = 64;
+
+template <class T>
+void append(std::string& key, const T& value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  key.append(bytes, sizeof(T));
+}
+
+void appendPart(std::string& key, std::vector<std::shared_ptr<fcl::CollisionGeometryd>>& geometries,
+                const Implementation& impl, int i) {
+  const Part& part = impl.robotParts[i];
+  for (const auto* geometry : {&part.collisionGeometry, &part.distanceGeometry, &part.convexGeometry,
+                               &part.hullGeometry, &part.coarseHullGeometry}) {
+    append(key, geometry->get());
+    if (*geometry) geometries.push_back(*geometry);
+  }
+  append(key, impl.robotPartLink[i]);
+  append(key, part.offset.matrix().eval());
+  append(key, part.capsule.start.eval());
+  append(key, part.capsule.end.eval());
+  append(key, part.capsule.radius);
+}
+
+std::string floorKey(const CollisionModel& model, const Implementation& impl, const Implementation::PairGroup& group,
+                     int joint, std::vector<std::shared_ptr<fcl::CollisionGeometryd>>& geometries) {
+  std::string key;
+  const CollisionModelOptions& options = model.options();
+  append(key, options.convexDistance);
+  append(key, options.hullLayer);
+  append(key, joint);
+  append(key, group.relativeReach[joint]);
+  append(key, model.robot().dof());
+  for (const auto& [i, j] : group.parts) {
+    appendPart(key, geometries, impl, i);
+    appendPart(key, geometries, impl, j);
+  }
+  for (const int body : {group.firstBody, group.secondBody}) {
+    for (int l = impl.linkCapsuleLink[body]; l >= 0; l = model.robot().links()[l].parent) {
+      const robot::Link& link = model.robot().links()[l];
+      append(key, l);
+      append(key, link.joint);
+      append(key, link.originInParent.matrix().eval());
+      append(key, link.axis.eval());
+    }
+  }
+  return key;
+}
+
+struct FloorCache {
+  std::mutex mutex;
+  LruCache<std::string, FloorEntry> entries{kFloorCacheEntries};
+};
+
+FloorCache& floorCache() {
+  static FloorCache instance;
+  return instance;
+}
+
 }  // namespace
 
 void measurePairFloors(const CollisionModel& model, Implementation& impl) {
   Workspace data(model);
+  FloorCache& cache = floorCache();
   for (auto& group : impl.selfGroups) {
     if (group.rigid) continue;
     const int joint = onlyJoint(group);
-    if (joint >= 0) group.floor = groupFloor(model, impl, data, group, joint);
+    if (joint < 0) continue;
+    FloorEntry entry;
+    const std::string key = floorKey(model, impl, group, joint, entry.geometries);
+    {
+      const std::lock_guard<std::mutex> lock(cache.mutex);
+      if (const FloorEntry* found = cache.entries.find(key)) {
+        group.floor = found->floor;
+        continue;
+      }
+    }
+    entry.floor = group.floor = groupFloor(model, impl, data, group, joint);
+    const std::lock_guard<std::mutex> lock(cache.mutex);
+    cache.entries.insert(key, std::move(entry));
   }
 }
 

@@ -136,4 +136,29 @@ TEST(PairFloors, QueriesAnswerAsFclWhereTheFloorDecides) {
   EXPECT_EQ(clear[2], 0);  // the pair is never 3 cm apart: the floor does not answer those
 }
 
+// Floors are measured once per process and robot (pair_floors.cpp keeps them keyed by everything they
+// depend on): a second model of the same robot takes the first one's, bit for bit; a model whose bounds
+// differ (no hull layer: capsules only, a lower floor) measures its own instead of taking the layered one's.
+TEST(PairFloors, AModelOfTheSameRobotTakesTheSameFloorsAndOtherBoundsTheirOwn) {
+  const Scene scene = mbmScene();
+  const auto first = makeCollisionModel(scene), second = makeCollisionModel(scene);
+  CollisionModelOptions capsulesOnly;
+  capsulesOnly.hullLayer = false;
+  const auto capsules = makeCollisionModel(scene, capsulesOnly);
+  const auto& groups = detail::implementationOf(*first).selfGroups;
+  const auto& again = detail::implementationOf(*second).selfGroups;
+  const auto& loose = detail::implementationOf(*capsules).selfGroups;
+  ASSERT_EQ(groups.size(), again.size());
+  ASSERT_EQ(groups.size(), loose.size());
+  int floored = 0;
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    EXPECT_EQ(groups[k].floor, again[k].floor) << first->linkNames()[groups[k].firstBody];
+    if (groups[k].floor > 0.0) {
+      ++floored;
+      EXPECT_LT(loose[k].floor, groups[k].floor - 0.001) << "capsules bound the sensor pair far lower than hulls";
+    }
+  }
+  EXPECT_GE(floored, 1);
+}
+
 }  // namespace
