@@ -15,8 +15,8 @@
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/collision/moveit_scene.h"
 #include "arcplan/common/resources.h"
-#include "arcplan/robot/kinematics.h"
 #include "support/command.h"
+#include "support/held_balls.h"
 #include "support/random_joint_state.h"
 
 namespace {
@@ -24,77 +24,21 @@ namespace {
 using namespace arcplan::collision;
 namespace fs = std::filesystem;
 
-constexpr double kBallRadius = 0.02;  // m, both balls
-constexpr double kHeld = 0.10;        // m, ball A's centre from wrist_3_link's origin along its z axis
-constexpr double kWristStep = 2e-4;   // rad, the grid on which the tests look for a wanted distance
-
 // The wanted clearance written out (independent of requiredDistance / clearanceOf): obstacles at least c,
 // self pairs at least min(c, 1 mm).
 bool meetsRule(const DistanceReport& report, double c) {
   return report.obstacleDistance >= c && report.selfDistance >= std::min(c, 0.001);
 }
 
-// The thesis workcell (table only) with ball A held by wrist_3_link, kHeld from its origin, and ball B held by
-// wrist_1_link. On a motion of the wrist-2 joint alone A turns about that joint's axis and B stands still, so
-// the pair's distance is |c_A − c_B| − 2 r from forward kinematics. B is placed 2 mm ahead of A's place at
-// wrist-2 angle θ1 (on the tangent of A's circle), so A approaches B as the angle grows towards θ1 and
-// runs into it beyond.
+// Two balls held by the UR10e, their distance from forward kinematics (tests/support/held_balls.h).
 class HeldBalls : public ::testing::Test {
 protected:
-  void SetUp() override {
-    base_ = loadScene(arcplan::dataDirectory() / "scenes" / "thesis_free.yaml");
-    robot_ = makeCollisionModel(base_)->sharedRobot();
-    q1_ << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098;  // the scene's start, elbow up, wrist down
-    const Eigen::Vector3d a = centreA(q1_[4]);
-    const Eigen::Vector3d tangent = (centreA(q1_[4] + 1e-6) - centreA(q1_[4] - 1e-6)).normalized();
-    const Eigen::Vector3d b = a + (2 * kBallRadius + 0.002) * tangent;
-    Scene scene = base_;
-    scene.attachedObstacles.push_back(ball("ball_a", "wrist_3_link", Eigen::Vector3d(0.0, 0.0, kHeld)));
-    scene.attachedObstacles.push_back(ball("ball_b", "wrist_1_link", poseOf("wrist_1_link", q1_).inverse() * b));
-    for (const char* link : {"wrist_2_link", "wrist_3_link"}) scene.allowedCollisions.emplace_back("ball_a", link);
-    for (const char* link : {"wrist_1_link", "wrist_2_link"}) scene.allowedCollisions.emplace_back("ball_b", link);
-    scene_ = scene;
-  }
+  const Scene& scene() const { return balls_.scene(); }
+  Eigen::VectorXd at(double wrist2) const { return balls_.at(wrist2); }
+  double gap(double wrist2) const { return balls_.gap(wrist2); }
+  double angleWhere(double wanted, int direction) const { return balls_.angleWhere(wanted, direction); }
 
-  static AttachedObstacle ball(const std::string& name, const std::string& link, const Eigen::Vector3d& at) {
-    AttachedObstacle held;
-    held.link = link;
-    held.body.name = name;
-    held.body.shape = Obstacle::Shape::Sphere;
-    held.body.radius = kBallRadius;
-    held.body.pose.translation() = at;
-    return held;
-  }
-
-  Eigen::Isometry3d poseOf(const std::string& link, const Eigen::VectorXd& q) const {
-    arcplan::robot::KinematicsData poses(*robot_);
-    arcplan::robot::forwardKinematics(*robot_, q, poses);
-    return poses.linkPoses[robot_->linkIndex(link)];
-  }
-  Eigen::VectorXd at(double wrist2) const {
-    Eigen::VectorXd q = q1_;
-    q[4] = wrist2;
-    return q;
-  }
-  Eigen::Vector3d centreA(double wrist2) const {
-    return poseOf("wrist_3_link", at(wrist2)) * Eigen::Vector3d(0.0, 0.0, kHeld);
-  }
-  // The balls' distance at wrist-2 angle `wrist2` (B's centre from its place at θ1: it does not move).
-  double gap(double wrist2) const {
-    const Eigen::Vector3d b =
-        centreA(q1_[4]) + (2 * kBallRadius + 0.002) * (centreA(q1_[4] + 1e-6) - centreA(q1_[4] - 1e-6)).normalized();
-    return (centreA(wrist2) - b).norm() - 2 * kBallRadius;
-  }
-  // The wrist-2 angle nearest to θ1 on the side `direction` (+1: beyond θ1) where the gap first passes `wanted`.
-  double angleWhere(double wanted, int direction) const {
-    double angle = q1_[4];
-    while (direction < 0 ? gap(angle) < wanted : gap(angle) > wanted) angle += direction * kWristStep;
-    return angle;
-  }
-
-  Scene base_, scene_;
-  std::shared_ptr<const arcplan::robot::RobotModel> robot_;
-  arcplan::robot::Vector6 q1_;
+  arcplan::testing::HeldBalls balls_;
 };
 
 CollisionModelOptions exactOnly() {
@@ -106,7 +50,7 @@ CollisionModelOptions exactOnly() {
 
 TEST_F(HeldBalls, ASelfPairAtFiveMillimetresMeetsACentimetreAndOneAtHalfAMillimetreDoesNot) {
   for (const CollisionModelOptions& options : {CollisionModelOptions{}, exactOnly()}) {
-    const auto model = makeCollisionModel(scene_, options);
+    const auto model = makeCollisionModel(scene(), options);
     CollisionData data(*model);
     const Eigen::VectorXd near = at(angleWhere(0.005, -1)), touching = at(angleWhere(0.0005, +1));
     for (const Eigen::VectorXd& q : {near, touching}) {
@@ -137,9 +81,10 @@ TEST_F(HeldBalls, ASelfPairAtFiveMillimetresMeetsACentimetreAndOneAtHalfAMillime
 // A self pair between 1 mm and 1.25 mm meets every clearance (clearanceOf: the obstacle distance) but no certified
 // motion at 1 cm can leave it (its m of 1 mm plus the acceptance margin of 0.25 mm): keepsAcceptanceMargin says so.
 TEST_F(HeldBalls, ASelfPairWithinTheAcceptanceMarginMeetsTheRuleButNotTheCertificate) {
-  const auto model = makeCollisionModel(scene_);
+  const auto model = makeCollisionModel(scene());
   CollisionData data(*model);
-  const Eigen::VectorXd q = at(angleWhere(0.0011, +1) - kWristStep);  // the last grid angle still above 1.1 mm
+  const Eigen::VectorXd q =
+      at(angleWhere(0.0011, +1) - arcplan::testing::HeldBalls::kWristStep);  // the last grid angle still above 1.1 mm
   const DistanceReport report = distance(*model, data, q);
   ASSERT_GT(report.selfDistance, 0.001);
   ASSERT_LT(report.selfDistance, 0.00125);
@@ -152,7 +97,7 @@ TEST_F(HeldBalls, ASelfPairWithinTheAcceptanceMarginMeetsTheRuleButNotTheCertifi
 
 TEST_F(HeldBalls, ACertifiedMotionKeepsTheObstacleClearanceAndTheSelfPairsOwn) {
   const double from = angleWhere(0.008, -1), to = angleWhere(0.002, -1), through = angleWhere(-0.002, +1);
-  const auto model = makeCollisionModel(scene_);
+  const auto model = makeCollisionModel(scene());
   CollisionData data(*model);
   // The construction along both motions: the gap falls from 8 to 2 mm, then below 0; the table stays > 2 cm away.
   for (int k = 0; k <= 200; ++k) {
@@ -180,7 +125,7 @@ TEST_F(HeldBalls, ACertifiedMotionKeepsTheObstacleClearanceAndTheSelfPairsOwn) {
 
 TEST_F(HeldBalls, PathCertifierKeepsTheObstacleClearanceAndTheSelfPairsOwn) {
   const double from = angleWhere(0.008, -1), to = angleWhere(0.002, -1), through = angleWhere(-0.002, +1);
-  const auto model = makeCollisionModel(scene_);
+  const auto model = makeCollisionModel(scene());
   CollisionData data(*model);
   const auto walk = [&](double end) {
     PathCertifier certifier(*model, data, 0.01);
@@ -232,7 +177,9 @@ TEST(SelfClearanceRule, HasClearanceAgreesWithTheRuleOnRandomStates) {
     EXPECT_GT(met, 0) << scene.name;  // both answers occur
     EXPECT_LT(met, 2 * kStates) << scene.name;
     EXPECT_LT(banded, 10) << scene.name;
-    if (scene.name != "thesis_obstacle") EXPECT_GT(selfOnlyClose, 0) << scene.name;  // MBM's close link pairs
+    if (scene.name != "thesis_obstacle") {
+      EXPECT_GT(selfOnlyClose, 0) << scene.name;  // MBM's close link pairs
+    }
   }
 }
 

@@ -12,6 +12,7 @@
 #include "arcplan/planners/arc_path.h"
 #include "path_validation.h"
 #include "planners/planner_test_support.h"
+#include "support/held_balls.h"
 
 namespace {
 
@@ -19,6 +20,7 @@ using namespace arcplan::testing;
 using arcplan::planners::ArcPath;
 using arcplan::planners::ConversionStatus;
 using arcplan::planners::PathValidator;
+using arcplan::testing::HeldBalls;
 
 constexpr double kMargin = 0.01;
 
@@ -237,6 +239,44 @@ TEST(PathValidation, TheScreenHonoursTheStopRequest) {
   EXPECT_EQ(stopped.walk(line, startOnly(problem.start), problem.goal).waypoints.status, ConversionStatus::Rejected);
   PathValidator running = certifyingValidator(problem, ik);
   EXPECT_TRUE(running.screen(line, startOnly(problem.start), problem.goal)) << "refused without the stop request";
+}
+
+// The screen and the explanations ask each pair what a certificate accepts of it: its own m (a self pair's at most
+// 1 mm, docs/collision.md#clearance) plus the acceptance margin. Two balls held by the arm (tests/support/held_balls.h,
+// their distance from forward kinematics): at 1.1 mm they meet a 1 cm clearance, but a 1 cm walk may stop there
+// (1 mm + 0.25 mm); at 2 mm it may not; at 0.5 mm no walk starts, and the balls are named as the reason.
+TEST(PathValidation, ASelfPairIsJudgedByWhatTheCertificateAcceptsOfIt) {
+  const HeldBalls balls;
+  const auto model = arcplan::collision::makeCollisionModel(balls.scene());
+  const arcplan::robot::UrInverseKinematics ik(model->robot());
+  PathValidator validator(
+      *model, ik, {}, kMargin, true, [](const arcplan::robot::Vector6&) { return true; }, [] { return false; });
+  arcplan::collision::CollisionData data(*model);
+  const arcplan::robot::Vector6 within = balls.at(balls.angleWhere(0.0011, +1) - HeldBalls::kWristStep);
+  const arcplan::robot::Vector6 clear = balls.at(balls.angleWhere(0.002, -1));
+  const arcplan::robot::Vector6 touching = balls.at(balls.angleWhere(0.0005, +1));
+  for (const auto& q : {within, clear, touching}) {
+    const auto report = arcplan::collision::distance(*model, data, q);
+    ASSERT_EQ(report.selfPair, (arcplan::collision::NamePair{"ball_a", "ball_b"}));
+    ASSERT_NEAR(report.selfDistance, balls.gap(q[4]), 1e-6);
+    ASSERT_GE(report.obstacleDistance, 0.02);
+  }
+  ASSERT_GT(balls.gap(within[4]), 0.001);
+  ASSERT_LT(balls.gap(within[4]), 0.00125);
+  ASSERT_GE(balls.gap(clear[4]), 0.002);
+  ASSERT_LT(balls.gap(touching[4]), 0.0005);
+  ASSERT_TRUE(arcplan::collision::hasClearance(*model, data, within, kMargin));  // the rule: met
+  EXPECT_TRUE(validator.withinMargin(within));
+  EXPECT_TRUE(validator.keepsMargin(within));  // a walk may start there: the pair keeps its 1 mm
+  EXPECT_FALSE(validator.withinMargin(clear));
+  EXPECT_TRUE(validator.keepsMargin(clear));
+  EXPECT_FALSE(validator.keepsMargin(touching));
+  for (const auto& q : {within, touching}) {
+    const auto rejection = validator.explain({q, q});
+    EXPECT_FALSE(rejection.collides);
+    EXPECT_TRUE(rejection.involves("ball_a") && rejection.involves("ball_b"));
+    EXPECT_NEAR(rejection.closest, balls.gap(q[4]), 1e-6);
+  }
 }
 
 }  // namespace
