@@ -42,6 +42,7 @@ class Distance:
     self_distance: float
     self_pair: Tuple[str, str]
     minimum: float
+    clearance: float
 
 class Scene:
     name: str

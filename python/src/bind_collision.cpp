@@ -70,7 +70,9 @@ void bindCollision(py::module_& module) {
       .def_readonly("obstacle_pair", &collision::DistanceReport::obstaclePair, "(link, obstacle) of that minimum")
       .def_readonly("self_distance", &collision::DistanceReport::selfDistance, "between links (non-allowed pairs)")
       .def_readonly("self_pair", &collision::DistanceReport::selfPair, "(link, link) of that minimum")
-      .def_property_readonly("minimum", &collision::DistanceReport::minimum)
+      .def_property_readonly("minimum", &collision::DistanceReport::minimum, "closest pair of any kind")
+      .def_property_readonly("clearance", &collision::clearanceOf,
+                             "largest clearance the state meets: obstacle distance, self pairs only below 1 mm")
       .def("__repr__", [](const collision::DistanceReport& d) {
         return "<arcplan.Distance obstacle " + std::to_string(d.obstacleDistance) + " m (" + d.obstaclePair.first +
                "-" + d.obstaclePair.second + "), self " + std::to_string(d.selfDistance) + " m>";
