@@ -16,6 +16,7 @@
 #include "arcplan/robot/kinematics.h"
 #include "support/command.h"
 #include "support/database_rows.h"
+#include "support/held_balls.h"
 
 namespace {
 
@@ -98,6 +99,43 @@ TEST(SolutionClearance, APathThroughAnObstacleIsNotKept) {
   const auto solution = arcplan::benchmarks::measureSolution(problem, {problem.start, problem.goal}, std::nullopt);
   EXPECT_FALSE(solution.keptClearance());
   EXPECT_LE(solution.clearanceMargin, -0.01);  // in contact at the middle: distance <= 0, 1 cm asked
+}
+
+// The judge reads a clearance as the rule does (docs/collision.md#clearance): 1 cm from obstacles, the arm's own
+// bodies at most 1 mm. Two balls held by the arm (tests/support/held_balls.h, their distance from forward
+// kinematics), the problem's start and goal where they are 8 and 2 mm apart (no approach zone: both keep more than a
+// certificate accepts of them, 1.25 mm): the straight path between them, the table more than 2 cm away, keeps
+// 1 cm (1 cm between the balls too would not); the path on to where they are 0.5 mm apart and back does not.
+TEST(SolutionClearance, ASelfPairKeepsOneMillimetreOfTheClearance) {
+  namespace collision = arcplan::collision;
+  const arcplan::testing::HeldBalls balls;
+  const double from = balls.angleWhere(0.008, -1), to = balls.angleWhere(0.002, -1);
+  const double touching = balls.angleWhere(0.0005, +1);
+  auto scene = std::make_shared<collision::Scene>(balls.scene());
+  scene->queries.at(0).start = collision::QueryEndpoint{std::nullopt, std::nullopt, balls.at(from)};
+  scene->queries.at(0).goal = collision::QueryEndpoint{std::nullopt, std::nullopt, balls.at(to)};
+  arcplan::planners::PlanningProblemOptions options;
+  options.clearance = 0.01;
+  const auto problem = arcplan::planners::makePlanningProblem(scene, "", options);
+  collision::CollisionData data(*problem.collisionModel);
+  for (const double angle : {from, to, touching}) {
+    const auto report = collision::distance(*problem.collisionModel, data, balls.at(angle));
+    ASSERT_EQ(report.selfPair, (collision::NamePair{"ball_a", "ball_b"}));
+    ASSERT_NEAR(report.selfDistance, balls.gap(angle), 1e-6);
+    ASSERT_GE(report.obstacleDistance, 0.02);
+  }
+  ASSERT_GE(balls.gap(to), 0.002);
+  ASSERT_LT(balls.gap(touching), 0.0005);
+
+  const auto kept = arcplan::benchmarks::measureSolution(problem, {balls.at(from), balls.at(to)}, std::nullopt);
+  EXPECT_TRUE(kept.keptClearance());
+  EXPECT_GE(kept.clearanceMargin, 0.01);                   // the table's 2 cm less the 1 cm asked
+  EXPECT_GE(kept.measurement.metrics.minClearance, 0.02);  // min_clearance_m: the obstacle distance
+
+  const auto closer =
+      arcplan::benchmarks::measureSolution(problem, {balls.at(from), balls.at(touching), balls.at(to)}, std::nullopt);
+  EXPECT_FALSE(closer.keptClearance());
+  EXPECT_LE(closer.clearanceMargin, 0.0005 - 0.01);  // the balls' < 0.5 mm, 1 cm asked
 }
 
 }  // namespace
