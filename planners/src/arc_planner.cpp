@@ -46,6 +46,7 @@ const std::vector<RealParameter>& realParameters() {
       {"clearance", 0.0, 0.2, "0.:0.005:0.2", &P::setClearance, &P::getClearance},
       {"deadline", 0.0, 60.0, "0.:0.01:60.", &P::setDeadline, &P::getDeadline},
       {"speed_limit", 0.01, 2.0, "0.01:0.01:2.", &P::setSpeedLimit, &P::getSpeedLimit},
+      {"fallback_range", 0.0, 100.0, "0.:0.1:100.", &P::setFallbackRange, &P::getFallbackRange},
   };
   return table;
 }
@@ -113,6 +114,7 @@ void ArcPlanner::setMaxJointStep(double step) { conversion_.maxJointStep = check
 void ArcPlanner::setClearance(double clearance) { clearance_ = checkedParameter("clearance", clearance); }
 void ArcPlanner::setDeadline(double seconds) { deadline_ = checkedParameter("deadline", seconds); }
 void ArcPlanner::setSpeedLimit(double speed) { speedLimit_ = checkedParameter("speed_limit", speed); }
+void ArcPlanner::setFallbackRange(double range) { fallbackRange_ = checkedParameter("fallback_range", range); }
 
 void ArcPlanner::clear() {
   Planner::clear();
@@ -185,7 +187,7 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
     trajectory::TimeScalingOptions timing;
     timing.maxTcpSpeed = speedLimit_;
     return detail::planInJointSpace(
-        query, fallbackSpace(motionCheck, required, start, goal), seed_,
+        query, fallbackSpace(motionCheck, required, start, goal), {seed_, fallbackRange_},
         [&](const std::vector<robot::Vector6>& joints) {
           return trajectory::scaleToTcpSpeed(collisionModel_->robot(), joints, timing).duration();
         });

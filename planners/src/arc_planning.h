@@ -63,12 +63,19 @@ ArcOutcome planViaPoints(const ArcQuery& query);
 // supplies trajectory::scaleToTcpSpeed).
 using ExecutionTimeOf = std::function<double(const std::vector<robot::Vector6>&)>;
 
+// How the fallback's RRTConnect runs: every random draw from generators seeded with `seed`, its `range`
+// as RRTConnect's parameter of that name (0: RRTConnect's default).
+struct JointPlanSettings {
+  std::uint_fast32_t seed = 1;
+  double range = 0.0;
+};
+
 // RRTConnect on `si` (whose validity keeps the margin), simplified as `plan` and `bench` simplify it (up to 4
 // draws), each also with shortcuts for the TCP where they execute faster, the fastest kept; then of that
 // joint path, its segments as TCP lines where they validate, and mixes of the two, the one of the
-// shortest `executionTime` (its reason says which, with the times). Every random draw from generators
-// seeded with `seed`. Its reason on failure says only that it failed.
-ArcOutcome planInJointSpace(const ArcQuery& query, const ompl::base::SpaceInformationPtr& si, std::uint_fast32_t seed,
-                            const ExecutionTimeOf& executionTime);
+// shortest `executionTime` (its reason says which, with the times). Its reason on failure says only that
+// it failed.
+ArcOutcome planInJointSpace(const ArcQuery& query, const ompl::base::SpaceInformationPtr& si,
+                            const JointPlanSettings& settings, const ExecutionTimeOf& executionTime);
 
 }  // namespace arcplan::planners::detail

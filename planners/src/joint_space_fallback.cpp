@@ -71,9 +71,9 @@ private:
 // (seeded_sampling.h): what a benchmark run seeded with `seed` computes for RRTConnect (solve, then
 // SimpleSetup::simplifySolution(), i.e. PathSimplifier::simplifyMax with the problem's goal; here
 // stopped by the caller's termination condition, identical until it fires) on the same
-// SpaceInformation.
+// SpaceInformation, with RRTConnect's `range` set to `range` (0: left at its default).
 std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& query, const ob::SpaceInformationPtr& si,
-                                                               std::uint_fast32_t seed) {
+                                                               std::uint_fast32_t seed, double range) {
   auto problem = std::make_shared<ob::ProblemDefinition>(si);
   ob::ScopedState<> start(si), goal(si);
   collision::setJoints(start.get(), query.start);
@@ -81,6 +81,7 @@ std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& q
   problem->setStartAndGoalStates(start, goal);
   const SamplingSeeds seeds = samplingSeeds(seed);
   SeededRRTConnect planner(si, seeds.sampler);
+  if (range > 0.0) planner.setRange(range);
   planner.setProblemDefinition(problem);
   planner.setup();
   if (planner.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) return std::nullopt;
@@ -254,8 +255,9 @@ ArcOutcome fastestPath(const ArcQuery& query, const std::vector<Segment>& segmen
 
 }  // namespace
 
-ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, std::uint_fast32_t seed,
+ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, const JointPlanSettings& settings,
                             const ExecutionTimeOf& executionTime) {
+  const std::uint_fast32_t seed = settings.seed;
   // Each plan, RRTConnect + simplifier, counts as it is and with shortcuts for the TCP (kept only where
   // they execute faster); the fastest path goes on to the line conversion.
   std::optional<std::vector<robot::Vector6>> fastest;
@@ -264,7 +266,7 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
   // Once time is up the fallback returns the best path it has timed: a later plan that ends after the
   // limit is dropped untimed (a time scaling costs 10-60 ms on MBM), and no line is tried.
   for (std::uint_fast32_t k = 0; k < kJointPlans && (k == 0 || !query.ptc()); ++k) {
-    std::optional<std::vector<robot::Vector6>> planned = simplifiedJointPath(query, si, seed + k);
+    std::optional<std::vector<robot::Vector6>> planned = simplifiedJointPath(query, si, seed + k, settings.range);
     if (!planned || (fastest && query.ptc())) continue;
     const double planTime = executionTime(*planned);
     fastestPlan = plans++ == 0 ? planTime : std::min(fastestPlan, planTime);

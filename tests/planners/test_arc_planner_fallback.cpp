@@ -224,11 +224,15 @@ std::shared_ptr<arcplan::collision::Scene> elbowBeamScene() {
 
 // Execution time at 0.25 m/s of plain RRTConnect + simplifier as a benchmark run seeded with `seed`
 // computes it (SimpleSetup::solve, then SimpleSetup::simplifySolution(), at the suite's 1 cm clearance,
-// its sampler and simplifier seeded by the campaign's planners::seedSampling).
-double rrtConnectAndSimplifier(const std::shared_ptr<arcplan::collision::Scene>& scene, std::uint32_t seed) {
+// its sampler and simplifier seeded by the campaign's planners::seedSampling), RRTConnect's `range` set
+// where `range` > 0 as a suite's planner params set it.
+double rrtConnectAndSimplifier(const std::shared_ptr<arcplan::collision::Scene>& scene, std::uint32_t seed,
+                               double range = 0.0) {
   auto problem = centimetreProblem(scene);
   const auto si = problem.setup->getSpaceInformation();
-  problem.setup->setPlanner(std::make_shared<ompl::geometric::RRTConnect>(si));
+  auto rrtConnect = std::make_shared<ompl::geometric::RRTConnect>(si);
+  if (range > 0.0) rrtConnect->setRange(range);
+  problem.setup->setPlanner(rrtConnect);
   problem.setup->setup();
   arcplan::planners::seedSampling(*problem.setup, seed);
   if (problem.setup->solve(20.0) != ob::PlannerStatus::EXACT_SOLUTION) throw std::runtime_error("RRTConnect failed");
@@ -257,6 +261,30 @@ TEST(ArcPlannerFallback, ItsFirstPlanIsRRTConnectAndSimplifierOfTheSameSeed) {
   EXPECT_NEAR(arcplan::trajectory::scaleToTcpSpeed(arcplan::robot::ur10e(), solutionJoints(problem)).duration(),
               result.fallbackTimes.kept, 1e-9);
   EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);
+}
+
+// A suite that sets RRTConnect's range gives the fallback the same (fallback_range): its plans are then
+// those of RRTConnect with that range, not with RRTConnect's default (0.2 of the joint space's extent,
+// 3.2 rad on the UR10e's thesis limits).
+TEST(ArcPlannerFallback, ItsPlansTakeTheRangeGivenToRRTConnect) {
+  const auto scene = elbowBeamScene();
+  auto problem = centimetreProblem(scene);
+  constexpr std::uint32_t kSeed = 5;
+  constexpr double kRange = 0.8;
+  const auto [planner, status] =
+      solve(problem, "arc", {{"seed", std::to_string(kSeed)}, {"fallback_range", std::to_string(kRange)}}, 30.0);
+  const ArcPlannerResult& result = arcOf(planner).lastResult();
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << result.reason;
+  ASSERT_EQ(result.mode(), "fallback") << result.reason;
+  double withRange = rrtConnectAndSimplifier(scene, kSeed, kRange);
+  double withDefault = rrtConnectAndSimplifier(scene, kSeed);
+  for (std::uint32_t seed = kSeed + 1; seed <= kSeed + 3; ++seed) {
+    withRange = std::min(withRange, rrtConnectAndSimplifier(scene, seed, kRange));
+    withDefault = std::min(withDefault, rrtConnectAndSimplifier(scene, seed));
+  }
+  // The range changes the plans (else this test could not tell), and the fallback's are the ranged ones.
+  ASSERT_GT(std::abs(withRange - withDefault), 1e-6);
+  EXPECT_NEAR(result.fallbackTimes.jointPath, withRange, 1e-9);
 }
 
 // The problem's certified motion validator, counting the motions it checks: the work a planner does

@@ -127,6 +127,11 @@ public:
   // TCP speed limit (m/s) at which the fallback compares execution times (trajectory::scaleToTcpSpeed).
   void setSpeedLimit(double speed);
   double getSpeedLimit() const { return speedLimit_; }
+  // The fallback's RRTConnect `range` (rad of joint-space distance; 0: RRTConnect's own default, 0.2 of the
+  // joint space's extent). A suite that sets RRTConnect's range sets this to the same value, so that the
+  // fallback's first plan stays what a plain RRTConnect run of the same seed computes.
+  void setFallbackRange(double range);
+  double getFallbackRange() const { return fallbackRange_; }
   double getDeadline() const { return deadline_; }
   // Giving a detour shape (sagitta) asks for the thesis mode unless auto is set explicitly.
   void setAuto(bool enabled) { autoMode_ = enabled; }
@@ -184,6 +189,7 @@ private:
   // rarely finds one later (issue 22: a fence kept it busy for 5 s).
   double deadline_ = 0.05;
   double speedLimit_ = 0.25;  // m/s: the collaborative limit of the thesis and the benchmark suites
+  double fallbackRange_ = 0.0;
   ArcPlannerResult result_;
   std::vector<robot::Vector6> solutionJoints_;                        // the last solution's waypoints
   mutable std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
