@@ -258,7 +258,7 @@ void registerPlanCommand(CLI::App& app) {
       "also time-scale the path (PCHIP) under this TCP speed limit [m/s] and report the scaled metrics");
   command
       ->add_option("--clearance", options->clearance,
-                   "distance every state and motion keeps from obstacles and between links [m], relaxed near a "
+                   "distance every state and motion keeps from obstacles (own links: at most 1 mm) [m], relaxed near a "
                    "start or goal closer than that as bench does (docs/collision.md); the JSON says whether the "
                    "path kept it")
       ->capture_default_str();

@@ -2,7 +2,8 @@
 // exit 1, the CSV not written, the JSON complete and saying so. The path is the thesis arc with motion
 // checks off (`check_motions=0`, waypoints only, as MoveIt's Cartesian paths) and waypoints 8 cm of TCP
 // path apart, so the straight joint motions between them cut closer to the particle than the arc. The
-// clearance asked for lies between the two, both measured here with collision::distance, not by plan.
+// clearance asked for lies between the two, both measured here with collision::distance (read as a clearance
+// is: collision::clearanceOf, the obstacle distance, self pairs only below 1 mm), not by plan.
 #include <algorithm>
 #include <filesystem>
 #include <limits>
@@ -72,12 +73,13 @@ TEST(PlanClearance, APathCloserThanTheClearanceBetweenItsWaypointsExitsOneAndWri
   const std::vector<Vector6> waypoints = readWaypoints(dir / "path.csv");
   ASSERT_GE(waypoints.size(), 3u);
 
-  // Smallest distance (obstacles and between links) at the waypoints, and along the straight joint
-  // motions between them (100 steps each).
+  // Smallest clearance at the waypoints, and along the straight joint motions between them (100 steps each).
   const auto scene = arcplan::collision::loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml");
   const auto model = arcplan::collision::makeCollisionModel(scene);
   arcplan::collision::CollisionData data(*model);
-  const auto clearanceAt = [&](const Vector6& q) { return arcplan::collision::distance(*model, data, q).minimum(); };
+  const auto clearanceAt = [&](const Vector6& q) {
+    return arcplan::collision::clearanceOf(arcplan::collision::distance(*model, data, q));
+  };
   double atWaypoints = std::numeric_limits<double>::infinity(), alongMotions = atWaypoints;
   for (std::size_t i = 0; i < waypoints.size(); ++i) {
     atWaypoints = std::min(atWaypoints, clearanceAt(waypoints[i]));

@@ -70,8 +70,9 @@ struct Suite {
   // machine's load, so single-threaded planners give the same runs everywhere (docs/reproducibility.md).
   std::optional<unsigned> iterationBudget;
   double vMax = 0.25;  // TCP speed limit of the time scaling, m/s
-  // m every planner's states and motions keep from obstacles and between links (the validity checker
-  // and motion validator of every job); a run whose executed path comes closer is not a success.
+  // m every planner's states and motions keep from obstacles, the robot's own links at most 1 mm of it
+  // (collision::requiredDistance; the validity checker and motion validator of every job); a run whose executed
+  // path comes closer is not a success.
   double clearance = 0.01;
   std::vector<Problem> problems;
   std::vector<PlannerConfiguration> planners;
