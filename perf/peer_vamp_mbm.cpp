@@ -154,7 +154,7 @@ void runProblem(const benchmarks::MoveItProblemFiles& files, const collision::Mo
       o.reason = refusal;
       continue;
     }
-    const PlannerRun result = runArcplanPlanner(*planning, name, options.time);
+    const PlannerRun result = runArcplanPlanner(*planning, name, sameRangeAsVamp(name), options.time);
     o.solved = result.solved;
     o.reason = result.reason;
     o.planningUs = result.planningUs;
@@ -210,6 +210,8 @@ nlohmann::json settingsJson(const Options& options) {
            {{"time_limit_s", options.time},
             {"seed", options.seed},
             {"motion_check", "certified"},
+            {"rrtconnect_range", settings.range},
+            {"arc_fallback_range", settings.range},
             {"total_us", "steady_clock around SimpleSetup::solve and simplifySolution"}}},
           {"exact_check", {{"method", "certified"}, {"minimum_clearance_m", options.validationClearance}}}};
 }

@@ -98,11 +98,18 @@ VampScene toVampScene(const collision::MoveItProblem& problem, bool cylindersAsC
 
 bool cylindersAsCuboids(const std::string& family) { return family == "box" || family == "box_ur5"; }
 
-PlannerRun runArcplanPlanner(planners::PlanningProblem& problem, const std::string& plannerName, double timeLimit) {
+std::vector<std::pair<std::string, std::string>> sameRangeAsVamp(const std::string& plannerName) {
+  const std::string range = std::to_string(VampSettings{}.range);
+  if (plannerName == "arc") return {{"fallback_range", range}};
+  return {{"range", range}};
+}
+
+PlannerRun runArcplanPlanner(planners::PlanningProblem& problem, const std::string& plannerName,
+                             const std::vector<std::pair<std::string, std::string>>& parameters, double timeLimit) {
   ompl::geometric::SimpleSetup& setup = *problem.setup;
   setup.clear();  // the previous planner's solution and data
   const ompl::base::PlannerPtr planner =
-      planners::makePlanner(plannerName, setup.getSpaceInformation(), problem.plannerContext());
+      planners::makePlanner(plannerName, setup.getSpaceInformation(), problem.plannerContext(), parameters);
   setup.setPlanner(planner);
   setup.setup();
 

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "arcplan/collision/collision_model.h"
@@ -34,10 +35,15 @@ struct PlannerRun {
   std::string mode;               // arc planner: "arc", "line", "joint" ... as it reports it
 };
 
-// One planner by registry name on the problem, as `arcplan plan` runs it: SimpleSetup::solve within
-// `timeLimit` seconds, then OMPL's simplifier when benchmarks::simplifiesSolution says so. Only an
-// exact solution counts as solved.
-PlannerRun runArcplanPlanner(planners::PlanningProblem& problem, const std::string& plannerName, double timeLimit);
+// One planner by registry name on the problem with the given parameters, as `arcplan plan` runs it:
+// SimpleSetup::solve within `timeLimit` seconds, then OMPL's simplifier when benchmarks::simplifiesSolution
+// says so. Only an exact solution counts as solved.
+PlannerRun runArcplanPlanner(planners::PlanningProblem& problem, const std::string& plannerName,
+                             const std::vector<std::pair<std::string, std::string>>& parameters, double timeLimit);
+
+// arcplan's planner parameters beside VAMP's settings: RRTConnect extends by VAMP's RRT range, and the arc
+// planner's fallback runs that same RRTConnect (as the mbm-ur5 suite configures them).
+std::vector<std::pair<std::string, std::string>> sameRangeAsVamp(const std::string& plannerName);
 
 // The exact verdict on a path: every motion between consecutive waypoints certified free under the
 // meshes (collision::isMotionCollisionFree, MotionCheck::Certified at `minimumClearance`), and how
