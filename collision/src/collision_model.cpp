@@ -18,12 +18,9 @@ namespace arcplan::collision {
 namespace {
 
 using detail::Implementation;
+using detail::kHullDistanceSlack;
 using detail::Part;
 using detail::Workspace;
-
-// GJK's distances are exact to about 1e-6 m (docs/collision.md); a hull's distance is taken this
-// much smaller, so that as a lower bound it never rests on an overestimate.
-constexpr double kHullDistanceSlack = 1e-6;
 
 // The coarse hull where there is one, else the hull.
 const fcl::CollisionGeometryd* coarseHullOf(const Part& part) {
@@ -291,7 +288,8 @@ DistanceReport distance(const CollisionModel& model, CollisionData& workspace, c
     const Part& first = impl.robotParts[candidate.first];
     const Part& second = secondPart(impl, *candidate.group, candidate.second);
     const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, *candidate.group, candidate.second);
-    if (detail::hullGap(first, data.partPoses[candidate.first], second, secondPose, model.options(), best) >= best)
+    if (detail::hullGap(first, data.partPoses[candidate.first], second, secondPose, model.options(), best) >= best ||
+        detail::containingMeshGap(first, data.partPoses[candidate.first], second, secondPose, model.options()) >= best)
       continue;
     const double d =
         partsDistance(first, data.partPoses[candidate.first], second, secondPose, bound <= 0.0, model.options());
@@ -368,7 +366,9 @@ bool detail::keepsDistances(const CollisionModel& model, CollisionData& workspac
   for (const auto& open : data.openPairs) {
     const auto [a, poseA, b, poseB] = parts(open);
     const double required = requiredOf(*impl.partPairs[open.first].group);
-    if (detail::hullGap(a, poseA, b, poseB, model.options(), required) >= required) continue;
+    if (detail::hullGap(a, poseA, b, poseB, model.options(), required) >= required ||
+        detail::containingMeshGap(a, poseA, b, poseB, model.options()) >= required)
+      continue;
     if (partsDistance(a, poseA, b, poseB, open.second, model.options()) < required) return false;
   }
   return true;

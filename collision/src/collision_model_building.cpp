@@ -50,11 +50,11 @@ std::vector<Part> geometryParts(const robot::CollisionGeometry& geometry, const 
         throw Error("link " + linkName + ": " + e.what());
       }
     case robot::CollisionGeometry::Shape::Box:
-      return {detail::boxPart(geometry.boxSize)};
+      return {detail::boxPart(geometry.boxSize, options.distanceBoundingVolume)};
     case robot::CollisionGeometry::Shape::Sphere:
-      return {detail::spherePart(geometry.radius)};
+      return {detail::spherePart(geometry.radius, options.distanceBoundingVolume)};
     case robot::CollisionGeometry::Shape::Cylinder:
-      return {detail::cylinderPart(geometry.radius, geometry.length)};
+      return {detail::cylinderPart(geometry.radius, geometry.length, options.distanceBoundingVolume)};
   }
   return {};
 }
@@ -87,14 +87,14 @@ void addRobotParts(const robot::RobotModel& robot, const CollisionModelOptions& 
 std::vector<Part> obstacleShapeParts(const Obstacle& obstacle, const CollisionModelOptions& options) {
   switch (obstacle.shape) {
     case Obstacle::Shape::Sphere:
-      return {detail::spherePart(obstacle.radius)};
+      return {detail::spherePart(obstacle.radius, options.distanceBoundingVolume)};
     case Obstacle::Shape::Box: {
-      Part box = detail::boxPart(obstacle.size);
+      Part box = detail::boxPart(obstacle.size, options.distanceBoundingVolume);
       box.boxBound = true;
       return {std::move(box)};
     }
     case Obstacle::Shape::Cylinder:
-      return {detail::cylinderPart(obstacle.radius, obstacle.length)};
+      return {detail::cylinderPart(obstacle.radius, obstacle.length, options.distanceBoundingVolume)};
     case Obstacle::Shape::Mesh:
       try {
         return detail::meshParts(

@@ -18,6 +18,10 @@ namespace arcplan::collision::detail {
 class SpherePrefilter;  // sphere_prefilter.h
 struct SphereWorkspace;
 
+// GJK's distances are exact to about 1e-6 m (docs/collision.md); a hull's (or containing mesh's)
+// distance is taken this much smaller, so that as a lower bound it never rests on an overestimate.
+inline constexpr double kHullDistanceSlack = 1e-6;
+
 // Robot parts move with their link; obstacle parts are fixed in base_link, so their bounding
 // volumes are precomputed in world coordinates.
 struct ModelImplementation {
@@ -159,6 +163,13 @@ double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& 
 // The coarse hulls' bound is returned when it reaches `enough` (the caller's threshold), else the hulls'.
 double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                const CollisionModelOptions& options, double enough);
+
+// A lower bound of partsDistance(a, b) for a primitive against a mesh part from the primitive's
+// containing mesh (Part::containingMesh; triangle distances, less GJK's tolerance), at most the
+// containing mesh's largest gap below it: 0 when they touch, when the layer (hullLayer) is off, or for
+// other pairs. Asked after hullGap, where the hull (convex) is loose: a can held between finger tips.
+double containingMeshGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+                         const CollisionModelOptions& options);
 
 inline const Part& secondPart(const Implementation& impl, const Implementation::PairGroup& group, int j) {
   return group.self ? impl.robotParts[j] : impl.obstacleParts[j];

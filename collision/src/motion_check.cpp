@@ -163,6 +163,14 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
       best = std::min(best, reachOf(hull - minimumClearance, rate));
       continue;
     }
+    // The containing mesh's bound only where the exact distance would decide the same: it certifies
+    // more than is wanted (the pair is done either way), or no less than the best so far.
+    const double contained = detail::containingMeshGap(first, data.partPoses[i], second, secondPose, model.options());
+    const double containedReach = reachOf(contained - minimumClearance, rate);
+    if (contained >= enough && (containedReach > request.wanted || containedReach >= best)) {
+      best = std::min(best, containedReach);
+      continue;
+    }
     const double d = detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options());
     if (d - kDistanceSlack < enough) return {0.0, true};
     best = std::min(best, reachOf(d - kDistanceSlack - minimumClearance, rate));

@@ -20,6 +20,7 @@
 #include <fcl/math/bv/kIOS.h>
 
 #include "arcplan/common/error.h"
+#include "containing_meshes.h"
 #include "convex_hull.h"
 
 namespace arcplan::collision::detail {
@@ -325,17 +326,34 @@ std::vector<Part> meshParts(const robot::TriangleMesh& input, const CollisionMod
   return parts;
 }
 
-Part spherePart(double radius) {
+namespace {
+
+void setContainingMesh(Part& part, const ContainingMesh& containing, BoundingVolume boundingVolume) {
+  part.containingMesh = makeBvh(containing.mesh, boundingVolume);
+  part.containingSolid.kind = Solid::Kind::Convex;
+  for (const auto& t : containing.mesh.triangles) {
+    const Eigen::Vector3d& a = containing.mesh.vertices[t[0]];
+    const Eigen::Vector3d normal =
+        (containing.mesh.vertices[t[1]] - a).cross(containing.mesh.vertices[t[2]] - a).normalized();
+    // Padded outward: a point on a face counts as inside, where the layer answers nothing.
+    part.containingSolid.planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.dot(a) + kBoundPadding);
+  }
+}
+
+}  // namespace
+
+Part spherePart(double radius, BoundingVolume containingMesh) {
   Part part;
   part.collisionGeometry = part.distanceGeometry = part.convexGeometry = part.hullGeometry =
       std::make_shared<fcl::Sphered>(radius);
   part.capsule.radius = radius + kBoundPadding;
   part.solid.kind = Solid::Kind::Sphere;
   part.solid.radius = radius;
+  setContainingMesh(part, containingSphereMesh(radius), containingMesh);
   return part;
 }
 
-Part boxPart(const Eigen::Vector3d& size) {
+Part boxPart(const Eigen::Vector3d& size, BoundingVolume containingMesh) {
   Part part;
   part.collisionGeometry = part.distanceGeometry = part.convexGeometry = part.hullGeometry =
       std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z());
@@ -349,10 +367,11 @@ Part boxPart(const Eigen::Vector3d& size) {
   part.boxHalfExtents = size / 2.0;
   part.solid.kind = Solid::Kind::Box;
   part.solid.halfExtents = size / 2.0;
+  setContainingMesh(part, boxMesh(size), containingMesh);
   return part;
 }
 
-Part cylinderPart(double radius, double length) {
+Part cylinderPart(double radius, double length, BoundingVolume containingMesh) {
   Part part;
   part.collisionGeometry = part.distanceGeometry = part.convexGeometry = part.hullGeometry =
       std::make_shared<fcl::Cylinderd>(radius, length);
@@ -361,6 +380,7 @@ Part cylinderPart(double radius, double length) {
   part.solid.kind = Solid::Kind::Cylinder;
   part.solid.radius = radius;
   part.solid.halfLength = length / 2.0;
+  setContainingMesh(part, containingCylinderMesh(radius, length), containingMesh);
   return part;
 }
 

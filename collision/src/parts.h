@@ -44,6 +44,11 @@ struct Part {
   // Where the hull has many vertices: a containing hull with few (convex_hull.h coarseContainingHull),
   // asked first — its bounds are looser but its GJK queries much cheaper. Null otherwise.
   std::shared_ptr<fcl::CollisionGeometryd> coarseHullGeometry;
+  // Primitives only: a convex triangle mesh containing the primitive (containing_meshes.h), as a BVH of
+  // the distance queries' type, and its solid (Convex). Against a mesh part its distance is a lower bound
+  // of the primitive's, found with triangle distances instead of a GJK per triangle. Null for mesh parts.
+  std::shared_ptr<fcl::CollisionGeometryd> containingMesh;
+  Solid containingSolid;
   // Broad phase: a capsule in the part frame, or (obstacle boxes) the box itself.
   bool boxBound = false;
   Capsule capsule;
@@ -59,9 +64,10 @@ struct Part {
 // One part per closed component of the mesh (edge-connected triangles after welding identical
 // vertices); meshes with very many components become a single part.
 std::vector<Part> meshParts(const robot::TriangleMesh& mesh, const CollisionModelOptions& options);
-Part spherePart(double radius);
-Part boxPart(const Eigen::Vector3d& size);
-Part cylinderPart(double radius, double length);
+// Primitives; `containingMesh` is built with the given BVH type (CollisionModelOptions::distanceBoundingVolume).
+Part spherePart(double radius, BoundingVolume containingMesh);
+Part boxPart(const Eigen::Vector3d& size, BoundingVolume containingMesh);
+Part cylinderPart(double radius, double length, BoundingVolume containingMesh);
 
 // A capsule containing all the given capsules (fitted to their end points, radius grown by the largest radius).
 Capsule enclosingCapsule(const std::vector<Capsule>& capsules);
