@@ -96,6 +96,50 @@ TEST(CoarseHull, EveryCoarseHullOfTheMbmRobotContainsItsPart) {
 // at most partPairReach · |Δq|. On the MBM arm the bound is much tighter than the group's for some part
 // pairs (parts near a joint axis), and below the moving part's own displacement for some (the base seen
 // from the upper arm's end cap, motion_bounds.cpp fixedSideReach).
+// A body's reach for joint j bounds the distance of its points from j's axis in every configuration
+// (motion_bounds.cpp axisReach): measured here with forward kinematics on random configurations, every hull
+// point of every part against every joint that moves it. For the joint of the body's own link the reach is
+// that distance itself (the points turn about the axis rigidly), so the samples come within 1 % of it.
+TEST(MotionBounds, NoPointIsFartherFromAJointsAxisThanItsReach) {
+  for (const Scene& scene : testScenes()) {
+    const auto model = makeCollisionModel(scene);
+    const auto& impl = detail::implementationOf(*model);
+    const auto& robot = model->robot();
+    arcplan::robot::KinematicsData kinematics(robot);
+    std::mt19937_64 random(29);
+    const auto bodies = static_cast<Eigen::Index>(model->linkNames().size());
+    Eigen::MatrixXd farthest = Eigen::MatrixXd::Zero(bodies, robot.dof());
+    for (int trial = 0; trial < 600; ++trial) {
+      arcplan::robot::forwardKinematics(robot, arcplan::testing::randomJointState(robot, random), kinematics);
+      for (const auto& part : impl.robotParts) {
+        const int link = impl.linkCapsuleLink[static_cast<std::size_t>(part.body)];
+        for (int l = link; l >= 0; l = robot.links()[l].parent) {
+          const int joint = robot.links()[l].joint;
+          if (joint < 0) continue;
+          const Eigen::Vector3d origin = kinematics.linkPoses[l].translation();
+          const Eigen::Vector3d axis = kinematics.linkPoses[l].linear() * robot.links()[l].axis;
+          for (const Eigen::Vector3d& point : part.hullPoints) {
+            const Eigen::Vector3d p = kinematics.linkPoses[link] * (part.offset * point) - origin;
+            double& d = farthest(part.body, joint);
+            d = std::max(d, (p - p.dot(axis) * axis).norm());
+          }
+        }
+      }
+    }
+    for (Eigen::Index b = 0; b < bodies; ++b) {
+      for (int j = 0; j < robot.dof(); ++j) {
+        EXPECT_LE(farthest(b, j), impl.jointReach(b, j) + 1e-9) << model->linkNames()[b] << " joint " << j;
+      }
+    }
+    for (const auto& part : impl.robotParts) {
+      const int joint = robot.links()[impl.linkCapsuleLink[static_cast<std::size_t>(part.body)]].joint;
+      if (joint >= 0 && !part.hullPoints.empty())
+        EXPECT_GT(farthest(part.body, joint), 0.99 * impl.jointReach(part.body, joint))
+            << model->linkNames()[part.body];
+    }
+  }
+}
+
 TEST(MotionBoundsPerPart, NoPartPairMovesFartherThanItsBound) {
   for (const Scene& scene : testScenes()) {
     const auto model = makeCollisionModel(scene);
