@@ -158,7 +158,7 @@ void CollisionMbmState(benchmark::State& state, Layers layers) {
 // hasClearance) and as hasClearance.
 void CollisionMbmDistance(benchmark::State& state, Layers layers) {
   timeQueries(state, layers, stateSamples(), [](const CollisionModel& model, CollisionData& data, const Sample& s) {
-    return distance(model, data, s.start).minimum() >= kClearance;
+    return clearanceOf(distance(model, data, s.start)) >= kClearance;
   });
 }
 
