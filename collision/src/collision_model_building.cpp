@@ -50,7 +50,7 @@ std::vector<Part> geometryParts(const robot::CollisionGeometry& geometry, const 
         throw Error("link " + linkName + ": " + e.what());
       }
     case robot::CollisionGeometry::Shape::Box:
-      return {detail::boxPart(geometry.boxSize, options.distanceBoundingVolume)};
+      return {detail::boxPart(geometry.boxSize)};
     case robot::CollisionGeometry::Shape::Sphere:
       return {detail::spherePart(geometry.radius, options.distanceBoundingVolume)};
     case robot::CollisionGeometry::Shape::Cylinder:
@@ -89,7 +89,7 @@ std::vector<Part> obstacleShapeParts(const Obstacle& obstacle, const CollisionMo
     case Obstacle::Shape::Sphere:
       return {detail::spherePart(obstacle.radius, options.distanceBoundingVolume)};
     case Obstacle::Shape::Box: {
-      Part box = detail::boxPart(obstacle.size, options.distanceBoundingVolume);
+      Part box = detail::boxPart(obstacle.size);
       box.boxBound = true;
       return {std::move(box)};
     }

@@ -90,23 +90,13 @@ ContainingMesh containingSphereMesh(double radius, int subdivisions) {
   return result;
 }
 
-ContainingMesh boxMesh(const Eigen::Vector3d& size) {
-  ContainingMesh result;
-  for (int corner = 0; corner < 8; ++corner) {  // bit k set: + half extent along axis k
-    result.mesh.vertices.emplace_back((corner & 1 ? 0.5 : -0.5) * size.x(), (corner & 2 ? 0.5 : -0.5) * size.y(),
-                                      (corner & 4 ? 0.5 : -0.5) * size.z());
-  }
-  result.mesh.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                           {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  return result;
-}
-
 double containingMeshGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                          const CollisionModelOptions& options) {
   if (!options.hullLayer || (a.containingMesh == nullptr) == (b.containingMesh == nullptr)) return 0.0;
   const bool primitiveFirst = a.containingMesh != nullptr;
   const Part& primitive = primitiveFirst ? a : b;
   const Part& mesh = primitiveFirst ? b : a;
+  if (mesh.triangleCount < kContainingMeshMinTriangles) return 0.0;
   const Eigen::Isometry3d& primitivePose = primitiveFirst ? poseA : poseB;
   const Eigen::Isometry3d& meshPose = primitiveFirst ? poseB : poseA;
   static const fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-9);

@@ -85,7 +85,9 @@ PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data
     const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, group, j);
     // The hulls' lower bound (cheaper than the BVHs) will do unless closer than minimumClearance.
     const double enough = std::min(minimumClearance, exact);
-    const double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough);
+    double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough);
+    if (hull < enough)  // then the containing mesh's bound (a primitive against a many-triangle mesh part)
+      hull = std::max(hull, detail::containingMeshGap(first, data.partPoses[i], second, secondPose, model.options()));
     if (hull >= enough) {
       exact = std::min(exact, hull);
       continue;
@@ -163,12 +165,10 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
       best = std::min(best, reachOf(hull - minimumClearance, rate));
       continue;
     }
-    // The containing mesh's bound only where the exact distance would decide the same: it certifies
-    // more than is wanted (the pair is done either way), or no less than the best so far.
+    // Then the containing mesh's bound (a primitive against a many-triangle mesh part), taken as the hulls'.
     const double contained = detail::containingMeshGap(first, data.partPoses[i], second, secondPose, model.options());
-    const double containedReach = reachOf(contained - minimumClearance, rate);
-    if (contained >= enough && (containedReach > request.wanted || containedReach >= best)) {
-      best = std::min(best, containedReach);
+    if (contained >= enough) {
+      best = std::min(best, reachOf(contained - minimumClearance, rate));
       continue;
     }
     const double d = detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options());

@@ -259,6 +259,7 @@ Part makeMeshPart(const robot::TriangleMesh& mesh, Solid solid, const CollisionM
   part.solid = std::move(solid);
   part.referencePoint = mesh.vertices.front();
   part.hullPoints = mesh.vertices;
+  part.triangleCount = static_cast<int>(mesh.triangles.size());
   return part;
 }
 
@@ -353,7 +354,7 @@ Part spherePart(double radius, BoundingVolume containingMesh) {
   return part;
 }
 
-Part boxPart(const Eigen::Vector3d& size, BoundingVolume containingMesh) {
+Part boxPart(const Eigen::Vector3d& size) {
   Part part;
   part.collisionGeometry = part.distanceGeometry = part.convexGeometry = part.hullGeometry =
       std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z());
@@ -367,7 +368,6 @@ Part boxPart(const Eigen::Vector3d& size, BoundingVolume containingMesh) {
   part.boxHalfExtents = size / 2.0;
   part.solid.kind = Solid::Kind::Box;
   part.solid.halfExtents = size / 2.0;
-  setContainingMesh(part, boxMesh(size), containingMesh);
   return part;
 }
 

@@ -44,11 +44,12 @@ struct Part {
   // Where the hull has many vertices: a containing hull with few (convex_hull.h coarseContainingHull),
   // asked first — its bounds are looser but its GJK queries much cheaper. Null otherwise.
   std::shared_ptr<fcl::CollisionGeometryd> coarseHullGeometry;
-  // Primitives only: a convex triangle mesh containing the primitive (containing_meshes.h), as a BVH of
-  // the distance queries' type, and its solid (Convex). Against a mesh part its distance is a lower bound
-  // of the primitive's, found with triangle distances instead of a GJK per triangle. Null for mesh parts.
+  // Cylinders and spheres only: a convex triangle mesh containing the primitive (containing_meshes.h), as a
+  // BVH of the distance queries' type, and its solid (Convex). Against a mesh part its distance is a lower
+  // bound of the primitive's, found with triangle distances instead of a GJK per triangle. Null otherwise.
   std::shared_ptr<fcl::CollisionGeometryd> containingMesh;
   Solid containingSolid;
+  int triangleCount = 0;  // mesh parts: what FCL's exact queries against a primitive cost grows with
   // Broad phase: a capsule in the part frame, or (obstacle boxes) the box itself.
   bool boxBound = false;
   Capsule capsule;
@@ -65,8 +66,9 @@ struct Part {
 // vertices); meshes with very many components become a single part.
 std::vector<Part> meshParts(const robot::TriangleMesh& mesh, const CollisionModelOptions& options);
 // Primitives; `containingMesh` is built with the given BVH type (CollisionModelOptions::distanceBoundingVolume).
+// A box has none: FCL's mesh–box distance costs as much as the box's own 12 triangles would.
 Part spherePart(double radius, BoundingVolume containingMesh);
-Part boxPart(const Eigen::Vector3d& size, BoundingVolume containingMesh);
+Part boxPart(const Eigen::Vector3d& size);
 Part cylinderPart(double radius, double length, BoundingVolume containingMesh);
 
 // A capsule containing all the given capsules (fitted to their end points, radius grown by the largest radius).
