@@ -1,3 +1,6 @@
+// The certified motion check, PathCertifier and the per-pair measurements they share: one concept (conservative
+// advancement), a little over 400 lines because the bound layers (capsules, hulls, containing meshes) each take a
+// step here; the bounds themselves live in motion_bounds.cpp.
 #include "arcplan/collision/motion_check.h"
 
 #include <algorithm>
