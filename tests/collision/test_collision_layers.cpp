@@ -19,6 +19,7 @@
 #include "arcplan/robot/kinematics.h"
 #include "convex_hull.h"           // collision/src
 #include "model_implementation.h"  // collision/src
+#include "support/collision_options.h"
 #include "support/command.h"
 #include "support/joint_states.h"
 
@@ -55,12 +56,7 @@ std::vector<Scene> testScenes() {
   return scenes;
 }
 
-CollisionModelOptions exactOnly() {
-  CollisionModelOptions options;
-  options.spherePrefilter = false;
-  options.hullLayer = false;
-  return options;
-}
+using arcplan::testing::exactOnly;
 
 TEST(CollisionLayers, HullOfACubeIsTheCubeAndContainsEveryPoint) {
   // Independent reference: the cube's 8 corners are the hull's vertices, 12 triangles, and its inner

@@ -15,6 +15,7 @@
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/collision/moveit_scene.h"
 #include "arcplan/common/resources.h"
+#include "support/collision_options.h"
 #include "support/command.h"
 #include "support/held_balls.h"
 #include "support/random_joint_state.h"
@@ -41,12 +42,7 @@ protected:
   arcplan::testing::HeldBalls balls_;
 };
 
-CollisionModelOptions exactOnly() {
-  CollisionModelOptions options;
-  options.spherePrefilter = false;
-  options.hullLayer = false;
-  return options;
-}
+using arcplan::testing::exactOnly;
 
 TEST_F(HeldBalls, ASelfPairAtFiveMillimetresMeetsACentimetreAndOneAtHalfAMillimetreDoesNot) {
   for (const CollisionModelOptions& options : {CollisionModelOptions{}, exactOnly()}) {
