@@ -30,6 +30,7 @@ echo "== campaign with a gripper and every obstacle kind: a MoveIt scene (box, c
 # The files of tests/report/drawn_campaign (shared with test_report_scene.cpp) and arcplan's UR10e with
 # the box body and cylinder finger of gripper_links.xml beyond the flange.
 cp -r "$source_dir/tests/report/drawn_campaign" "$work/drawn"
+bash "$source_dir/tests/report/write_drawn_moveit.sh" "$work/drawn"
 {
   sed -e "s|filename=\"meshes/|filename=\"$source_dir/data/ur10e/meshes/|" -e 's|</robot>||' "$source_dir/data/ur10e/ur10e.urdf"
   cat "$work/drawn/gripper_links.xml"

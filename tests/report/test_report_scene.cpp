@@ -4,6 +4,7 @@
 // of a robot with a gripper beyond the flange. Expected poses and sizes are worked out by hand from the input
 // files (tests/report/drawn_campaign).
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -24,11 +25,15 @@ namespace {
 using arcplan::testing::decodeBase64Array;
 using Json = nlohmann::json;
 
-// The campaign's files (tests/report/drawn_campaign, shared with browser_reports.sh) copied to `dir`,
-// and beside them gripper.urdf: arcplan's UR10e with a box body on tool0 and a finger 0.1 m further.
+// The campaign's files (tests/report/drawn_campaign, shared with browser_reports.sh) copied to `dir`, its
+// MoveIt problem written by write_drawn_moveit.sh (the one place its text lives), and beside them
+// gripper.urdf: arcplan's UR10e with a box body on tool0 and a finger 0.1 m further.
 void writeDrawnCampaign(const std::filesystem::path& dir) {
   const std::filesystem::path fixture = ARCPLAN_DRAWN_CAMPAIGN_DIR;
   std::filesystem::copy(fixture, dir, std::filesystem::copy_options::recursive);
+  const std::string writer =
+      "bash '" + (fixture.parent_path() / "write_drawn_moveit.sh").string() + "' '" + dir.string() + "'";
+  ASSERT_EQ(std::system(writer.c_str()), 0) << writer;
   std::string urdf = arcplan::testing::ur10eUrdfText();
   urdf.insert(urdf.rfind("</robot>"), arcplan::testing::readFile(fixture / "gripper_links.xml"));
   std::ofstream(dir / "gripper.urdf") << urdf;

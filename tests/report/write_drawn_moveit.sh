@@ -1,3 +1,13 @@
+#!/bin/bash
+# Writes the drawn campaign's MoveIt problem (moveit/scene0001.yaml, moveit/request0001.yaml) into DIR, the
+# campaign folder (a copy of tests/report/drawn_campaign): one object per shape kind MoveIt has — box,
+# cylinder, sphere, mesh — behind arcplan's UR10e and away from its motion, and a sphere held by tool0. These are
+# not MotionBenchMaker problems (MBM's are for a UR5 + Robotiq with boxes and cylinders only): written here, once,
+# for test_report_scene.cpp and browser_reports.sh.
+set -euo pipefail
+dir="$1/moveit"
+mkdir -p "$dir"
+cat > "$dir/scene0001.yaml" <<'SCENE'
 # One object per shape kind, all behind the robot and away from its motion, and a sphere held by tool0.
 world:
   collision_objects:
@@ -26,3 +36,18 @@ robot_state:
         id: held
         primitives: [{type: sphere, dimensions: [0.02]}]
         primitive_poses: [{position: [0, 0, 0.3], orientation: [0, 0, 0, 1]}]
+SCENE
+cat > "$dir/request0001.yaml" <<'REQUEST'
+start_state:
+  joint_state:
+    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint]
+    position: [0, -1.57, 1.57, -1.57, -1.57, 0]
+goal_constraints:
+  - joint_constraints:
+      - {joint_name: shoulder_pan_joint, position: 0.5}
+      - {joint_name: shoulder_lift_joint, position: -1.57}
+      - {joint_name: elbow_joint, position: 1.57}
+      - {joint_name: wrist_1_joint, position: -1.57}
+      - {joint_name: wrist_2_joint, position: -1.57}
+      - {joint_name: wrist_3_joint, position: 0}
+REQUEST
