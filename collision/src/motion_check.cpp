@@ -1,6 +1,5 @@
-// The certified motion check, PathCertifier and the per-pair measurements they share: one concept (conservative
-// advancement), a little over 400 lines because the bound layers (capsules, hulls, containing meshes) each take a
-// step here; the bounds themselves live in motion_bounds.cpp.
+// The certified motion check and the per-pair measurements it shares with PathCertifier (path_certifier.cpp):
+// conservative advancement; the bounds themselves live in motion_bounds.cpp.
 #include "arcplan/collision/motion_check.h"
 
 #include <algorithm>
@@ -11,6 +10,7 @@
 
 #include "arcplan/common/error.h"
 #include "model_implementation.h"
+#include "certified_motion.h"
 #include "motion_bounds.h"
 #include "motion_clearance.h"
 #include "sphere_prefilter.h"
@@ -37,18 +37,11 @@ constexpr double kEarlyMeasurement = 0.5;
 // 18.1 s (thin 0047 -40 %, 0020 -18 %), none slower beyond noise; three probes there gave 19.2 s.
 constexpr int kProbes = 3;
 constexpr double kProbedLength = 1.0, kMidpointProbedLength = 0.2;
-// What PathCertifier asks of a pair at a new anchor beyond minimumClearance [m].
-constexpr double kAnchorBudget = 0.05;
 // Certificates keep minimumClearance m itself, each pair its own m_k = requiredDistance(self, m) (a self pair at
 // most kSelfClearance, collision_model.h): a pair g apart stays at least m_k apart for (g − m_k)/rate; a pair
 // measured closer than m_k + acceptanceMargin(m_k) rejects the motion (motion_check.h).
 using detail::checkJoints;
 using detail::kSmallestMinimumClearance;
-
-struct PairMeasurement {
-  double gap;     // lower bound of the pair's distance [m]
-  bool tooClose;  // an exact distance below minimumClearance
-};
 
 // A lower bound of the group's distance in the current configuration (updateRobot): the capsule
 // bounds when they reach `wanted` (minimumClearance plus what the caller will spend of it) or
@@ -59,8 +52,12 @@ struct PairMeasurement {
 // UR10e the capsules are tight enough that exact distances for larger bounds cost more (2.5 µs per
 // GJK call) than the steps they save: below 2 cm they made the long motions of
 // perf/perf_collision.cpp 2–2.4x slower.
-PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data,
-                            const Implementation::PairGroup& group, double wanted, double minimumClearance) {
+}  // namespace
+
+namespace detail {
+
+PairMeasurement measurePair(const CollisionModel& model, Workspace& data, const Implementation::PairGroup& group,
+                            double wanted, double minimumClearance) {
   const Implementation& impl = detail::implementationOf(model);
   if (group.rigid) return {group.rigidDistance - kDistanceSlack, group.rigidDistance < minimumClearance};
   double gap = std::max(detail::linkGap(impl, data, group), group.floor);
@@ -104,6 +101,10 @@ PairMeasurement measurePair(const CollisionModel& model, detail::Workspace& data
   }
   return {std::max(gap, exact), false};
 }
+
+}  // namespace detail
+
+namespace {
 
 // The fraction of the motion over which a distance `gap` shrinking at most at `rate` stays positive.
 double reachOf(double gap, double rate) {
@@ -210,8 +211,10 @@ bool probesClear(const CollisionModel& model, CollisionData& data, const robot::
 // m_k on (s − (g − m_k)/rate, s + (g − m_k)/rate)); it is done when the two overlap. The front on each side is the
 // smallest certificate of the pairs not done, and the pairs whose certificate ends there (or soon after) are measured
 // there.
-bool certifiedMotionFree(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& qa,
-                         const robot::JointRef& qb, double* lastValidFraction, double minimumClearance) {
+}  // namespace
+
+bool detail::certifiedMotionFree(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& qa,
+                                 const robot::JointRef& qb, double* lastValidFraction, double minimumClearance) {
   const Implementation& impl = detail::implementationOf(model);
   detail::Workspace& data = detail::workspaceOf(workspace);
   // The sphere prefilter first: it certifies most motions with a few batches of 8 states.
@@ -268,6 +271,8 @@ bool certifiedMotionFree(const CollisionModel& model, CollisionData& workspace, 
     if (bothEnds) atStart = !atStart;
   }
 }
+
+namespace {
 
 bool discreteMotionFree(const CollisionModel& model, CollisionData& data, const robot::JointRef& qa,
                         const robot::JointRef& qb, double* lastValidFraction, double maxJointStep) {
@@ -330,7 +335,7 @@ bool isMotionCollisionFree(const CollisionModel& model, CollisionData& data, con
   if (options.method == MotionCheck::Discrete) {
     return discreteMotionFree(model, data, qa, qb, lastValidFraction, options.maxJointStep);
   }
-  return certifiedMotionFree(model, data, qa, qb, lastValidFraction, options.minimumClearance);
+  return detail::certifiedMotionFree(model, data, qa, qb, lastValidFraction, options.minimumClearance);
 }
 
 bool keepsAcceptanceMargin(const CollisionModel& model, CollisionData& data, const robot::JointRef& q,
@@ -344,68 +349,6 @@ bool keepsAcceptanceMargin(const CollisionModel& model, CollisionData& data, con
     return m + acceptanceMargin(m);
   };
   return detail::keepsDistances(model, data, q, accepted(false), accepted(true));
-}
-
-PathCertifier::PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance)
-    : model_(model), data_(data), minimumClearance_(minimumClearance) {
-  validate(MotionCheckOptions{MotionCheck::Certified, 0.01, minimumClearance});
-  budget_.resize(detail::implementationOf(model).groups.size());
-  used_.resize(budget_.size());
-  bound_.resize(budget_.size());
-}
-
-bool PathCertifier::anchorAll(const robot::JointRef& q) {
-  const Implementation& impl = detail::implementationOf(model_);
-  detail::updateRobot(model_, detail::workspaceOf(data_), q);
-  ++measurements_;
-  for (std::size_t k = 0; k < budget_.size(); ++k) {
-    const double m = impl.groups[k]->required(minimumClearance_);  // this pair's own m
-    // The capsule bounds are taken as soon as they leave a few centimetres to spend: enough for several waypoints.
-    const PairMeasurement measured =
-        measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], kAnchorBudget + m, m);
-    if (measured.tooClose) return false;
-    budget_[k] = measured.gap - m;  // what the pair may close in before it is m apart
-    used_[k] = 0.0;
-  }
-  last_ = q;
-  return true;
-}
-
-bool PathCertifier::start(const robot::JointRef& q) {
-  checkJoints(model_, q, q);
-  return anchorAll(q);
-}
-
-bool PathCertifier::extend(const robot::JointRef& q) {
-  checkJoints(model_, last_, q);
-  const Implementation& impl = detail::implementationOf(model_);
-  step_ = (q - last_).cwiseAbs();
-  bool remeasured = false;
-  for (std::size_t k = 0; k < budget_.size(); ++k) {
-    bound_[k] = impl.groups[k]->relativeReach.dot(step_);
-    if (used_[k] + bound_[k] < budget_[k]) continue;
-    // This pair's clearance at its anchor does not cover the motion: measure it again at the
-    // motion's start (one forward kinematics for every pair that needs it).
-    if (!remeasured) {
-      detail::updateRobot(model_, detail::workspaceOf(data_), last_);
-      ++measurements_;
-      remeasured = true;
-    }
-    const double m = impl.groups[k]->required(minimumClearance_);
-    const PairMeasurement measured = measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], bound_[k] + m, m);
-    if (measured.tooClose) return false;
-    budget_[k] = measured.gap - m;
-    used_[k] = 0.0;
-    if (bound_[k] >= budget_[k]) {
-      // Not even this one motion: advance along it conservatively, then start afresh at its end.
-      ++measurements_;
-      if (!certifiedMotionFree(model_, data_, last_, q, nullptr, minimumClearance_)) return false;
-      return anchorAll(q);
-    }
-  }
-  for (std::size_t k = 0; k < budget_.size(); ++k) used_[k] += bound_[k];
-  last_ = q;
-  return true;
 }
 
 int discreteSegmentCount(const robot::JointRef& qa, const robot::JointRef& qb, double maxJointStep) {

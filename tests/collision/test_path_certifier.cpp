@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -122,6 +123,124 @@ TEST(PathCertifier, DensePathsNeedFewerMeasurementsThanWaypoints) {
   ASSERT_TRUE(certifier.start(path.front()));
   for (std::size_t i = 1; i < path.size(); ++i) ASSERT_TRUE(certifier.extend(path[i])) << i;
   EXPECT_LT(certifier.measurements(), 40);
+}
+
+// Paths of small joint steps (the arc planner's waypoints are ~1 cm of TCP apart) from the thesis solution A to B
+// through the particle's neighbourhood, each bent sideways by a smooth random offset so that some pass it at a few
+// centimetres, some within 1 cm and some through it.
+std::vector<VectorXd> bentLine(std::mt19937& random, int steps) {
+  std::normal_distribution<double> offset(0.0, 0.25);
+  VectorXd bend(6);
+  for (auto& v : bend) v = offset(random);
+  std::vector<VectorXd> path;
+  for (int k = 0; k <= steps; ++k) {
+    const double s = static_cast<double>(k) / steps;
+    path.push_back(kSolutionA + s * (kSolutionB - kSolutionA) + std::sin(M_PI * s) * bend);
+  }
+  return path;
+}
+
+// The smallest clearance (clearanceOf: what the per-pair rule asks, collision_model.h) at `states` + 1 states of
+// qa -> qb, each measured with collision::distance: a computation independent of the certifier's bounds.
+double clearanceAlong(const CollisionModel& model, CollisionData& data, const VectorXd& qa, const VectorXd& qb,
+                      int states) {
+  double least = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= states; ++k)
+    least = std::min(least, clearanceOf(distance(model, data, qa + (static_cast<double>(k) / states) * (qb - qa))));
+  return least;
+}
+
+TEST(PathCertifier, EveryAcceptedMotionOfADensePathKeepsTheClearanceAtEveryState) {
+  const auto model = makeCollisionModel(thesisObstacle());
+  CollisionData data(*model), reference(*model);
+  constexpr double kPlannerClearance = 0.01;  // the arc planner's default margin
+  std::mt19937 random(23);
+  int acceptedMotions = 0, refusedWithinClearance = 0, refusedKeepingIt = 0, sampled = 0, paths = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    const auto path = bentLine(random, 160);  // 0.01-0.02 rad a step
+    PathCertifier certifier(*model, data, kPlannerClearance);
+    if (!certifier.start(path.front())) continue;
+    ++paths;
+    for (std::size_t i = 1; i < path.size(); ++i) {
+      // 40 states a motion: at most 0.5 mrad apart, which moves no point of the arm more than ~1 mm.
+      const double along = clearanceAlong(*model, reference, path[i - 1], path[i], 40);
+      sampled += 41;
+      if (!certifier.extend(path[i])) {
+        ++(along < kPlannerClearance ? refusedWithinClearance : refusedKeepingIt);
+        break;
+      }
+      ++acceptedMotions;
+      // Self pairs keep min(c, 1 mm), obstacle pairs c: clearanceOf reports the smallest c met; GJK's 1e-6 m.
+      ASSERT_GE(along, kPlannerClearance - 1e-6) << "trial " << trial << " motion " << i;
+    }
+  }
+  EXPECT_GT(sampled, 10000);
+  EXPECT_GT(acceptedMotions, 1000);
+  // Paths that come within the clearance are refused, and before they do (the motions refused came within it or
+  // within the acceptance margin of it).
+  EXPECT_GT(refusedWithinClearance, 3);
+  EXPECT_GT(paths, 20);
+}
+
+TEST(PathCertifier, APolylinePassingWithinTheClearanceIsRefusedAtOrBeforeTheMotionThatDoes) {
+  const auto model = makeCollisionModel(thesisObstacle());
+  CollisionData data(*model), reference(*model);
+  constexpr double kPlannerClearance = 0.01;
+  std::mt19937 random(5);
+  int checked = 0;
+  for (int trial = 0; trial < 80 && checked < 12; ++trial) {
+    // Half of them with long steps (0.04-0.08 rad), where a motion may dip within the clearance between two ends
+    // that keep it.
+    const auto path = bentLine(random, trial % 2 == 0 ? 120 : 30);
+    // The first motion that comes within the clearance, by dense sampling; paths that never do, or start within it,
+    // prove nothing here.
+    std::optional<std::size_t> firstWithin;
+    for (std::size_t i = 1; i < path.size() && !firstWithin; ++i) {
+      if (clearanceAlong(*model, reference, path[i - 1], path[i], 160) < kPlannerClearance - 1e-4) firstWithin = i;
+    }
+    if (!firstWithin || *firstWithin < 2) continue;
+    PathCertifier certifier(*model, data, kPlannerClearance);
+    ASSERT_TRUE(certifier.start(path.front()));
+    std::size_t certifiedUpTo = 0;
+    for (std::size_t i = 1; i < path.size() && certifier.extend(path[i]); ++i) certifiedUpTo = i;
+    EXPECT_LT(certifiedUpTo, *firstWithin) << "trial " << trial;
+    ++checked;
+  }
+  EXPECT_GE(checked, 12);
+}
+
+// Single long motions through a state within the clearance whose two ends keep it with centimetres to spare: the
+// ends' certificates do not meet, and whatever settles the middle must find the dip.
+TEST(PathCertifier, AMotionDippingWithinTheClearanceBetweenTwoClearEndsIsRefused) {
+  const auto model = makeCollisionModel(thesisObstacle());
+  CollisionData data(*model), reference(*model);
+  constexpr double kPlannerClearance = 0.01;
+  // Within the clearance: from A the base joint turns toward the particle until the arm is 5 mm from it.
+  VectorXd within = kSolutionA;
+  while (clearanceOf(distance(*model, reference, within)) >= 0.005) within[0] += 0.002;
+  ASSERT_GT(within[0] - kSolutionA[0], 0.01) << "A itself must keep the clearance";
+  int refused = 0;
+  for (int joint = 0; joint < 4; ++joint) {
+    for (const double sign : {1.0, -1.0}) {
+      VectorXd direction = VectorXd::Zero(6);
+      direction[joint] = sign;
+      // The shortest motion through `within` along `direction` whose two ends keep 3 cm.
+      std::optional<double> half;
+      for (double d = 0.02; d <= 0.4 && !half; d += 0.02) {
+        if (clearanceOf(distance(*model, reference, within - d * direction)) >= 0.03 &&
+            clearanceOf(distance(*model, reference, within + d * direction)) >= 0.03)
+          half = d;
+      }
+      if (!half) continue;
+      const VectorXd qa = within - *half * direction, qb = within + *half * direction;
+      ASSERT_LT(clearanceAlong(*model, reference, qa, qb, 400), kPlannerClearance);
+      PathCertifier certifier(*model, data, kPlannerClearance);
+      ASSERT_TRUE(certifier.start(qa)) << "joint " << joint;
+      EXPECT_FALSE(certifier.extend(qb)) << "joint " << joint << " sign " << sign << " half " << *half;
+      ++refused;
+    }
+  }
+  EXPECT_GE(refused, 3);
 }
 
 TEST(PathCertifier, BadInputIsAnError) {
