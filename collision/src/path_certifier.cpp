@@ -98,10 +98,10 @@ bool PathCertifier::start(const robot::JointRef& q) {
 // (the two certificates, (g_a − m)/B from the start and (g_b − m)/B from the end, cover [0, 1]); where they do not
 // meet, advanceBetweenEnds measures the pair between them. Near a body a 1 cm waypoint step mostly needs only that
 // (on line-box-007, wall-002 and near-end-002 a pair's budget ran out at 98 % of the waypoints and the whole-motion
-// check below was left with 1300 of 13700 such motions), where the whole-motion check and new anchors for every
-// pair took several forward kinematics and every pair's bounds. Ends and measurements between them settle a pair
-// only where they keep the certified check's acceptance margin (motion_check.h), so what that check would refuse
-// at a measured state is still refused; the rest goes to it.
+// check below was left with 1300 of the 13900 motions a fresh budget did not cover), where the whole-motion check and
+// new anchors for every pair took several forward kinematics and every pair's bounds. Ends and measurements between
+// them settle a pair only where they keep the certified check's acceptance margin (motion_check.h), so what that check
+// would refuse at a measured state is still refused; the rest goes to it.
 bool PathCertifier::extend(const robot::JointRef& q) {
   checkJoints(model_, last_, q);
   const Implementation& impl = detail::implementationOf(model_);
