@@ -48,12 +48,16 @@ og::PathSimplifierPtr makeSeededSimplifier(const ob::SpaceInformationPtr& si, co
   return std::make_shared<SeededSimplifier>(si, problem, nonZero(seed));
 }
 
+ob::StateSamplerAllocator seededSamplerAllocator(std::uint32_t samplerSeed) {
+  auto allocated = std::make_shared<std::atomic<std::uint32_t>>(0);
+  return [samplerSeed, allocated](const ob::StateSpace* space) {
+    return makeSeededSampler(space, samplerSeed + allocated->fetch_add(1));
+  };
+}
+
 void seedSampling(og::SimpleSetup& setup, std::uint32_t seed) {
   const SamplingSeeds seeds = samplingSeeds(seed);
-  auto allocated = std::make_shared<std::atomic<std::uint32_t>>(0);
-  setup.getStateSpace()->setStateSamplerAllocator([seeds, allocated](const ob::StateSpace* space) {
-    return makeSeededSampler(space, seeds.sampler + allocated->fetch_add(1));
-  });
+  setup.getStateSpace()->setStateSamplerAllocator(seededSamplerAllocator(seeds.sampler));
   setup.getPathSimplifier() =
       makeSeededSimplifier(setup.getSpaceInformation(), *setup.getProblemDefinition(), seeds.simplifier);
 }

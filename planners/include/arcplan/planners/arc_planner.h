@@ -72,9 +72,11 @@ struct ArcPlannerResult {
   int routesTried = 0;                     // auto: routes walked
   // Fallback: execution times (s) at speed_limit of RRTConnect's simplified joint path, of its segments
   // as TCP lines where they validate (the fallback before it compared), and of the path kept — the
-  // fastest of those two and their mixes; reason says which was kept.
+  // fastest of those two and their mixes; reason says which was kept. firstPlan: the plan drawn from
+  // `seed` itself as RRTConnect + simplifier gave it, what a campaign run with that run seed gives plain
+  // RRTConnect + simplifier (kept is never slower).
   struct FallbackTimes {
-    double jointPath = 0.0, linePath = 0.0, kept = 0.0;
+    double jointPath = 0.0, linePath = 0.0, kept = 0.0, firstPlan = 0.0;
   } fallbackTimes;
   std::vector<double> waypointArcLengths;  // TCP arc length of each state of the solution path
 

@@ -36,6 +36,10 @@ ompl::geometric::PathSimplifierPtr makeSeededSimplifier(const ompl::base::SpaceI
                                                         const ompl::base::ProblemDefinition& problem,
                                                         std::uint32_t seed);
 
+// The state sampler allocator of a seeded run: the n-th sampler it allocates draws from local seed
+// `samplerSeed + n` (RRTConnect's is the first; the simplifier allocates the next when it repairs a path).
+ompl::base::StateSamplerAllocator seededSamplerAllocator(std::uint32_t samplerSeed);
+
 // Makes `setup` (already set up) draw from `seed`: its state space allocates seeded samplers (counted
 // from here) and its simplifier is replaced by a seeded one. Call before every run; the allocator stays
 // on the state space, which the setup's SpaceInformation owns.
