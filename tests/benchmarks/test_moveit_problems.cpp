@@ -7,23 +7,13 @@
 #include "arcplan/common/atomic_file.h"
 #include "arcplan/robot/robot_model.h"
 #include "support/command.h"
+#include "support/ur5e_moveit_problems.h"
 
 namespace arcplan::benchmarks {
 namespace {
 
-const char* kRequest = R"(start_state:
-  joint_state:
-    name: [shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint]
-    position: [0, -1.57, 1.57, -1.57, -1.57, 0]
-goal_constraints:
-  - joint_constraints:
-      - {joint_name: shoulder_pan_joint, position: 0.5}
-      - {joint_name: shoulder_lift_joint, position: -1.57}
-      - {joint_name: elbow_joint, position: 1.57}
-      - {joint_name: wrist_1_joint, position: -1.57}
-      - {joint_name: wrist_2_joint, position: -1.57}
-      - {joint_name: wrist_3_joint, position: 0}
-)";
+// From the home posture, the shoulder panned by 0.5 rad.
+const std::string kRequest = testing::jointGoalRequest({0.5, -1.57, 1.57, -1.57, -1.57, 0});
 
 // A ball of radius 5 cm on the floor at the base axis: inside the UR10e's base link (radius 0.09 m,
 // up to z = 0.18 m above base_link, docs/collision.md) whatever the joints, so both ends collide.

@@ -7,8 +7,11 @@
 // touch links, matrix and default entries) on family names MBM's data does not have. MBM's own problems (a UR5
 // with a Robotiq 85, boxes and cylinders only) are read from $ARCPLAN_SHARED_DATA/mbm_ur5 by the tests that
 // need them; a UR type built from the description refuses their gripper joints by name.
+#include <array>
+#include <cstddef>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -89,23 +92,22 @@ allowed_collision_matrix:
 )";
 }
 
+// A MotionPlanRequest from the home posture (homeJointState) to a joint goal, for any UR arm (the same joint names):
+// one joint constraint per joint, in chain order.
+inline std::string jointGoalRequest(const std::array<double, 6>& goal) {
+  static const char* const names[] = {"shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint",
+                                      "wrist_1_joint",      "wrist_2_joint",       "wrist_3_joint"};
+  std::ostringstream text;
+  text << "start_state:\n" << homeJointState() << "goal_constraints:\n  - joint_constraints:\n";
+  for (std::size_t j = 0; j < goal.size(); ++j)
+    text << "      - {joint_name: " << names[j] << ", position: " << goal[j] << "}\n";
+  return text.str();
+}
+
 // Joint goal from the UR5e's home posture.
 inline std::string cageRequest() {
-  return R"(group_name: manipulator
-planner_id: RRTConnect
-allowed_planning_time: 5
-num_planning_attempts: 1
-start_state:
-)" + homeJointState() +
-         R"(goal_constraints:
-  - joint_constraints:
-      - {joint_name: shoulder_pan_joint, position: 1.2}
-      - {joint_name: shoulder_lift_joint, position: -1.2}
-      - {joint_name: elbow_joint, position: 1.3}
-      - {joint_name: wrist_1_joint, position: -1.67}
-      - {joint_name: wrist_2_joint, position: -1.57}
-      - {joint_name: wrist_3_joint, position: 0.3}
-)";
+  return "group_name: manipulator\nplanner_id: RRTConnect\nallowed_planning_time: 5\nnum_planning_attempts: 1\n" +
+         jointGoalRequest({1.2, -1.2, 1.3, -1.67, -1.57, 0.3});
 }
 
 // A shelf board with a cone and a can on it (frames: world, a fixed frame, shoulder_link at the robot state).

@@ -74,7 +74,8 @@ struct ArcPlannerResult {
   // as TCP lines where they validate (the fallback before it compared), and of the path kept — the
   // fastest of those two and their mixes; reason says which was kept. firstPlan: the plan drawn from
   // `seed` itself as RRTConnect + simplifier gave it, what a campaign run with that run seed gives plain
-  // RRTConnect + simplifier (kept is never slower).
+  // RRTConnect + simplifier (kept is never slower, provided that plan's simplification ended before the
+  // time limit: docs/planners.md, "Fallback").
   struct FallbackTimes {
     double jointPath = 0.0, linePath = 0.0, kept = 0.0, firstPlan = 0.0;
   } fallbackTimes;
