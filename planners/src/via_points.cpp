@@ -1,7 +1,9 @@
 #include "via_points.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <iterator>
 
 #include "arcplan/planners/arc_path.h"
 
@@ -124,6 +126,15 @@ std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Ei
     x1 = std::max(x1, xs.back());
   }
   const double apexX = inside(0.5 * (x0 + x1));
+  // How much a hull point's needed height lifts the apex (the legs from p and q to the apex are straight), 0 for
+  // points beyond the leg's ends: the same for every plane and margin, so it is computed once (the divisions were
+  // most of this function's time on links' Minkowski differences).
+  std::vector<double> lift(cluster.hull.size(), 0.0);
+  for (std::size_t i = 0; i < cluster.hull.size(); ++i) {
+    const double x = xs[i];
+    if (x > 0.0 && x < length) lift[i] = x <= apexX ? apexX / x : (length - apexX) / (length - x);
+  }
+  constexpr std::size_t kMarginCount = std::size(kMargins);
   std::vector<double> heights(cluster.hull.size());
   for (int step = 0; step < kPlaneSteps; ++step) {
     const Eigen::Vector3d away = avoidanceDirection(along, 2.0 * M_PI * step / kPlaneSteps);
@@ -133,20 +144,23 @@ std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Ei
       heights[i] = (cluster.hull[i] - p).dot(away);
       height = std::max(height, heights[i]);
     }
-    for (const double margin : kMargins) {
-      const double offset = height + clearance + margin;
+    // Apex over the middle, per margin: each hull point between p and q must stay below both legs.
+    std::array<double, kMarginCount> apex;
+    for (std::size_t m = 0; m < kMarginCount; ++m) apex[m] = clearance + kMargins[m];
+    for (std::size_t i = 0; i < cluster.hull.size(); ++i) {
+      if (lift[i] == 0.0) continue;
+      for (std::size_t m = 0; m < kMarginCount; ++m) {
+        const double needed = heights[i] + clearance + kMargins[m];
+        if (needed > 0.0) apex[m] = std::max(apex[m], needed * lift[i]);
+      }
+    }
+    for (std::size_t m = 0; m < kMarginCount; ++m) {
+      const double margin = kMargins[m], offset = height + clearance + margin;
       const double enter = inside(x0 - margin), leave = inside(x1 + margin);
       ViaCandidate over{{p + enter * along + offset * away}, margin};
       if (leave - enter > 1e-3) over.points.push_back(p + leave * along + offset * away);
       candidates.push_back(over);
-      // Apex over the middle: each hull point between p and q must stay below both legs.
-      double apex = clearance + margin;
-      for (std::size_t i = 0; i < cluster.hull.size(); ++i) {
-        const double x = xs[i], needed = heights[i] + clearance + margin;
-        if (x <= 0.0 || x >= length || needed <= 0.0) continue;
-        apex = std::max(apex, needed * (x <= apexX ? apexX / x : (length - apexX) / (length - x)));
-      }
-      if (apex <= kHighestApex) candidates.push_back({{p + apexX * along + apex * away}, margin});
+      if (apex[m] <= kHighestApex) candidates.push_back({{p + apexX * along + apex[m] * away}, margin});
     }
   }
   return candidates;
