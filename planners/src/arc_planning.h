@@ -45,6 +45,7 @@ struct ArcOutcome {
   double cartesianFraction = 0.0;
   int routesTried = 0;
   ArcPlannerResult::FallbackTimes fallbackTimes;
+  double simplificationTime = 0.0;
 
   bool solved() const { return kind != ArcPlannerResult::Kind::Failed; }
 };

@@ -8,6 +8,7 @@
 // is never a disguised RRTConnect. Its random numbers come from generators seeded by the planner's
 // `seed` parameter, never from OMPL's process-wide seed: the same query gives the same path whatever
 // else ran before in the process.
+#include <ompl/base/MotionValidator.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -17,6 +18,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
+#include <chrono>
 #include <optional>
 #include <sstream>
 
@@ -54,20 +56,21 @@ double tcpLengthOf(const robot::RobotModel& robot, const robot::Vector6& from, c
   return length;
 }
 
-// The space one plan runs on: the states and motions of `checked` (its validity checker and motion
-// validator, shared) on a joint space of its own whose samplers are allocated as in a campaign run seeded
-// with the plan's seed (seededSamplerAllocator): RRTConnect's first, then the one OMPL's simplifier
-// allocates when it repairs a path. On the problem's own space the simplifier's would come from whatever
-// allocator that space has (bookshelf_thin_ur5-0078 of MBM: its first plan executed in 9.76 s instead of
-// RRTConnect + simplifier's 9.50 s with the same run seed).
-ob::SpaceInformationPtr seededSpace(const ob::SpaceInformationPtr& checked, std::uint32_t samplerSeed) {
+// The space one plan runs on: the states of `checked` (its validity checker, shared) and `motions` on a
+// joint space of its own whose samplers are allocated as in a campaign run seeded with the plan's seed
+// (seededSamplerAllocator): RRTConnect's first, then the one OMPL's simplifier allocates when it repairs a
+// path. On the problem's own space the simplifier's would come from whatever allocator that space has
+// (bookshelf_thin_ur5-0078 of MBM: its first plan executed in 9.76 s instead of RRTConnect + simplifier's
+// 9.50 s with the same run seed).
+ob::SpaceInformationPtr seededSpace(const ob::SpaceInformationPtr& checked, const ob::MotionValidatorPtr& motions,
+                                    std::uint32_t samplerSeed) {
   const auto* joints = dynamic_cast<const ob::RealVectorStateSpace*>(checked->getStateSpace().get());
   if (joints == nullptr) throw Error("arc planner fallback: the joint space must be a RealVectorStateSpace");
   auto space = std::make_shared<ob::RealVectorStateSpace>(joints->getDimension());
   space->setBounds(joints->getBounds());
   auto si = std::make_shared<ob::SpaceInformation>(space);
   si->setStateValidityChecker(checked->getStateValidityChecker());
-  si->setMotionValidator(checked->getMotionValidator());
+  si->setMotionValidator(motions);
   si->setStateValidityCheckingResolution(checked->getStateValidityCheckingResolution());
   si->setup();
   // After setup, whose sanity checks draw states of their own.
@@ -75,16 +78,56 @@ ob::SpaceInformationPtr seededSpace(const ob::SpaceInformationPtr& checked, std:
   return si;
 }
 
+// The motions of a later plan: the problem's motion validator until the caller's time is up, then every
+// motion refused at once. OMPL's simplifier polls the termination condition only between its steps, and
+// one step can check hundreds of certified motions (smoothBSpline's subdivisions: MBM's
+// bookshelf_tall_ur5-0011, its first plan simplified within the limit, ran 0.63 s past a 0.4 s limit in the
+// step under way). Refusing only ever keeps the path as it was, and a plan cut by the limit is dropped anyway.
+class MotionsUntilTheLimit : public ob::MotionValidator {
+public:
+  MotionsUntilTheLimit(const ob::SpaceInformationPtr& checked, const ob::PlannerTerminationCondition& ptc)
+      : ob::MotionValidator(checked), checked_(checked->getMotionValidator()), ptc_(ptc) {}
+  bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
+    return !ptc_() && checked_->checkMotion(s1, s2);
+  }
+  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& lastValid) const override {
+    if (!ptc_()) return checked_->checkMotion(s1, s2, lastValid);
+    if (lastValid.first != nullptr) si_->copyState(lastValid.first, s1);
+    lastValid.second = 0.0;
+    return false;
+  }
+
+private:
+  ob::MotionValidatorPtr checked_;
+  const ob::PlannerTerminationCondition& ptc_;
+};
+
+// How a plan is simplified. The first plan to the end (simplifyMax), whatever the time limit: a benchmark
+// run simplifies RRTConnect's path after its solve, untimed, and the first plan must be that path for the
+// fallback to be never slower than RRTConnect + simplifier of the same seed (docs/planners.md, "Fallback").
+// Later plans only within the limit.
+enum class Simplification { ToTheEnd, WithinTheLimit };
+
+struct JointPlan {
+  std::vector<robot::Vector6> waypoints;
+  double simplificationTime = 0.0;  // s: the simplifier's and the check of its result
+};
+
 // RRTConnect's path from start to goal, simplified, drawing from the streams `seed` fixes
 // (seeded_sampling.h): what a benchmark run seeded with `seed` computes for RRTConnect (solve, then
-// SimpleSetup::simplifySolution(), i.e. PathSimplifier::simplifyMax with the problem's goal; here
-// stopped by the caller's termination condition, identical until it fires) on the same states and
-// motions (seededSpace), with RRTConnect's `range` set to `range` (0: left at its default).
-std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& query,
-                                                               const ob::SpaceInformationPtr& checked,
-                                                               std::uint_fast32_t seed, double range) {
+// SimpleSetup::simplifySolution(), i.e. PathSimplifier::simplifyMax with the problem's goal) on the same
+// states and motions (seededSpace), with RRTConnect's `range` set to `range` (0: left at its default).
+// WithinTheLimit: identical until the caller's termination condition fires, then no motion is checked
+// (MotionsUntilTheLimit); a plan the limit cuts is of no use to the caller, which keeps an earlier one, so
+// it is returned unsimplified and unchecked.
+std::optional<JointPlan> simplifiedJointPath(const ArcQuery& query, const ob::SpaceInformationPtr& checked,
+                                             std::uint_fast32_t seed, double range, Simplification simplification) {
   const SamplingSeeds seeds = samplingSeeds(seed);
-  const ob::SpaceInformationPtr si = seededSpace(checked, seeds.sampler);
+  const ob::SpaceInformationPtr si = seededSpace(checked,
+                                                 simplification == Simplification::ToTheEnd
+                                                     ? checked->getMotionValidator()
+                                                     : std::make_shared<MotionsUntilTheLimit>(checked, query.ptc),
+                                                 seeds.sampler);
   auto problem = std::make_shared<ob::ProblemDefinition>(si);
   ob::ScopedState<> start(si), goal(si);
   collision::setJoints(start.get(), query.start);
@@ -96,14 +139,18 @@ std::optional<std::vector<robot::Vector6>> simplifiedJointPath(const ArcQuery& q
   planner.setup();
   if (planner.solve(query.ptc) != ob::PlannerStatus::EXACT_SOLUTION) return std::nullopt;
   og::PathGeometric path(*problem->getSolutionPath()->as<og::PathGeometric>());
-  // simplifyMax, but within the caller's time. OMPL's default (atLeastOnce) runs a whole pass after the
-  // condition fired (up to 490 more certified motion checks on forearm-beam-009); without it the step
-  // under way when time is up is the last.
+  const auto simplifier = makeSeededSimplifier(si, *problem, seeds.simplifier);
+  const auto clockStart = std::chrono::steady_clock::now();
   // The result only where the motion validator accepts all of it (certified_simplification.h): otherwise
   // RRTConnect's own path, every motion of which it accepted.
-  const auto simplifier = makeSeededSimplifier(si, *problem, seeds.simplifier);
-  simplifyKeepingCertified(*si, path, [&](og::PathGeometric& p) { return simplifier->simplify(p, query.ptc, false); });
-  return collision::waypointsOf(path);
+  simplifyKeepingCertified(*si, path, [&](og::PathGeometric& p) {
+    if (simplification == Simplification::ToTheEnd) return simplifier->simplifyMax(p);
+    // Without OMPL's default (atLeastOnce) a whole pass would run after the condition fired (up to 490
+    // more certified motion checks on forearm-beam-009): the step under way when time is up is the last.
+    return simplifier->simplify(p, query.ptc, false) && !query.ptc();
+  });
+  return JointPlan{collision::waypointsOf(path),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - clockStart).count()};
 }
 
 // Shortcuts for the tool. OMPL's simplifier shortens the path in joint space, but its execution time at
@@ -272,28 +319,34 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
   // they execute faster); the fastest path goes on to the line conversion.
   std::optional<std::vector<robot::Vector6>> fastest;
   // the path kept so far; the fastest plan as it came; the first plan as it came
-  double fastestTime = 0.0, fastestPlan = 0.0, firstPlan = 0.0;
+  double fastestTime = 0.0, fastestPlan = 0.0, firstPlan = 0.0, firstSimplification = 0.0;
   int plans = 0;
   // Once time is up the fallback returns the best path it has timed: a later plan that ends after the
   // limit is dropped untimed (a time scaling costs 10-60 ms on MBM), and no line is tried.
   for (std::uint_fast32_t k = 0; k < kJointPlans && (k == 0 || !query.ptc()); ++k) {
-    std::optional<std::vector<robot::Vector6>> planned = simplifiedJointPath(query, si, seed + k, settings.range);
+    std::optional<JointPlan> planned = simplifiedJointPath(
+        query, si, seed + k, settings.range, k == 0 ? Simplification::ToTheEnd : Simplification::WithinTheLimit);
     if (!planned || (fastest && query.ptc())) continue;
-    const double planTime = executionTime(*planned);
-    if (k == 0) firstPlan = planTime;
+    std::vector<robot::Vector6>& path = planned->waypoints;
+    const double planTime = executionTime(path);
+    if (k == 0) {
+      firstPlan = planTime;
+      firstSimplification = planned->simplificationTime;
+    }
     fastestPlan = plans++ == 0 ? planTime : std::min(fastestPlan, planTime);
-    std::vector<robot::Vector6> shortcut = tcpShortcuts(query, si, *planned, seed + k);
-    const double shortcutTime = shortcut == *planned ? planTime : executionTime(shortcut);
-    if (shortcutTime < planTime) *planned = std::move(shortcut);
+    std::vector<robot::Vector6> shortcut = tcpShortcuts(query, si, path, seed + k);
+    const double shortcutTime = shortcut == path ? planTime : executionTime(shortcut);
+    if (shortcutTime < planTime) path = std::move(shortcut);
     const double time = std::min(planTime, shortcutTime);
     if (fastest && time >= fastestTime) continue;
-    fastest = std::move(planned);
+    fastest = std::move(path);
     fastestTime = time;
   }
   if (!fastest) return failure("the joint-space fallback found no path either");
   ArcOutcome outcome = fastestPath(query, segmentsOf(query, *fastest, !query.ptc()), executionTime, fastestTime);
   outcome.fallbackTimes.jointPath = fastestPlan;
   outcome.fallbackTimes.firstPlan = firstPlan;
+  outcome.simplificationTime = firstSimplification;
   std::ostringstream plansText;
   plansText << " (with shortcuts for the TCP where they pay; the fastest of " << plans
             << " RRTConnect + simplifier plans as they came: " << fastestPlan << " s)";

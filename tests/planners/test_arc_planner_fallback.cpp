@@ -1,7 +1,7 @@
 // The arc planner's joint-space fallback: RRTConnect (seeded by the planner as a benchmark run seeds
 // RRTConnect) + OMPL's simplifier, then the fastest at the speed limit of that joint path, its segments
-// as TCP lines where they validate, and mixes of the two; valid, repeatable, within its time limit, and
-// never slower to execute than RRTConnect + simplifier of the same seed.
+// as TCP lines where they validate, and mixes of the two; valid, repeatable, and never slower to execute
+// than RRTConnect + simplifier of the same seed (its time limit: test_arc_planner_fallback_limit.cpp).
 #include <gtest/gtest.h>
 #include <ompl/base/PlannerStatus.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -17,13 +16,12 @@
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/endpoint_clearance.h"
-#include "arcplan/collision/ompl_validity.h"
 #include "arcplan/planners/arc_planner.h"
-#include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/seeded_sampling.h"
 #include "arcplan/robot/pose.h"
 #include "arcplan/robot/ur_inverse_kinematics.h"
 #include "arcplan/trajectory/time_scaling.h"
+#include "planners/arc_fallback_problems.h"
 #include "planners/planner_test_support.h"
 
 namespace {
@@ -50,19 +48,6 @@ arcplan::planners::PlanningProblem goalOnAnotherBranchProblem() {
   if (!other) throw std::runtime_error("thesis_free's goal pose has no clear solution on another IK branch");
   scene->queries[0].goal = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, *other};
   return arcplan::planners::makePlanningProblem(scene);
-}
-
-// The problem of `scene` at a benchmark suite's 1 cm clearance (the arc planner's own): its fallback
-// then plans on the problem's SpaceInformation, as plain RRTConnect does.
-arcplan::planners::PlanningProblem centimetreProblem(const std::shared_ptr<arcplan::collision::Scene>& scene) {
-  arcplan::planners::PlanningProblemOptions options;
-  options.clearance = 0.01;
-  return arcplan::planners::makePlanningProblem(scene, "", options);
-}
-
-std::vector<arcplan::robot::Vector6> solutionJoints(const arcplan::planners::PlanningProblem& problem) {
-  return arcplan::collision::waypointsOf(
-      *problem.setup->getProblemDefinition()->getSolutionPath()->as<ompl::geometric::PathGeometric>());
 }
 
 TEST(ArcPlannerFallback, JoinsTwoIkBranchesWithAValidPath) {
@@ -206,22 +191,6 @@ TEST(ArcPlannerFallback, IsNeverSlowerThanItsJointPathNorThanRRTConnectWasHere) 
   EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);
 }
 
-// The generated suite's forearm-beam-009 (issue-23 families, seed 20240611): a 1.19 m beam at the elbow's
-// height near the base axis. No line-and-arc route passes it, so the fallback answers.
-std::shared_ptr<arcplan::collision::Scene> elbowBeamScene() {
-  auto scene = std::make_shared<arcplan::collision::Scene>(*loadTestScene("thesis_free"));
-  auto beam = box("beam", {0.195507084341427, -0.00222967505255894, 0.755856014615223},
-                  {1.19452611899725, 0.0447951560837569, 0.0945077526952936});
-  beam.pose.linear() = arcplan::robot::rotationFromRpy(0.0, 0.0, 2.83093548283307);
-  scene->obstacles.push_back(beam);
-  arcplan::robot::Vector6 start, goal;
-  start << 1.2455732027649, -1.9210789748523, 2.46788163520193, -2.11759898714453, -1.57079632679489, 1.2455732027649;
-  goal << 0.607349460295433, -1.01925237738874, 1.9625322279851, -2.51407617739126, -1.5707963267949, 0.607349460295433;
-  scene->queries[0].start = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, start};
-  scene->queries[0].goal = arcplan::collision::QueryEndpoint{std::nullopt, std::nullopt, goal};
-  return scene;
-}
-
 // Execution time at 0.25 m/s of plain RRTConnect + simplifier as a benchmark run seeded with `seed`
 // computes it (SimpleSetup::solve, then SimpleSetup::simplifySolution(), at the suite's 1 cm clearance,
 // its sampler and simplifier seeded by the campaign's planners::seedSampling), RRTConnect's `range` set
@@ -285,92 +254,6 @@ TEST(ArcPlannerFallback, ItsPlansTakeTheRangeGivenToRRTConnect) {
   // The range changes the plans (else this test could not tell), and the fallback's are the ranged ones.
   ASSERT_GT(std::abs(withRange - withDefault), 1e-6);
   EXPECT_NEAR(result.fallbackTimes.jointPath, withRange, 1e-9);
-}
-
-// The problem's certified motion validator, counting the motions it checks: the work a planner does
-// after its termination condition fires is measured in motion checks, not in seconds.
-class CountingMotionValidator : public arcplan::collision::JointMotionValidator {
-public:
-  using JointMotionValidator::JointMotionValidator;
-  bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
-    ++checks;
-    return JointMotionValidator::checkMotion(s1, s2);
-  }
-  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& lastValid) const override {
-    ++checks;
-    return JointMotionValidator::checkMotion(s1, s2, lastValid);
-  }
-  mutable long checks = 0;
-};
-
-struct BudgetedRun {
-  ob::PlannerStatus status;
-  long checks = 0, checksAfterTheLimit = 0;
-  ArcPlannerResult result;
-  std::vector<arcplan::robot::Vector6> joints;
-};
-
-// forearm-beam-009 at 1 cm solved by the arc planner (no search deadline, so only the budget decides)
-// under a termination condition that fires once `budget` motions have been checked.
-BudgetedRun solveWithinMotionChecks(long budget) {
-  auto problem = centimetreProblem(elbowBeamScene());
-  const auto si = problem.setup->getSpaceInformation();
-  const auto* checker =
-      dynamic_cast<const arcplan::collision::CollisionStateValidityChecker*>(si->getStateValidityChecker().get());
-  const auto* validator = dynamic_cast<const arcplan::collision::JointMotionValidator*>(si->getMotionValidator().get());
-  if (checker == nullptr || validator == nullptr) throw std::runtime_error("the problem has no collision validators");
-  auto counting = std::make_shared<CountingMotionValidator>(
-      si.get(), problem.collisionModel, validator->options(),
-      std::make_shared<const arcplan::collision::EndpointClearance>(checker->requiredClearance()));
-  si->setMotionValidator(counting);
-  problem.setup->clear();
-  auto planner =
-      arcplan::planners::makePlanner("arc", si, problem.plannerContext(), {{"deadline", "0"}, {"seed", "5"}});
-  problem.setup->setPlanner(planner);
-  problem.setup->setup();
-  BudgetedRun run;
-  run.status = problem.setup->solve(ob::PlannerTerminationCondition([&] { return counting->checks >= budget; }));
-  run.checks = counting->checks;
-  run.checksAfterTheLimit = std::max(0L, counting->checks - budget);
-  run.result = arcOf(planner).lastResult();
-  if (run.status == ob::PlannerStatus::EXACT_SOLUTION) {
-    run.joints = solutionJoints(problem);
-    const auto path = problem.setup->getProblemDefinition()->getSolutionPath()->as<ompl::geometric::PathGeometric>();
-    for (std::size_t i = 1; i < path->getStateCount(); ++i) {
-      if (!counting->JointMotionValidator::checkMotion(path->getState(i - 1), path->getState(i)))
-        throw std::runtime_error("the path returned has an invalid motion");
-    }
-  }
-  return run;
-}
-
-// A limit that fires while the fallback simplifies, shortcuts or converts its path ends that work within
-// one OMPL simplifier step, and the path found so far is returned. Bound: the largest step on this
-// path, smoothBSpline's 3 subdivisions of <= 10 states, checks at most 2 * (8 + 17 + 35) = 120 motions;
-// before the fix the rest of a whole simplifier pass ran, 490 motion checks at the worst budget here.
-TEST(ArcPlannerFallback, StopsAtItsTimeLimitWithTheBestPathSoFar) {
-  const BudgetedRun unlimited = solveWithinMotionChecks(std::numeric_limits<long>::max());
-  ASSERT_EQ(unlimited.status, ob::PlannerStatus::EXACT_SOLUTION) << unlimited.result.reason;
-  ASSERT_EQ(unlimited.result.mode(), "fallback");
-  // Budgets from 6 % to 44 % of the unlimited run's checks: its first plan (RRTConnect, then the
-  // simplifier) ends at about a quarter of them.
-  bool solvedBefore = false;
-  int solvedWithWorkUnderWay = 0;
-  for (int percent = 6; percent <= 44; percent += 2) {
-    const long budget = unlimited.checks * percent / 100;
-    const BudgetedRun run = solveWithinMotionChecks(budget);
-    EXPECT_LE(run.checksAfterTheLimit, 120) << "budget " << budget << ": " << run.result.reason;
-    const bool solved = run.status == ob::PlannerStatus::EXACT_SOLUTION;
-    // Once a path was found within a budget, every larger budget returns one.
-    EXPECT_TRUE(solved || !solvedBefore) << "budget " << budget << ": " << run.result.reason;
-    solvedBefore = solvedBefore || solved;
-    if (!solved) continue;
-    EXPECT_EQ(run.result.mode(), "fallback");
-    EXPECT_LT((run.joints.front() - unlimited.joints.front()).norm(), 1e-12);
-    EXPECT_LT((run.joints.back() - unlimited.joints.back()).norm(), 1e-12);
-    solvedWithWorkUnderWay += run.checksAfterTheLimit > 0 ? 1 : 0;
-  }
-  EXPECT_GT(solvedWithWorkUnderWay, 0) << "no budget fired while the path was being improved";
 }
 
 }  // namespace

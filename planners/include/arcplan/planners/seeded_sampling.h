@@ -4,8 +4,8 @@
 // the run seed) and the arc planner's joint-space fallback (its `seed` parameter, which the campaign
 // sets to the same run seed). Both then compute the same simplified path on the same problem, so the
 // fallback, which keeps the fastest of that path and its conversions, is no slower to execute than
-// RRTConnect + simplifier of the same run provided it finishes its first plan and its simplification
-// within its time (docs/reproducibility.md, docs/planners.md list the exceptions).
+// RRTConnect + simplifier of the same run provided its RRTConnect finds the first path within its time
+// (that plan's simplification runs to the end; docs/reproducibility.md, docs/planners.md list the exceptions).
 #include <cstdint>
 #include <memory>
 
