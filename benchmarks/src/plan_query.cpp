@@ -5,6 +5,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <mutex>
 #include <sstream>
@@ -137,12 +138,17 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
 
   // The arc path is already the TCP path; sampling planners' paths get OMPL's shortcutting, kept only
   // where the motion validator accepts every motion of the result (certified_simplification.h).
-  if (havePath && simplifiesSolution(plannerName)) planners::simplifySolutionKeepingCertified(setup);
+  if (havePath && simplifiesSolution(plannerName)) {
+    const auto simplifying = std::chrono::steady_clock::now();
+    planners::simplifySolutionKeepingCertified(setup);
+    planned.simplificationTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - simplifying).count();
+  }
 
   planned.status = haveExact                                                   ? PlanStatus::Exact
                    : status == ompl::base::PlannerStatus::APPROXIMATE_SOLUTION ? PlanStatus::Approximate
                                                                                : PlanStatus::Failed;
   planned.solveTime = arc ? arc->lastResult().solveTime : setup.getLastPlanComputationTime();
+  if (arc) planned.simplificationTime = arc->lastResult().simplificationTime;
   planner->params().getParams(planned.parameterValues);
   if (!haveExact) planned.reason = arc ? arc->lastResult().reason : omplReason(status, setup, options.timeLimit);
   if (arc) planned.arc = arc->lastResult();
@@ -167,6 +173,7 @@ nlohmann::json toJson(const PlannedQuery& planned) {
                              {"planner", planned.options.planner},
                              {"status", toString(planned.status)},
                              {trajectory::solveTimeDescriptor().key, planned.solveTime},
+                             {"simplification_time_s", planned.simplificationTime},
                              {"time_limit_s", planned.options.timeLimit},
                              {"parameters", planned.parameterValues}};
   if (planned.options.seed) document["seed"] = *planned.options.seed;

@@ -89,6 +89,7 @@ class PlanResult:
     clearance_m: float
     clearance_kept: Optional[bool]
     solve_time_s: float
+    simplification_time_s: float
     mode: Optional[str]
     path: FloatArray
     waypoints: int

@@ -34,6 +34,7 @@ TEST(PlanCommand, ThesisCaseReportsMetricsAndWritesJsonAndPath) {
   EXPECT_GT(document["joint_path_length_rad"].get<double>(), 0.0);
   EXPECT_GT(document["min_clearance_m"].get<double>(), 0.05);  // h = 0.1 m over a 1 cm particle
   EXPECT_GT(document["solve_time_s"].get<double>(), 0.0);
+  EXPECT_EQ(document["simplification_time_s"].get<double>(), 0.0);  // a pure arc path: nothing to simplify
   EXPECT_EQ(document["parameters"]["sagitta"], "0.1");
   EXPECT_EQ(document["arc"]["detours"].size(), 1u);
   const auto path = arcplan::trajectory::readJointPathCsv(csv);
@@ -46,6 +47,16 @@ TEST(PlanCommand, JsonOnStdoutIsTheOnlyOutput) {
   const auto document = nlohmann::json::parse(result.out);
   EXPECT_EQ(document["status"], "exact");
   EXPECT_NEAR(document["tcp_path_length_m"].get<double>(), 0.8331, 0.004 * 0.8331);
+}
+
+TEST(PlanCommand, TimesOmplsSimplifierApartFromTheSolveTime) {
+  const auto result = runArcplan(
+      {"plan", "--scene", scene("thesis_obstacle"), "--planner", "RRTConnect", "--seed", "3", "--json", "-"});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto document = nlohmann::json::parse(result.out);
+  // The simplifier ran on RRTConnect's path (at least one shortcut pass with motion checks): a measured time.
+  EXPECT_GT(document["simplification_time_s"].get<double>(), 0.0);
+  EXPECT_GT(document["solve_time_s"].get<double>(), 0.0);
 }
 
 TEST(PlanCommand, SeedMakesASamplingPlannerReproducible) {

@@ -42,8 +42,11 @@ struct PlannedQuery {
   std::string sceneName;
   std::string queryName;
   PlanStatus status = PlanStatus::Failed;
-  std::string reason;                                  // why there is no exact path; empty for an exact one
-  double solveTime = 0.0;                              // s, the arc planner's own time or OMPL's planning time
+  std::string reason;      // why there is no exact path; empty for an exact one
+  double solveTime = 0.0;  // s, the arc planner's own time or OMPL's planning time
+  // s, OMPL's simplifier on a sampling planner's path (with the check that keeps it certified), or the arc
+  // planner's simplification of its fallback's first plan (ArcPlannerResult::simplificationTime); 0 without one
+  double simplificationTime = 0.0;
   std::map<std::string, std::string> parameterValues;  // every parameter of the planner after setting them
   std::optional<planners::ArcPlannerResult> arc;       // the arc planner's details
   trajectory::JointPath path;  // the (simplified) solution path, exact or approximate; empty without one
