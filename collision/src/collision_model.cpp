@@ -122,6 +122,18 @@ double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, con
   return std::max(d - kHullDistanceSlack, 0.0);
 }
 
+bool witnessCloser(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+                   double distance) {
+  if (!b.boxBound || !(distance > 0.0)) return false;
+  const Eigen::Isometry3d toBox = poseB.inverse(Eigen::Isometry) * poseA;
+  const double squared = distance * distance;
+  for (const auto& point : a.witnessPoints) {
+    const Eigen::Vector3d outside = ((toBox * point).cwiseAbs() - b.boxHalfExtents).cwiseMax(0.0);
+    if (outside.squaredNorm() < squared) return true;
+  }
+  return false;
+}
+
 }  // namespace detail
 
 namespace {
@@ -369,6 +381,9 @@ bool detail::keepsDistances(const CollisionModel& model, CollisionData& workspac
     if (detail::hullGap(a, poseA, b, poseB, model.options(), required) >= required ||
         detail::containingMeshGap(a, poseA, b, poseB, model.options()) >= required)
       continue;
+    // A gripper part beside a shelf board: a vertex inside the clearance answers without the exact distance
+    // (0.56 ms for MBM's Robotiq base against a board).
+    if (detail::witnessCloser(a, poseA, b, poseB, required - detail::kWitnessSlack)) return false;
     if (partsDistance(a, poseA, b, poseB, open.second, model.options()) < required) return false;
   }
   return true;

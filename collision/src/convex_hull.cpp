@@ -114,12 +114,10 @@ std::shared_ptr<fcl::Convexd> containingHull(const std::vector<Eigen::Vector3d>&
   return hullContaining(points, points);
 }
 
-std::shared_ptr<fcl::Convexd> coarseContainingHull(const std::vector<Eigen::Vector3d>& points, int directions) {
-  if (points.empty() || directions < 4) return nullptr;
-  // Evenly spread directions (a Fibonacci lattice on the sphere): the hull of the points extreme along
-  // them follows the full hull to within about the radius times 1 − cos(half their angular spacing).
+std::vector<Eigen::Vector3d> extremePoints(const std::vector<Eigen::Vector3d>& points, int directions) {
   std::vector<char> chosen(points.size(), 0);
-  std::vector<Eigen::Vector3d> corners;
+  std::vector<Eigen::Vector3d> extremes;
+  if (points.empty()) return extremes;
   const double golden = M_PI * (3.0 - std::sqrt(5.0));
   for (int k = 0; k < directions; ++k) {
     const double z = 1.0 - 2.0 * (k + 0.5) / directions, r = std::sqrt(1.0 - z * z);
@@ -128,10 +126,17 @@ std::shared_ptr<fcl::Convexd> coarseContainingHull(const std::vector<Eigen::Vect
     for (std::size_t i = 1; i < points.size(); ++i) {
       if (direction.dot(points[i]) > direction.dot(points[extreme])) extreme = i;
     }
-    if (!chosen[extreme]) corners.push_back(points[extreme]);
+    if (!chosen[extreme]) extremes.push_back(points[extreme]);
     chosen[extreme] = 1;
   }
-  return hullContaining(corners, points);
+  return extremes;
+}
+
+std::shared_ptr<fcl::Convexd> coarseContainingHull(const std::vector<Eigen::Vector3d>& points, int directions) {
+  if (points.empty() || directions < 4) return nullptr;
+  // The hull of the points extreme along evenly spread directions follows the full hull to within about the
+  // radius times 1 − cos(half their angular spacing).
+  return hullContaining(extremePoints(points, directions), points);
 }
 
 double largestOutside(const fcl::Convexd& hull, const std::vector<Eigen::Vector3d>& points) {

@@ -22,6 +22,10 @@ std::shared_ptr<fcl::Convexd> containingHull(const std::vector<Eigen::Vector3d>&
 // Robotiq meshes), at a bound a few millimetres looser. Null when those points span no volume.
 std::shared_ptr<fcl::Convexd> coarseContainingHull(const std::vector<Eigen::Vector3d>& points, int directions);
 
+// The points extreme along `directions` evenly spread directions (a Fibonacci lattice on the sphere), each
+// once: the corners of coarseContainingHull, and a part's witness points (parts.h).
+std::vector<Eigen::Vector3d> extremePoints(const std::vector<Eigen::Vector3d>& points, int directions);
+
 // Largest signed distance of a point outside the convex shape's face planes (<= 0: all inside).
 double largestOutside(const fcl::Convexd& hull, const std::vector<Eigen::Vector3d>& points);
 

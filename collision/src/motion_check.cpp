@@ -178,6 +178,9 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
       best = std::min(best, reachOf(contained - minimumClearance, rate));
       continue;
     }
+    // A witness point inside `enough` rejects as the exact distance would (kWitnessSlack covers its error).
+    if (detail::witnessCloser(first, data.partPoses[i], second, secondPose, enough - detail::kWitnessSlack))
+      return {0.0, true};
     const double d = detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options());
     if (d - kDistanceSlack < enough) return {0.0, true};
     best = std::min(best, reachOf(d - kDistanceSlack - minimumClearance, rate));

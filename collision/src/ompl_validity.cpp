@@ -9,6 +9,7 @@
 #include "arcplan/collision/joint_states.h"
 #include "arcplan/common/error.h"
 #include "motion_clearance.h"
+#include "valid_state_memo.h"
 
 namespace arcplan::collision {
 
@@ -35,18 +36,23 @@ CollisionStateValidityChecker::CollisionStateValidityChecker(ob::SpaceInformatio
 CollisionStateValidityChecker::CollisionStateValidityChecker(ob::SpaceInformation* si,
                                                              std::shared_ptr<const CollisionModel> model,
                                                              std::shared_ptr<const EndpointClearance> required)
-    : ob::StateValidityChecker(si), pool_(std::move(model)), required_(std::move(required)) {
+    : ob::StateValidityChecker(si),
+      pool_(std::move(model)),
+      required_(std::move(required)),
+      valid_(std::make_shared<detail::ValidStateMemo>()) {
   if (!required_) throw Error("state validity: no required clearance");
   specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::APPROXIMATE;  // workspace distance, not C-space
 }
 
 bool CollisionStateValidityChecker::isValid(const ob::State* state) const {
   if (!si_->satisfiesBounds(state)) return false;
-  const auto lease = pool_.lease();
   const auto q = jointsOf(state, model().robot().dof());
+  if (valid_->contains(q)) return true;
+  const auto lease = pool_.lease();
   const double required = required_->stateClearanceAt(q);
-  if (required > 0.0) return hasClearance(model(), *lease, q, required);
-  return isCollisionFree(model(), *lease, q);
+  const bool valid = required > 0.0 ? hasClearance(model(), *lease, q, required) : isCollisionFree(model(), *lease, q);
+  if (valid) valid_->insert(q);
+  return valid;
 }
 
 bool CollisionStateValidityChecker::isValid(const ob::State* state, double& clearance) const {

@@ -34,6 +34,10 @@ constexpr double kBoundPadding = 1e-6;
 // Hulls with more vertices than this also get a coarse hull of the points extreme along this many
 // directions (fewer vertices: FCL's support search walks the vertex graph of the whole hull).
 constexpr int kCoarseHullVertices = 128, kCoarseHullDirections = 64;
+// Witness points: the vertices extreme along this many directions. On MBM's bookshelf_thin 0004 (RRTConnect, 1 cm)
+// they prove 616 of the 674 gripper-board pairs that the exact distance (0.56 ms each) finds too close; all
+// vertices would prove 657, at up to 20 000 points per part.
+constexpr int kWitnessDirections = 64;
 
 template <typename BV>
 std::shared_ptr<fcl::CollisionGeometryd> makeBvh(const robot::TriangleMesh& mesh) {
@@ -259,6 +263,7 @@ Part makeMeshPart(const robot::TriangleMesh& mesh, Solid solid, const CollisionM
   part.solid = std::move(solid);
   part.referencePoint = mesh.vertices.front();
   part.hullPoints = mesh.vertices;
+  part.witnessPoints = extremePoints(mesh.vertices, kWitnessDirections);
   part.triangleCount = static_cast<int>(mesh.triangles.size());
   return part;
 }
@@ -364,7 +369,7 @@ Part boxPart(const Eigen::Vector3d& size) {
                          (corner & 4 ? 0.5 : -0.5) * size.z());
   }
   part.capsule = fitCapsule(corners);
-  part.hullPoints = corners;
+  part.hullPoints = part.witnessPoints = corners;
   part.boxHalfExtents = size / 2.0;
   part.solid.kind = Solid::Kind::Box;
   part.solid.halfExtents = size / 2.0;

@@ -60,6 +60,10 @@ struct Part {
   // empty for spheres and cylinders, whose capsule stands in): the farthest point of the part from
   // anything is one of them, which is what motion bounds need.
   std::vector<Eigen::Vector3d> hullPoints;
+  // A few points of the part itself, in the part frame (mesh vertices extreme along fixed directions, box
+  // corners; empty for spheres and cylinders): a witness closer to an obstacle than a required distance proves
+  // the part closer too, without an exact distance (witnessCloser, model_implementation.h).
+  std::vector<Eigen::Vector3d> witnessPoints;
 };
 
 // One part per closed component of the mesh (edge-connected triangles after welding identical

@@ -1,6 +1,7 @@
 // OMPL glue: the joint state space, validity and clearance, the motion validator, use by a real
 // OMPL planner, and calls from several threads.
 #include <cmath>
+#include <random>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
+#include "support/random_joint_state.h"
 
 namespace {
 
@@ -143,6 +145,44 @@ TEST(OmplValidity, ClearanceMakesStatesAndMotionsKeepTheirDistance) {
   EXPECT_TRUE(loose->checkMotion(stateOf(loose, kSolutionA).get(), stateOf(loose, closer).get()));
   EXPECT_FALSE(tight->checkMotion(stateOf(tight, kSolutionA).get(), stateOf(tight, closer).get()));
   EXPECT_THROW(makeSpaceInformation(model, {}, -0.01), arcplan::Error);
+}
+
+// The checker keeps the states it found valid and answers them again at once (OMPL's RRTConnect asks again for
+// every tree node its goal tree extends from): asked again, every state keeps its answer, and a state 1e-12 rad
+// from a valid one across the clearance's edge (bisected on the line between a clear and a refused random state)
+// is still measured: only the same state counts.
+TEST(OmplValidity, AStateAskedAgainKeepsItsAnswer) {
+  const auto model = sceneModel("thesis_obstacle.yaml");
+  const auto si = makeSpaceInformation(model, {}, 0.01);
+  CollisionData data(*model);
+  const auto valid = [&](const Vector6& q) { return si->isValid(stateOf(si, q).get()); };
+  std::mt19937_64 random(7);
+  Vector6 refused;
+  bool anyRefused = false;
+  int edges = 0, clear = 0;
+  for (int k = 0; k < 200; ++k) {
+    const Vector6 q = arcplan::testing::randomJointState(model->robot(), random);
+    const bool expected = hasClearance(*model, data, q, 0.01);
+    ASSERT_EQ(valid(q), expected) << k;
+    ASSERT_EQ(valid(q), expected) << k;  // the second time from the memo if valid
+    clear += expected;
+    if (!expected) {
+      refused = q;
+      anyRefused = true;
+      continue;
+    }
+    if (!anyRefused) continue;
+    Vector6 inside = q, outside = refused;
+    for (int step = 0; step < 80 && (outside - inside).norm() > 1e-12; ++step) {
+      const Vector6 middle = (inside + outside) / 2.0;
+      (hasClearance(*model, data, middle, 0.01) ? inside : outside) = middle;
+    }
+    ASSERT_TRUE(valid(inside));
+    EXPECT_FALSE(valid(outside)) << k;
+    ++edges;
+  }
+  EXPECT_GT(clear, 20);
+  EXPECT_GT(edges, 20);
 }
 
 TEST(OmplValidity, SegmentCountFollowsTheLargestJointStep) {

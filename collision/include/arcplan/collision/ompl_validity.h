@@ -25,6 +25,10 @@
 
 namespace arcplan::collision {
 
+namespace detail {
+class ValidStateMemo;  // collision/src/valid_state_memo.h
+}
+
 // dof-dimensional RealVectorStateSpace, bounds = URDF joint limits, dimension names = joint names.
 ompl::base::StateSpacePtr makeJointStateSpace(const robot::RobotModel& model);
 
@@ -52,6 +56,7 @@ public:
 private:
   CollisionDataPool pool_;
   std::shared_ptr<const EndpointClearance> required_;
+  std::shared_ptr<detail::ValidStateMemo> valid_;  // the states found valid (isValid answers them at once)
 };
 
 class JointMotionValidator : public ompl::base::MotionValidator {
