@@ -145,16 +145,17 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
   if (linkGap >= enough && linkReach >= request.wanted) return {linkReach, false};
   auto& order = data.partOrder;
   order.clear();
-  double nearest = kInfinity;
+  double nearest = kInfinity, boundsReach = kInfinity;
   for (std::size_t p = 0; p < group.parts.size(); ++p) {
     const auto [i, j] = group.parts[p];
     const double bound = detail::boundGap(impl, data, i, j, group.self);
     nearest = std::min(nearest, bound);
     order.push_back({reachOf(bound - minimumClearance, rateOf(p)), bound, static_cast<int>(p)});
+    boundsReach = std::min(boundsReach, order.back().key);
   }
-  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
-  const double boundsReach = order.empty() ? kInfinity : order.front().key;
   if (std::max(linkGap, nearest) >= enough) return {std::max(linkReach, boundsReach), false};
+  // Sorted only where the part pairs are refined (most measurements end above: 2.6 % of a bookshelf solve sorted).
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
   double best = kInfinity;
   for (const auto& [reach, bound, p] : order) {
     // A part pair bounded beyond `enough` that certifies enough, or no less than the best so far, keeps
