@@ -118,6 +118,31 @@ TEST(PathDensification, CloseWaypointsAreJoinedSmoothly) {
   EXPECT_EQ(next, path.size());
 }
 
+TEST(PathDensification, ShortSegmentsBesideALongOneFollowTheirOwnRun) {
+  // A long joint motion (an RRTConnect edge of an arc fallback path) turning into three short collinear segments
+  // (a TCP line's first samples): the short segments are one run, and a curve through collinear points parameterised
+  // by joint distance is their straight line, so every dense waypoint of the run lies on the segment from its first
+  // to its last waypoint (geometry, independent of the curve's slopes). A curve through the whole path took its
+  // slope at the turn from the long motion too and left that line by 2.1e-3 rad.
+  const auto& model = robot::ur10e();
+  robot::Vector6 start, turn, direction;
+  start << -1.2, -1.9, 2.2, -2.4, -1.5, 0.1;
+  turn << 0.6, -1.4, 1.5, -1.6, -1.1, 0.8;
+  direction << 0.3, -0.5, 0.4, 0.6, -0.2, 0.3;
+  direction.normalize();
+  const JointPath path{start, turn, turn + 0.03 * direction, turn + 0.06 * direction, turn + 0.09 * direction};
+  const DensePath dense = densifyJointPath(model, path);
+  // Original waypoints are kept: the run's dense waypoints are the ones after `turn`.
+  const auto at = std::find(dense.waypoints.begin(), dense.waypoints.end(), turn);
+  ASSERT_NE(at, dense.waypoints.end());
+  double largest = 0.0;
+  int inRun = 0;
+  for (auto q = std::next(at); q != dense.waypoints.end(); ++q, ++inRun)
+    largest = std::max(largest, distanceToSegment(*q, turn, path.back()));
+  EXPECT_GE(inRun, 9);  // 0.09 rad at 0.01 rad steps
+  EXPECT_LT(largest, 1e-12);
+}
+
 TEST(PathDensification, TcpLengthConvergesAsStepsShrink) {
   // The chord sum of a finer resampling is longer (a chord is never longer than the arc) and the
   // difference shrinks quadratically with the step.

@@ -8,8 +8,9 @@
 // RRT edge) the new waypoints lie on the straight joint-space segment, the motion a planner's motion
 // validator checked. Waypoints close together (any joint within smoothWaypointSpacing) are samples
 // of a smooth curve (an arc path converted by IK every centimetre): there the new waypoints follow a
-// PCHIP through the original waypoints, parameterised by joint-space distance, so joint velocities
-// do not jump at every original waypoint. PCHIP never leaves the joint box of the two waypoints
+// PCHIP through the original waypoints of that run of close waypoints (one curve per run, so a long
+// straight segment beside it does not bend it), parameterised by joint-space distance, so joint
+// velocities do not jump at every original waypoint. PCHIP never leaves the joint box of the two waypoints
 // around it, so the deviation from the straight segment is below smoothWaypointSpacing per joint
 // (in practice micro-radians on a smooth path).
 #include <vector>
