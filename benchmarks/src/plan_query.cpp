@@ -173,7 +173,7 @@ nlohmann::json toJson(const PlannedQuery& planned) {
                              {"planner", planned.options.planner},
                              {"status", toString(planned.status)},
                              {trajectory::solveTimeDescriptor().key, planned.solveTime},
-                             {"simplification_time_s", planned.simplificationTime},
+                             {kSimplificationTimeKey, planned.simplificationTime},
                              {"time_limit_s", planned.options.timeLimit},
                              {"parameters", planned.parameterValues}};
   if (planned.options.seed) document["seed"] = *planned.options.seed;

@@ -99,7 +99,7 @@ void bindPlanning(py::module_& module) {
                              })
       .def_property_readonly(trajectory::solveTimeDescriptor().key.c_str(),
                              [](const Planned& p) { return p.solveTime; })
-      .def_property_readonly("simplification_time_s", [](const Planned& p) { return p.simplificationTime; })
+      .def_property_readonly(benchmarks::kSimplificationTimeKey, [](const Planned& p) { return p.simplificationTime; })
       .def_property_readonly("mode",
                              [](const Planned& p) -> std::optional<std::string> {
                                if (!p.arc || p.path.empty()) return std::nullopt;

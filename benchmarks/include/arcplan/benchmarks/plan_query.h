@@ -37,6 +37,9 @@ enum class PlanStatus { Exact, Approximate, Failed };
 // "exact", "approximate", "failed": the `status` of `plan --json`.
 const char* toString(PlanStatus status);
 
+// The JSON key (and Python attribute) of PlannedQuery::simplificationTime.
+inline constexpr char kSimplificationTimeKey[] = "simplification_time_s";
+
 struct PlannedQuery {
   PlanQueryOptions options;  // as asked, with the registered planner name
   std::string sceneName;
