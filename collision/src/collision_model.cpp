@@ -124,12 +124,31 @@ double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, con
 
 bool witnessCloser(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                    double distance) {
-  if (!b.boxBound || !(distance > 0.0)) return false;
-  const Eigen::Isometry3d toBox = poseB.inverse(Eigen::Isometry) * poseA;
+  if (!(distance > 0.0)) return false;
+  const Eigen::Isometry3d toB = poseB.inverse(Eigen::Isometry) * poseA;
   const double squared = distance * distance;
-  for (const auto& point : a.witnessPoints) {
-    const Eigen::Vector3d outside = ((toBox * point).cwiseAbs() - b.boxHalfExtents).cwiseMax(0.0);
-    if (outside.squaredNorm() < squared) return true;
+  if (b.boxBound) {
+    for (const auto& point : a.witnessPoints) {
+      const Eigen::Vector3d outside = ((toB * point).cwiseAbs() - b.boxHalfExtents).cwiseMax(0.0);
+      if (outside.squaredNorm() < squared) return true;
+    }
+    return false;
+  }
+  // Against a curved primitive the nearest vertex of a gripper closing on it is rarely extreme along a fixed
+  // direction: every vertex (hullPoints) is asked. A point's distance is closed-form here, nanoseconds per vertex,
+  // where FCL's exact distance of a 1776-triangle finger tip from a can costs 2–3 ms (a GJK per triangle).
+  const Solid& solid = b.solid;
+  if (solid.kind == Solid::Kind::Cylinder) {  // axis z, centred, as fcl::Cylinder
+    for (const auto& vertex : a.hullPoints) {
+      const Eigen::Vector3d point = toB * vertex;
+      const double radial = std::max(std::hypot(point.x(), point.y()) - solid.radius, 0.0);
+      const double axial = std::max(std::abs(point.z()) - solid.halfLength, 0.0);
+      if (radial * radial + axial * axial < squared) return true;
+    }
+  } else if (solid.kind == Solid::Kind::Sphere) {
+    const double reach = solid.radius + distance;
+    for (const auto& vertex : a.hullPoints)
+      if ((toB * vertex).squaredNorm() < reach * reach) return true;
   }
   return false;
 }

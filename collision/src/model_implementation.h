@@ -171,10 +171,11 @@ double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, con
 double containingMeshGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                          const CollisionModelOptions& options);
 
-// Whether a witness point of robot part a (Part::witnessPoints) lies closer than `distance` to obstacle box b
-// (Part::boxBound): a point pair's distance bounds the parts' from above, so they are closer too. False for other
-// obstacles. Callers ask it for `distance` kWitnessSlack below a threshold that an exact distance would decide: GJK's
-// 1e-6 m error can then not make that distance come out on the other side, and the answer stays the exact one.
+// Whether a witness point of robot part a lies closer than `distance` to obstacle b: one of Part::witnessPoints to
+// a box (Part::boxBound), any vertex (Part::hullPoints) to a cylinder or sphere. A point pair's distance bounds the
+// parts' from above, so they are closer too. False for other obstacles. Callers ask it for `distance` kWitnessSlack
+// below a threshold that an exact distance would decide: GJK's 1e-6 m error can then not make that distance come out on
+// the other side, and the answer stays the exact one.
 bool witnessCloser(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                    double distance);
 inline constexpr double kWitnessSlack = 1e-5;

@@ -221,19 +221,30 @@ bool detail::certifiedMotionFree(const CollisionModel& model, CollisionData& wor
                                  const robot::JointRef& qb, double* lastValidFraction, double minimumClearance) {
   const Implementation& impl = detail::implementationOf(model);
   detail::Workspace& data = detail::workspaceOf(workspace);
-  // The sphere prefilter first: it certifies most motions with a few batches of 8 states.
-  const detail::SphereMotion spheres = detail::sphereMotion(model, data, qa, qb, minimumClearance);
+  // The sphere prefilter first: it certifies most motions with a few batches of 8 states. Where the last valid
+  // state is wanted it defers no pair: the advancement of all pairs finds the same last state as without spheres.
+  const bool bothEnds = lastValidFraction == nullptr;
+  const detail::SphereMotion spheres = detail::sphereMotion(model, data, qa, qb, minimumClearance, bothEnds);
   if (spheres == detail::SphereMotion::Free) return true;
-  if (spheres == detail::SphereMotion::Collides && lastValidFraction == nullptr) return false;
-  if (lastValidFraction == nullptr && !probesClear(model, workspace, qa, qb, minimumClearance)) return false;
+  if (spheres == detail::SphereMotion::Collides && bothEnds) return false;
+  const bool selfPairsLeft = spheres == detail::SphereMotion::SelfPairsLeft;
+  if (bothEnds && !selfPairsLeft && !probesClear(model, workspace, qa, qb, minimumClearance)) return false;
   auto& pairs = data.motionPairs;
   const Eigen::VectorXd step = (qb - qa).cwiseAbs();
   for (std::size_t k = 0; k < pairs.size(); ++k)
     pairs[k] = {impl.groups[k]->relativeReach.dot(step), 0.0, 1.0, 0.0, 1.0};
+  if (selfPairsLeft) {  // the spheres certified every pair but the deferred ones over the whole motion
+    const detail::SpherePrefilter& prefilter = *impl.prefilter;
+    const int bodies = prefilter.tables().bodyCount;
+    std::vector<char> followed(pairs.size(), 0);
+    for (int p = bodies; p < prefilter.pairCount(); ++p)
+      if (data.spheres->deferred[p]) followed[impl.obstacleGroups.size() + prefilter.selfGroupOf(p - bodies)] = 1;
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      if (!followed[k]) pairs[k].certifiedFromStart = 1.0, pairs[k].certifiedFromEnd = 0.0;
+  }
   const auto done = [](const detail::Workspace::MotionPair& pair) {
     return pair.certifiedFromStart > pair.certifiedFromEnd;
   };
-  const bool bothEnds = lastValidFraction == nullptr;
   bool atStart = true;
   double lastClear = 0.0;  // the last start-side front measured clear
   while (true) {

@@ -9,9 +9,14 @@
 // between two samples is covered for a pair when r_i + r_j >= s_j − s_i; the motion is free when every
 // interval is covered for every pair. Uncovered intervals get new samples inside them, 8 per batch
 // spread over them, until all are covered or kMaxSamples are spent. A state whose spheres come too
-// close is checked by FCL: a collision rejects the motion; a free one means the spheres cannot
-// certify it, and the rest of the motion is then only searched for a collision (evenly spaced states,
-// coarse first, a few FCL checks at most) before the exact check decides.
+// close to an obstacle is checked by FCL: a collision rejects the motion; a free one means the spheres
+// cannot certify it, and the rest of the motion is then only searched for a collision (evenly spaced
+// states, coarse first, a few FCL checks at most) before the exact check decides. A self pair whose
+// spheres come too close is deferred instead: the rake goes on certifying every other pair, and the
+// exact check then follows the deferred pairs alone (SphereMotion::SelfPairsLeft). Self pairs that
+// are close in every state (on MBM's UR5 base_link – upper_arm_link and forearm_link – wrist_2_link,
+// 1–1.8 cm apart, their spheres always overlapping) would otherwise keep the spheres from certifying
+// any motion of such a robot.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -48,6 +53,7 @@ struct Rake {
   const robot::JointRef& qb;
   double keptObstacle, keptSelf;  // keptClearance of the motion's m for the bodies' obstacle pairs, the self pairs
   int bodies, pairs;
+  bool deferring;        // self pairs too close for the spheres are deferred (SelfPairsLeft), not blocking
   bool blocked = false;  // a free state too close for the spheres: they cannot certify the motion
   int exactChecks = 0;
 
@@ -62,7 +68,7 @@ struct Rake {
         prefilter.loadLane(work, lane, data.motionJoints.data());
       }
       for (int p = 0; p < pairs; ++p)
-        work.enough[p] = work.floored[p] ? -kFar : static_cast<float>(kept(p) + work.rates[p] * h + prefilter.margin());
+        work.enough[p] = settled(p) ? -kFar : static_cast<float>(kept(p) + work.rates[p] * h + prefilter.margin());
       prefilter.gaps(work);
       // Of the states the spheres do not clear, the closest (the likeliest collision) goes to FCL.
       int closest = -1, closestLane = 0;
@@ -71,11 +77,15 @@ struct Rake {
         const int sample = work.pending[first + lane];
         double smallest = kInfinity;
         for (int p = 0; p < pairs; ++p) {
-          if (work.floored[p]) {
+          if (settled(p)) {
             work.reach[sample * pairs + p] = kInfinity;
             continue;
           }
           const double room = static_cast<double>(work.gaps[p * kLanes + lane]) - kept(p);
+          if (room <= 0.0 && p >= bodies && deferring) {
+            work.deferred[p] = 1;
+            continue;
+          }
           smallest = std::min(smallest, room);
           work.reach[sample * pairs + p] = work.rates[p] > 0.0 ? room / work.rates[p] : kInfinity;
         }
@@ -96,6 +106,8 @@ struct Rake {
   }
 
   double kept(int p) const { return p < bodies ? keptObstacle : keptSelf; }
+  // A pair the spheres no longer measure on this motion: its floor keeps it apart, or it is deferred.
+  bool settled(int p) const { return work.floored[p] || work.deferred[p]; }
 
   // FCL's answer at sample `sample` (lane `lane` of the batch just evaluated) whether the state collides, from the
   // pairs whose spheres leave a gap <= 0 there: the others are apart (the spheres contain the geometry, the gaps are
@@ -122,6 +134,7 @@ struct Rake {
   bool covered(int i, int j) const {
     const double length = work.samples[j] - work.samples[i];
     for (int p = 0; p < pairs; ++p) {
+      if (work.deferred[p]) continue;  // a sample before its deferral holds a reach for it
       if (work.reach[i * pairs + p] + work.reach[j * pairs + p] < length) return false;
     }
     return true;
@@ -148,7 +161,7 @@ struct Rake {
 }  // namespace
 
 SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const robot::JointRef& qa,
-                          const robot::JointRef& qb, double minimumClearance) {
+                          const robot::JointRef& qb, double minimumClearance, bool deferSelfPairs) {
   const Implementation& impl = implementationOf(model);
   if (!impl.prefilter || !impl.prefilter->usable()) return SphereMotion::Unknown;
   const SpherePrefilter& prefilter = *impl.prefilter;
@@ -157,6 +170,7 @@ SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const ro
   const Eigen::VectorXd step = (qb - qa).cwiseAbs();
   work.rates.resize(pairs);
   work.floored.assign(pairs, 0);
+  work.deferred.assign(pairs, 0);
   const double keptSelf = keptClearance(requiredDistance(true, minimumClearance));
   for (int b = 0; b < bodies; ++b) work.rates[b] = impl.jointReach.row(b).dot(step);
   for (int p = bodies; p < pairs; ++p) {
@@ -169,7 +183,8 @@ SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const ro
     if (group.rigid && group.rigidDistance < keptSelf) return SphereMotion::Unknown;
   }
 
-  Rake rake{model, prefilter, data, work, qa, qb, keptClearance(minimumClearance), keptSelf, bodies, pairs};
+  Rake rake{model,    prefilter, data,  work,          qa, qb, keptClearance(minimumClearance),
+            keptSelf, bodies,    pairs, deferSelfPairs};
   work.samples.clear();
   work.reach.clear();
   work.pending.clear();
@@ -184,7 +199,10 @@ SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const ro
     work.next.clear();
     for (const auto& interval : work.intervals)
       if (!rake.covered(interval.first, interval.second)) work.next.push_back(interval);
-    if (work.next.empty()) return SphereMotion::Free;
+    if (work.next.empty())
+      return std::find(work.deferred.begin(), work.deferred.end(), 1) == work.deferred.end()
+                 ? SphereMotion::Free
+                 : SphereMotion::SelfPairsLeft;
     // Spread a batch's worth of new samples over the uncovered intervals (at least one each).
     const int each = std::max(1, kLanes / static_cast<int>(work.next.size()));
     if (static_cast<int>(work.samples.size() + work.next.size() * each) > kMaxSamples) return SphereMotion::Unknown;

@@ -24,7 +24,8 @@ struct SphereWorkspace {
   // Batched motion checks (sphere_motion_check.cpp): sample fractions, per sample and pair the
   // fraction its clearance certifies each way, and the work list of intervals.
   std::vector<double> rates, samples, reach;
-  std::vector<char> floored;  // per pair: its floor (PairGroup::floor) keeps the motion's clearance everywhere
+  std::vector<char> floored;   // per pair: its floor (PairGroup::floor) keeps the motion's clearance everywhere
+  std::vector<char> deferred;  // per pair: a self pair the spheres left to the certified check (SelfPairsLeft)
   std::vector<std::pair<int, int>> intervals, next;
   std::vector<int> pending;
 };
@@ -74,14 +75,18 @@ private:
 // Whether the spheres prove q free (false: FCL decides). q must have robot().dof() values.
 bool sphereFree(const SpherePrefilter& prefilter, SphereWorkspace& workspace, const robot::JointRef& q);
 
-// What the spheres tell about a straight motion qa -> qb (sphere_motion_check.cpp).
+// What the spheres tell about a straight motion qa -> qb (sphere_motion_check.cpp); SelfPairsLeft only when
+// deferSelfPairs (else such a motion is Unknown).
 enum class SphereMotion {
   Free,      // every pair keeps more than m + acceptanceMargin(m) all along: the certified check accepts it too
   Collides,  // a state on it collides (FCL said so): the certified check rejects it too
-  Unknown    // the certified check decides
+  Unknown,   // the certified check decides
+  // Every pair keeps more than m + acceptanceMargin(m) all along except the self pairs marked in
+  // SphereWorkspace::deferred, whose spheres came too close somewhere: the certified check need only follow those.
+  SelfPairsLeft
 };
 SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const robot::JointRef& qa,
-                          const robot::JointRef& qb, double minimumClearance);
+                          const robot::JointRef& qb, double minimumClearance, bool deferSelfPairs);
 
 // isCollisionFree without the prefilter (collision_model.cpp).
 bool exactlyCollisionFree(const CollisionModel& model, Workspace& data, const robot::JointRef& q);

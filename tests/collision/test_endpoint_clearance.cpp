@@ -255,6 +255,30 @@ TEST(EndpointClearance, TheZoneFollowsTheRealDisplacementNotItsBound) {
   }
 }
 
+// Each end of a motion is walked inward while it lies inside a zone: a motion into the zone gets the mirror image of
+// the pieces of the motion out of it, and one that only passes through the zone, both ends outside, keeps c_m all
+// along (its middle is not proven inside: conservative; a straight motion seldom leaves a zone and comes back).
+TEST(EndpointClearance, EachEndIsWalkedInwardAndAMotionOnlyPassingThroughKeepsTheMotionClearance) {
+  const auto model = sweeperUnderBox();
+  const EndpointClearance rule(*model, kClearance, kClearance, {joints(0.9, 0), joints(0, 0)});
+  const arcplan::robot::Vector6 goal = joints(0, 0), outside = joints(0.4, -0.4);
+  const auto out = rule.motionPieces(goal, outside), in = rule.motionPieces(outside, goal);
+  ASSERT_GE(out.size(), 2u);
+  ASSERT_EQ(in.size(), out.size());
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const MotionPiece& mirrored = in[in.size() - 1 - k];
+    EXPECT_NEAR(mirrored.from, 1.0 - out[k].to, 1e-12) << k;
+    EXPECT_NEAR(mirrored.to, 1.0 - out[k].from, 1e-12) << k;
+    EXPECT_EQ(mirrored.clearance, out[k].clearance) << k;
+  }
+  EXPECT_LT(in.back().clearance, kClearance) << "the end inside the zone";
+  // (−0.4, 0.4) -> (0.4, −0.4): both ends 0.119 m from the goal, the middle the goal itself.
+  ASSERT_GT(sphereDisplacement(-0.4, 0.4), kApproachZoneLength);
+  const auto through = rule.motionPieces(joints(-0.4, 0.4), outside);
+  ASSERT_EQ(through.size(), 1u);
+  EXPECT_EQ(through[0].clearance, kClearance);
+}
+
 // A certified motion at c_m rejects a pair measured closer than c_m + min(c_m / 4, 0.5 mm): with
 // c = c_m = 2.6 mm the goal (3 mm, below 3.1 mm) could be neither reached nor left, so it gets a zone too.
 TEST(EndpointClearance, AnEndpointAMotionCannotReachAtTheMotionClearanceGetsAZone) {

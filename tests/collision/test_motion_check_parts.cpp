@@ -133,9 +133,10 @@ TEST(MotionBounds, NoPointIsFartherFromAJointsAxisThanItsReach) {
     }
     for (const auto& part : impl.robotParts) {
       const int joint = robot.links()[impl.linkCapsuleLink[static_cast<std::size_t>(part.body)]].joint;
-      if (joint >= 0 && !part.hullPoints.empty())
+      if (joint >= 0 && !part.hullPoints.empty()) {
         EXPECT_GT(farthest(part.body, joint), 0.99 * impl.jointReach(part.body, joint))
             << model->linkNames()[part.body];
+      }
     }
   }
 }

@@ -1,9 +1,10 @@
-// Queries beside MotionBenchMaker's shelf boards, where RRTConnect's 1 cm checks spend their time: the witness
-// points that refuse a gripper part inside the clearance without an exact distance (witnessCloser), and the sphere
-// rake's exact check of the pairs its spheres leave open. Each is compared with FCL: witness distances with FCL's
-// sphere–box distance (through partsDistance) and its mesh–box distance, state answers with a model that has every
-// layer off, motion answers with the same model without the spheres. Reads ARCPLAN_SHARED_DATA's mbm_ur5, as the
-// containing-mesh layer's tests do.
+// Queries beside MotionBenchMaker's shelf boards and cans, where RRTConnect's 1 cm checks spend their time: the
+// witness points that refuse a gripper part inside the clearance without an exact distance (witnessCloser), the sphere
+// rake's exact check of the pairs its spheres leave open, and the self pairs it leaves to the exact check. Each is
+// compared with FCL: witness distances with FCL's sphere–box, sphere–cylinder and sphere–sphere distances (through
+// partsDistance) and its mesh–primitive distances, state answers with a model that has every layer off, motion
+// answers with the same model without the spheres. Reads ARCPLAN_SHARED_DATA's mbm_ur5, as the containing-mesh
+// layer's tests do.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -15,8 +16,10 @@
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/collision/moveit_scene.h"
 #include "model_implementation.h"  // collision/src
+#include "sphere_prefilter.h"      // collision/src
 #include "support/collision_options.h"
 #include "support/command.h"
+#include "support/random_joint_state.h"
 
 namespace {
 
@@ -38,14 +41,14 @@ ShelfProblem thinShelf() {
   return {std::move(problem.scene), goal};
 }
 
-// The distance of a point from a board, by FCL (a sphere of radius r about the point, r added back).
-double pointBoxDistance(const Eigen::Vector3d& point, const detail::Part& board, const Eigen::Isometry3d& boardPose,
-                        const CollisionModelOptions& options) {
+// The distance of a point from an obstacle part, by FCL (a sphere of radius r about the point, r added back).
+double pointDistance(const Eigen::Vector3d& point, const detail::Part& obstacle, const Eigen::Isometry3d& obstaclePose,
+                     const CollisionModelOptions& options) {
   constexpr double r = 1e-6;
   static const detail::Part ball = detail::spherePart(r, options.distanceBoundingVolume);
   Eigen::Isometry3d at = Eigen::Isometry3d::Identity();
   at.translation() = point;
-  return detail::partsDistance(ball, at, board, boardPose, true, options) + r;
+  return detail::partsDistance(ball, at, obstacle, obstaclePose, true, options) + r;
 }
 
 // Every witness point is a vertex of its part, so its distance from a board bounds the part's from above (checked
@@ -78,12 +81,55 @@ TEST(NearBoards, WitnessPointsAreVerticesWhoseDistanceBoundsThePartsFromAbove) {
       const Eigen::Isometry3d boardPose = Eigen::Isometry3d::Identity();
       double nearest = INFINITY;
       for (const auto& witness : part.witnessPoints)
-        nearest = std::min(nearest, pointBoxDistance(pose * witness, board, boardPose, model->options()));
+        nearest = std::min(nearest, pointDistance(pose * witness, board, boardPose, model->options()));
       const double exact = detail::partsDistance(part, pose, board, boardPose, true, model->options());
       ASSERT_GE(nearest, exact - 1e-6) << "part " << parts << " pose " << k;
       EXPECT_TRUE(detail::witnessCloser(part, pose, board, boardPose, nearest + 1e-6));
       if (nearest > 1e-6) {
         EXPECT_FALSE(detail::witnessCloser(part, pose, board, boardPose, nearest - 1e-6));
+      }
+      closer += nearest < 0.0105;
+      ++poses;
+    }
+  }
+  EXPECT_GT(parts, 10);
+  EXPECT_GT(closer, poses / 10);  // poses inside a 1 cm clearance (plus margin) were tried
+}
+
+// Against a can (MBM's 3 cm cylinders) or a ball every vertex of a part is a witness: the nearest one's distance (by
+// FCL) is never below the part's (FCL's mesh–cylinder / mesh–sphere distance), and witnessCloser answers by it.
+TEST(NearBoards, AnyVertexNearACanOrABallBoundsThePartsDistanceFromAbove) {
+  const auto model = makeCollisionModel(thinShelf().scene);
+  const auto& impl = detail::implementationOf(*model);
+  const CollisionModelOptions& options = model->options();
+  const detail::Part can = detail::cylinderPart(0.03, 0.14, options.distanceBoundingVolume),
+                     ball = detail::spherePart(0.04, options.distanceBoundingVolume);
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int parts = 0, closer = 0, poses = 0;
+  for (const auto& part : impl.robotParts) {
+    if (part.hullPoints.empty()) continue;
+    ++parts;
+    const double reach = (part.capsule.end - part.capsule.start).norm() / 2.0 + part.capsule.radius;
+    for (int k = 0; k < 6; ++k) {
+      const detail::Part& obstacle = k % 2 == 0 ? can : ball;
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.linear() = Eigen::Quaterniond(unit(random), unit(random), unit(random), unit(random)).normalized().matrix();
+      // The part's centre between 3 cm inside and its reach + 3 cm outside the obstacle's side, at any height.
+      const Eigen::Vector3d centre = pose * ((part.capsule.start + part.capsule.end) / 2.0);
+      const double radial = 0.03 + (reach + 0.03) * (1.0 + unit(random)) / 2.0 - 0.03 * (1.0 + unit(random)) / 2.0;
+      const double angle = M_PI * unit(random);
+      pose.translation() +=
+          Eigen::Vector3d(radial * std::cos(angle), radial * std::sin(angle), 0.06 * unit(random)) - centre;
+      const Eigen::Isometry3d obstaclePose = Eigen::Isometry3d::Identity();
+      double nearest = INFINITY;
+      for (const auto& vertex : part.hullPoints)
+        nearest = std::min(nearest, pointDistance(pose * vertex, obstacle, obstaclePose, options));
+      const double exact = detail::partsDistance(part, pose, obstacle, obstaclePose, true, options);
+      ASSERT_GE(nearest, exact - 1e-6) << "part " << parts << " pose " << k;
+      EXPECT_TRUE(detail::witnessCloser(part, pose, obstacle, obstaclePose, nearest + 1e-6));
+      if (nearest > 1e-6) {
+        EXPECT_FALSE(detail::witnessCloser(part, pose, obstacle, obstaclePose, nearest - 1e-6));
       }
       closer += nearest < 0.0105;
       ++poses;
@@ -143,6 +189,45 @@ TEST(NearBoards, CertifiedMotionsAnswerAsWithoutTheSpheres) {
   }
   EXPECT_GT(accepted, 10);  // both answers occur
   EXPECT_LT(accepted, motions - 10);
+}
+
+// Certified 0.35 rad motions from random states at 1 cm: base_link – upper_arm_link and forearm_link – wrist_2_link are
+// never 1.8 cm apart, so their spheres overlap in every state and the rake could certify no motion; it leaves them to
+// the exact check (SelfPairsLeft), which follows them alone, and the answers stay those taken without spheres — the
+// last valid state too, where the rake defers nothing.
+TEST(NearBoards, SelfPairsTheSpheresCannotSeparateAreLeftToTheExactCheck) {
+  const ShelfProblem problem = thinShelf();
+  CollisionModelOptions noSpheres;
+  noSpheres.spherePrefilter = false;
+  const auto layered = makeCollisionModel(problem.scene), plain = makeCollisionModel(problem.scene, noSpheres);
+  CollisionData layeredData(*layered), plainData(*plain);
+  MotionCheckOptions options;
+  options.minimumClearance = 0.01;
+  std::mt19937_64 random(17);
+  std::normal_distribution<double> gaussian;
+  int accepted = 0, motions = 0, left = 0, freeWithoutDeferring = 0;
+  while (motions < 200) {
+    const Eigen::VectorXd start = arcplan::testing::randomJointState(layered->robot(), random);
+    if (!hasClearance(*plain, plainData, start, 0.01)) continue;
+    Eigen::VectorXd direction(start.size());
+    for (int j = 0; j < direction.size(); ++j) direction[j] = gaussian(random);
+    const Eigen::VectorXd end = start + 0.35 * direction.normalized();
+    const bool expected = isMotionCollisionFree(*plain, plainData, start, end, nullptr, options);
+    ASSERT_EQ(isMotionCollisionFree(*layered, layeredData, start, end, nullptr, options), expected) << motions;
+    double layeredLast = -1.0, plainLast = -1.0;
+    ASSERT_EQ(isMotionCollisionFree(*layered, layeredData, start, end, &layeredLast, options),
+              isMotionCollisionFree(*plain, plainData, start, end, &plainLast, options));
+    EXPECT_EQ(layeredLast, plainLast) << motions;
+    auto& workspace = detail::workspaceOf(layeredData);
+    left += detail::sphereMotion(*layered, workspace, start, end, 0.01, true) == detail::SphereMotion::SelfPairsLeft;
+    freeWithoutDeferring +=
+        detail::sphereMotion(*layered, workspace, start, end, 0.01, false) == detail::SphereMotion::Free;
+    accepted += expected;
+    ++motions;
+  }
+  EXPECT_GT(accepted, 50);
+  EXPECT_GT(left, accepted / 2) << "the rake certified the rest of most accepted motions";
+  EXPECT_LT(freeWithoutDeferring, left / 4) << "without deferring, the self pairs keep it from certifying them";
 }
 
 }  // namespace

@@ -280,7 +280,7 @@ void expectSameAnswers(const Scene& scene, unsigned seed, int states, int motion
     EXPECT_EQ(fastLast, exactLast);
     freeMotions += expected;
     certified +=
-        detail::sphereMotion(*fast, detail::workspaceOf(fastData), qa, qb, 0.001) == detail::SphereMotion::Free;
+        detail::sphereMotion(*fast, detail::workspaceOf(fastData), qa, qb, 0.001, false) == detail::SphereMotion::Free;
   }
   // Motions were free, and the spheres certified some themselves (the batched check was exercised).
   EXPECT_GE(freeMotions, 5) << scene.name;
