@@ -103,6 +103,7 @@ struct Workspace {
     double measuredFromStart = 0.0, measuredFromEnd = 1.0;
   };
   std::vector<MotionPair> motionPairs;
+  std::vector<int> activePairs;     // the groups (indices of motionPairs) not yet certified over the motion
   robot::JointVector motionJoints;  // the configuration on the motion being checked
   robot::JointVector probeJoints;   // a state probed before advancing (motion_check.cpp)
   // Motion checks: a group's part pairs with their capsule bounds, in the order they are measured.
