@@ -27,6 +27,14 @@ const fcl::CollisionGeometryd* coarseHullOf(const Part& part) {
   return part.coarseHullGeometry ? part.coarseHullGeometry.get() : part.hullGeometry.get();
 }
 
+// The direction between GJK's nearest points (world frame) in the first part's frame; left as it was where the
+// hulls touch (no direction).
+void keepAxis(const fcl::DistanceResultd& result, const Eigen::Isometry3d& poseA, Eigen::Vector3d& axis) {
+  const Eigen::Vector3d between = result.nearest_points[1] - result.nearest_points[0];
+  const double length = between.norm();
+  if (result.min_distance > 0.0 && length > 0.0) axis = poseA.linear().transpose() * (between / length);
+}
+
 // FCL compares surfaces; a part entirely inside the other has no intersecting surfaces, so one
 // point of each is tested against the other's solid as well.
 bool oneInsideOther(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB) {
@@ -50,6 +58,8 @@ Workspace::Workspace(const CollisionModel& model)
       linkCapsuleStarts(model.linkNames().size()),
       linkCapsuleEnds(model.linkNames().size()),
       motionPairs(implementationOf(model).groups.size()),
+      pairAxes(implementationOf(model).partPairs.size(), Eigen::Vector3d::Zero()),
+      pairAxisMotions(implementationOf(model).partPairs.size(), 0),
       motionJoints(model.robot().dof()),
       probeJoints(model.robot().dof()) {
   distanceOrder.reserve(implementationOf(model).partPairs.size());
@@ -119,6 +129,46 @@ double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, con
     result.clear();
   }
   const double d = fcl::distance(a.hullGeometry.get(), poseA, b.hullGeometry.get(), poseB, request, result);
+  return std::max(d - kHullDistanceSlack, 0.0);
+}
+
+double separatingGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+                     const Eigen::Vector3d& axisInA) {
+  constexpr double kNone = -std::numeric_limits<double>::infinity();
+  if (!a.hullGeometry || !b.hullGeometry || a.hullGeometry->getNodeType() != fcl::GEOM_CONVEX ||
+      b.hullGeometry->getNodeType() != fcl::GEOM_CONVEX)
+    return kNone;
+  const Eigen::Vector3d world = poseA.linear() * axisInA;
+  const Eigen::Vector3d inA = axisInA, inB = poseB.linear().transpose() * world;
+  double highestA = kNone, lowestB = std::numeric_limits<double>::infinity();
+  for (const auto& v : static_cast<const fcl::Convexd&>(*a.hullGeometry).getVertices())
+    highestA = std::max(highestA, inA.dot(v));
+  for (const auto& v : static_cast<const fcl::Convexd&>(*b.hullGeometry).getVertices())
+    lowestB = std::min(lowestB, inB.dot(v));
+  return lowestB + world.dot(poseB.translation()) - highestA - world.dot(poseA.translation());
+}
+
+double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+               const CollisionModelOptions& options, double enough, Eigen::Vector3d& axis) {
+  if (!options.hullLayer || !a.hullGeometry || !b.hullGeometry) return 0.0;
+  if (options.convexDistance && a.convexGeometry && b.convexGeometry) return 0.0;
+  if (!axis.isZero()) {
+    // Rounding of the dot products (~1e-16 m per vertex coordinate) is far below the slack taken off.
+    const double along = separatingGap(a, poseA, b, poseB, axis) - kHullDistanceSlack;
+    if (along >= enough) return along;
+  }
+  static const fcl::DistanceRequestd request(true, false, 0.0, 0.0, 1e-9);
+  fcl::DistanceResultd result;
+  if (a.coarseHullGeometry || b.coarseHullGeometry) {
+    const double coarse = fcl::distance(coarseHullOf(a), poseA, coarseHullOf(b), poseB, request, result);
+    if (coarse - kHullDistanceSlack >= enough) {
+      keepAxis(result, poseA, axis);
+      return std::max(coarse - kHullDistanceSlack, 0.0);
+    }
+    result.clear();
+  }
+  const double d = fcl::distance(a.hullGeometry.get(), poseA, b.hullGeometry.get(), poseB, request, result);
+  keepAxis(result, poseA, axis);
   return std::max(d - kHullDistanceSlack, 0.0);
 }
 
@@ -404,7 +454,7 @@ bool detail::keepsDistances(const CollisionModel& model, CollisionData& workspac
   for (const auto& open : data.openPairs) {
     const auto [a, poseA, b, poseB] = parts(open);
     const double required = requiredOf(*impl.partPairs[open.first].group);
-    if (detail::hullGap(a, poseA, b, poseB, model.options(), required) >= required ||
+    if (detail::hullGap(a, poseA, b, poseB, model.options(), required, data.pairAxes[open.first]) >= required ||
         detail::containingMeshGap(a, poseA, b, poseB, model.options()) >= required)
       continue;
     if (partsDistance(a, poseA, b, poseB, open.second, model.options()) < required) return false;

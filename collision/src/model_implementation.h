@@ -103,7 +103,15 @@ struct Workspace {
     double measuredFromStart = 0.0, measuredFromEnd = 1.0;
   };
   std::vector<MotionPair> motionPairs;
-  std::vector<int> activePairs;     // the groups (indices of motionPairs) not yet certified over the motion
+  std::vector<int> activePairs;  // the groups (indices of motionPairs) not yet certified over the motion
+  // Per part pair (ModelImplementation::partPairs): the direction from the first part's hull to the second's that
+  // GJK found at its last measurement in this workspace, in the first part's frame; zero before (hullGap). The
+  // certified motion check takes only those found during the same motion (pairAxisMotions[pair] == motion), so
+  // that where it measures depends on the motion alone, never on earlier queries; state checks take any (their
+  // answers are the exact ones whichever bound proves a pair apart).
+  std::vector<Eigen::Vector3d> pairAxes;
+  std::vector<std::uint64_t> pairAxisMotions;
+  std::uint64_t motion = 0;         // certified motion checks begun in this workspace
   robot::JointVector motionJoints;  // the configuration on the motion being checked
   robot::JointVector probeJoints;   // a state probed before advancing (motion_check.cpp)
   // Motion checks: a group's part pairs with their capsule bounds, in the order they are measured.
@@ -164,6 +172,15 @@ double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& 
 // The coarse hulls' bound is returned when it reaches `enough` (the caller's threshold), else the hulls'.
 double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                const CollisionModelOptions& options, double enough);
+// hullGap of the part pair measured again and again (Workspace::pairAxes[pair]): first the bound along the direction
+// GJK found last time (separatingGap), returned when it reaches `enough`; else hullGap, whose GJK leaves its direction.
+double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+               const CollisionModelOptions& options, double enough, Eigen::Vector3d& axis);
+// A lower bound of the distance of two convex hulls from any direction n (unit, a's frame, pointing from a to b):
+// min over b's hull vertices of n·x − max over a's of n·x (their support functions), −infinity unless both parts
+// have an fcl::Convex hull.
+double separatingGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
+                     const Eigen::Vector3d& axisInA);
 
 // A lower bound of partsDistance(a, b) for a primitive against a mesh part from the primitive's
 // containing mesh (Part::containingMesh; triangle distances, less GJK's tolerance), at most the

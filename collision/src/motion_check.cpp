@@ -168,7 +168,13 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     const auto &first = impl.robotParts[i], &second = detail::secondPart(impl, group, j);
     const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, group, j);
     const double rate = rateOf(p);
-    const double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough);
+    const int pair = impl.firstPartPair[k] + p;
+    if (data.pairAxisMotions[pair] != data.motion) {  // a direction from an earlier query: not taken
+      data.pairAxes[pair].setZero();
+      data.pairAxisMotions[pair] = data.motion;
+    }
+    const double hull =
+        detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough, data.pairAxes[pair]);
     if (hull >= enough) {
       best = std::min(best, reachOf(hull - minimumClearance, rate));
       continue;
@@ -229,6 +235,7 @@ bool detail::certifiedMotionFree(const CollisionModel& model, CollisionData& wor
   if (spheres == detail::SphereMotion::Collides && bothEnds) return false;
   const bool selfPairsLeft = spheres == detail::SphereMotion::SelfPairsLeft;
   if (bothEnds && !selfPairsLeft && !probesClear(model, workspace, qa, qb, minimumClearance)) return false;
+  ++data.motion;
   auto& pairs = data.motionPairs;
   // The pairs still to certify, in group order; a pair drops out once its certificates meet (on MBM ~400 groups,
   // most of them settled after the first measurement at each end, or by the spheres).

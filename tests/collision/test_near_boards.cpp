@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <random>
 
+#include <fcl/fcl.h>
 #include <gtest/gtest.h>
 
 #include "arcplan/collision/collision_model.h"
@@ -189,6 +190,59 @@ TEST(NearBoards, CertifiedMotionsAnswerAsWithoutTheSpheres) {
   }
   EXPECT_GT(accepted, 10);  // both answers occur
   EXPECT_LT(accepted, motions - 10);
+}
+
+// The hull distance's bound along a direction (separatingGap): below FCL's GJK distance of the two hulls for any
+// direction, within a few micrometres of it along the direction GJK found (hullGap keeps it per part pair), and
+// still below it after the arm moved on — on the self part pairs of random MBM states.
+TEST(NearBoards, ADirectionBoundsTheHullsDistanceFromBelow) {
+  const auto model = makeCollisionModel(thinShelf().scene);
+  const auto& impl = detail::implementationOf(*model);
+  CollisionData workspace(*model);
+  auto& data = detail::workspaceOf(workspace);
+  static const fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-9);
+  const auto hullDistance = [&](const detail::Part& a, const Eigen::Isometry3d& poseA, const detail::Part& b,
+                                const Eigen::Isometry3d& poseB) {
+    fcl::DistanceResultd result;  // FCL answers -1 for hulls that intersect
+    return std::max(fcl::distance(a.hullGeometry.get(), poseA, b.hullGeometry.get(), poseB, request, result), 0.0);
+  };
+  std::mt19937_64 random(23);
+  std::normal_distribution<double> gaussian;
+  int measured = 0, tight = 0;
+  for (int k = 0; k < 40; ++k) {
+    const Eigen::VectorXd q = arcplan::testing::randomJointState(model->robot(), random);
+    Eigen::VectorXd moved = q;
+    for (int j = 0; j < moved.size(); ++j) moved[j] += 0.02 * gaussian(random);
+    for (std::size_t pair = 0; pair < impl.partPairs.size(); ++pair) {
+      const auto& partPair = impl.partPairs[pair];
+      if (!partPair.group->self) continue;
+      const detail::Part &a = impl.robotParts[partPair.first], &b = impl.robotParts[partPair.second];
+      if (detail::separatingGap(a, Eigen::Isometry3d::Identity(), b, Eigen::Isometry3d::Identity(),
+                                Eigen::Vector3d::UnitX()) == -INFINITY ||
+          (a.convexGeometry && b.convexGeometry))
+        continue;  // not two fcl::Convex hulls, or convex parts (measured exactly, without hull bounds)
+      detail::updateRobot(*model, data, q);
+      detail::boundGap(impl, data, partPair.first, partPair.second, true);  // places both parts
+      const Eigen::Isometry3d poseA = data.partPoses[partPair.first], poseB = data.partPoses[partPair.second];
+      const double exact = hullDistance(a, poseA, b, poseB);
+      if (!(exact > 1e-4)) continue;
+      Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+      detail::hullGap(a, poseA, b, poseB, model->options(), INFINITY, axis);  // GJK on the hulls: keeps the direction
+      ASSERT_NEAR(axis.norm(), 1.0, 1e-12);
+      const double along = detail::separatingGap(a, poseA, b, poseB, axis);
+      ASSERT_LE(along, exact + 1e-6);
+      tight += along >= exact - 1e-5;
+      ++measured;
+      const Eigen::Vector3d any = Eigen::Vector3d(gaussian(random), gaussian(random), gaussian(random)).normalized();
+      ASSERT_LE(detail::separatingGap(a, poseA, b, poseB, any), exact + 1e-6);
+      detail::updateRobot(*model, data, moved);
+      detail::boundGap(impl, data, partPair.first, partPair.second, true);
+      const Eigen::Isometry3d &movedA = data.partPoses[partPair.first], &movedB = data.partPoses[partPair.second];
+      ASSERT_LE(detail::separatingGap(a, movedA, b, movedB, axis), hullDistance(a, movedA, b, movedB) + 1e-6);
+    }
+  }
+  EXPECT_GT(measured, 200);
+  EXPECT_GT(tight, measured * 9 / 10) << tight << " of " << measured;
 }
 
 // Certified 0.35 rad motions from random states at 1 cm: base_link – upper_arm_link and forearm_link – wrist_2_link are
