@@ -52,6 +52,22 @@ double pointDistance(const Eigen::Vector3d& point, const detail::Part& obstacle,
   return detail::partsDistance(ball, at, obstacle, obstaclePose, true, options) + r;
 }
 
+// The distance of the nearest of `points` (of `part`, placed at `pose`) from `obstacle` (at the origin), by FCL: never
+// below the part's own (FCL's exact distance), and witnessCloser answers by it.
+double nearestWitness(const detail::Part& part, const Eigen::Isometry3d& pose,
+                      const std::vector<Eigen::Vector3d>& points, const detail::Part& obstacle,
+                      const CollisionModelOptions& options) {
+  const Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+  double nearest = INFINITY;
+  for (const auto& point : points) nearest = std::min(nearest, pointDistance(pose * point, obstacle, origin, options));
+  EXPECT_GE(nearest, detail::partsDistance(part, pose, obstacle, origin, true, options) - 1e-6);
+  EXPECT_TRUE(detail::witnessCloser(part, pose, obstacle, origin, nearest + 1e-6));
+  if (nearest > 1e-6) {
+    EXPECT_FALSE(detail::witnessCloser(part, pose, obstacle, origin, nearest - 1e-6));
+  }
+  return nearest;
+}
+
 // Every witness point is a vertex of its part, so its distance from a board bounds the part's from above (checked
 // against FCL's mesh–box distance), and witnessCloser answers by the nearest witness, measured by FCL.
 TEST(NearBoards, WitnessPointsAreVerticesWhoseDistanceBoundsThePartsFromAbove) {
@@ -79,17 +95,8 @@ TEST(NearBoards, WitnessPointsAreVerticesWhoseDistanceBoundsThePartsFromAbove) {
                           size.y() / 2 + reach * (0.5 + 0.5 * unit(random)) + 0.03 * (1.0 + unit(random)) / 2.0,
                           0.15 * unit(random)) -
           centre;
-      const Eigen::Isometry3d boardPose = Eigen::Isometry3d::Identity();
-      double nearest = INFINITY;
-      for (const auto& witness : part.witnessPoints)
-        nearest = std::min(nearest, pointDistance(pose * witness, board, boardPose, model->options()));
-      const double exact = detail::partsDistance(part, pose, board, boardPose, true, model->options());
-      ASSERT_GE(nearest, exact - 1e-6) << "part " << parts << " pose " << k;
-      EXPECT_TRUE(detail::witnessCloser(part, pose, board, boardPose, nearest + 1e-6));
-      if (nearest > 1e-6) {
-        EXPECT_FALSE(detail::witnessCloser(part, pose, board, boardPose, nearest - 1e-6));
-      }
-      closer += nearest < 0.0105;
+      SCOPED_TRACE("part " + std::to_string(parts) + " pose " + std::to_string(k));
+      closer += nearestWitness(part, pose, part.witnessPoints, board, model->options()) < 0.0105;
       ++poses;
     }
   }
@@ -122,17 +129,8 @@ TEST(NearBoards, AnyVertexNearACanOrABallBoundsThePartsDistanceFromAbove) {
       const double angle = M_PI * unit(random);
       pose.translation() +=
           Eigen::Vector3d(radial * std::cos(angle), radial * std::sin(angle), 0.06 * unit(random)) - centre;
-      const Eigen::Isometry3d obstaclePose = Eigen::Isometry3d::Identity();
-      double nearest = INFINITY;
-      for (const auto& vertex : part.hullPoints)
-        nearest = std::min(nearest, pointDistance(pose * vertex, obstacle, obstaclePose, options));
-      const double exact = detail::partsDistance(part, pose, obstacle, obstaclePose, true, options);
-      ASSERT_GE(nearest, exact - 1e-6) << "part " << parts << " pose " << k;
-      EXPECT_TRUE(detail::witnessCloser(part, pose, obstacle, obstaclePose, nearest + 1e-6));
-      if (nearest > 1e-6) {
-        EXPECT_FALSE(detail::witnessCloser(part, pose, obstacle, obstaclePose, nearest - 1e-6));
-      }
-      closer += nearest < 0.0105;
+      SCOPED_TRACE("part " + std::to_string(parts) + " pose " + std::to_string(k));
+      closer += nearestWitness(part, pose, part.hullPoints, obstacle, options) < 0.0105;
       ++poses;
     }
   }
@@ -163,28 +161,42 @@ TEST(NearBoards, HasClearanceBesideTheBoardsIsThatOfFcl) {
   EXPECT_GT(clear, 10);
 }
 
+// thin 0004's shelf as the default model and without the sphere prefilter (the reference of the motion answers), and
+// certified motions at 1 cm.
+struct ShelfWithAndWithoutSpheres {
+  static CollisionModelOptions withoutSpheres() {
+    CollisionModelOptions options;
+    options.spherePrefilter = false;
+    return options;
+  }
+  ShelfProblem problem = thinShelf();
+  std::shared_ptr<const CollisionModel> layered = makeCollisionModel(problem.scene),
+                                        plain = makeCollisionModel(problem.scene, withoutSpheres());
+  CollisionData layeredData{*layered}, plainData{*plain};
+  MotionCheckOptions options = [] {
+    MotionCheckOptions atOneCentimetre;
+    atOneCentimetre.minimumClearance = 0.01;
+    return atOneCentimetre;
+  }();
+};
+
 // Certified 0.35 rad motions around the grasp (RRTConnect's range in the mbm-ur5 suite) at 1 cm: the sphere rake in
 // front of the exact check (its collision search checks only the pairs its spheres leave open) takes the answers
 // the exact check takes without it.
 TEST(NearBoards, CertifiedMotionsAnswerAsWithoutTheSpheres) {
-  const ShelfProblem problem = thinShelf();
-  CollisionModelOptions noSpheres;
-  noSpheres.spherePrefilter = false;
-  const auto layered = makeCollisionModel(problem.scene), plain = makeCollisionModel(problem.scene, noSpheres);
-  CollisionData layeredData(*layered), plainData(*plain);
-  MotionCheckOptions options;
-  options.minimumClearance = 0.01;
+  ShelfWithAndWithoutSpheres shelf;
   std::mt19937_64 random(13);
   std::normal_distribution<double> gaussian;
   int accepted = 0, motions = 0;
   while (motions < 150) {
-    Eigen::VectorXd start = problem.goal, direction(problem.goal.size());
+    Eigen::VectorXd start = shelf.problem.goal, direction(shelf.problem.goal.size());
     for (int j = 0; j < start.size(); ++j) start[j] += 0.15 * gaussian(random);
-    if (!hasClearance(*plain, plainData, start, 0.01)) continue;
+    if (!hasClearance(*shelf.plain, shelf.plainData, start, 0.01)) continue;
     for (int j = 0; j < direction.size(); ++j) direction[j] = gaussian(random);
     const Eigen::VectorXd end = start + 0.35 * direction.normalized();
-    const bool expected = isMotionCollisionFree(*plain, plainData, start, end, nullptr, options);
-    ASSERT_EQ(isMotionCollisionFree(*layered, layeredData, start, end, nullptr, options), expected) << motions;
+    const bool expected = isMotionCollisionFree(*shelf.plain, shelf.plainData, start, end, nullptr, shelf.options);
+    ASSERT_EQ(isMotionCollisionFree(*shelf.layered, shelf.layeredData, start, end, nullptr, shelf.options), expected)
+        << motions;
     accepted += expected;
     ++motions;
   }
@@ -250,32 +262,28 @@ TEST(NearBoards, ADirectionBoundsTheHullsDistanceFromBelow) {
 // the exact check (SelfPairsLeft), which follows them alone, and the answers stay those taken without spheres — the
 // last valid state too, where the rake defers nothing.
 TEST(NearBoards, SelfPairsTheSpheresCannotSeparateAreLeftToTheExactCheck) {
-  const ShelfProblem problem = thinShelf();
-  CollisionModelOptions noSpheres;
-  noSpheres.spherePrefilter = false;
-  const auto layered = makeCollisionModel(problem.scene), plain = makeCollisionModel(problem.scene, noSpheres);
-  CollisionData layeredData(*layered), plainData(*plain);
-  MotionCheckOptions options;
-  options.minimumClearance = 0.01;
+  ShelfWithAndWithoutSpheres shelf;
   std::mt19937_64 random(17);
   std::normal_distribution<double> gaussian;
   int accepted = 0, motions = 0, left = 0, freeWithoutDeferring = 0;
   while (motions < 200) {
-    const Eigen::VectorXd start = arcplan::testing::randomJointState(layered->robot(), random);
-    if (!hasClearance(*plain, plainData, start, 0.01)) continue;
+    const Eigen::VectorXd start = arcplan::testing::randomJointState(shelf.layered->robot(), random);
+    if (!hasClearance(*shelf.plain, shelf.plainData, start, 0.01)) continue;
     Eigen::VectorXd direction(start.size());
     for (int j = 0; j < direction.size(); ++j) direction[j] = gaussian(random);
     const Eigen::VectorXd end = start + 0.35 * direction.normalized();
-    const bool expected = isMotionCollisionFree(*plain, plainData, start, end, nullptr, options);
-    ASSERT_EQ(isMotionCollisionFree(*layered, layeredData, start, end, nullptr, options), expected) << motions;
+    const bool expected = isMotionCollisionFree(*shelf.plain, shelf.plainData, start, end, nullptr, shelf.options);
+    ASSERT_EQ(isMotionCollisionFree(*shelf.layered, shelf.layeredData, start, end, nullptr, shelf.options), expected)
+        << motions;
     double layeredLast = -1.0, plainLast = -1.0;
-    ASSERT_EQ(isMotionCollisionFree(*layered, layeredData, start, end, &layeredLast, options),
-              isMotionCollisionFree(*plain, plainData, start, end, &plainLast, options));
+    ASSERT_EQ(isMotionCollisionFree(*shelf.layered, shelf.layeredData, start, end, &layeredLast, shelf.options),
+              isMotionCollisionFree(*shelf.plain, shelf.plainData, start, end, &plainLast, shelf.options));
     EXPECT_EQ(layeredLast, plainLast) << motions;
-    auto& workspace = detail::workspaceOf(layeredData);
-    left += detail::sphereMotion(*layered, workspace, start, end, 0.01, true) == detail::SphereMotion::SelfPairsLeft;
+    auto& workspace = detail::workspaceOf(shelf.layeredData);
+    left +=
+        detail::sphereMotion(*shelf.layered, workspace, start, end, 0.01, true) == detail::SphereMotion::SelfPairsLeft;
     freeWithoutDeferring +=
-        detail::sphereMotion(*layered, workspace, start, end, 0.01, false) == detail::SphereMotion::Free;
+        detail::sphereMotion(*shelf.layered, workspace, start, end, 0.01, false) == detail::SphereMotion::Free;
     accepted += expected;
     ++motions;
   }
