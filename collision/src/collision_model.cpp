@@ -119,17 +119,8 @@ double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& 
 
 double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                const CollisionModelOptions& options, double enough) {
-  if (!options.hullLayer || !a.hullGeometry || !b.hullGeometry) return 0.0;
-  if (options.convexDistance && a.convexGeometry && b.convexGeometry) return 0.0;
-  static const fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-9);
-  fcl::DistanceResultd result;
-  if (a.coarseHullGeometry || b.coarseHullGeometry) {
-    const double coarse = fcl::distance(coarseHullOf(a), poseA, coarseHullOf(b), poseB, request, result);
-    if (coarse - kHullDistanceSlack >= enough) return std::max(coarse - kHullDistanceSlack, 0.0);
-    result.clear();
-  }
-  const double d = fcl::distance(a.hullGeometry.get(), poseA, b.hullGeometry.get(), poseB, request, result);
-  return std::max(d - kHullDistanceSlack, 0.0);
+  Eigen::Vector3d none = Eigen::Vector3d::Zero();
+  return hullGap(a, poseA, b, poseB, options, enough, none);
 }
 
 double separatingGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
