@@ -168,9 +168,10 @@ bool PathValidator::withinMargin(const robot::Vector6& q) {
 }
 
 bool PathValidator::keepsMargin(const robot::Vector6& q) {
-  // A certifier's start: the same test as a walk's first waypoint, with pairs far apart settled by
-  // their bounding capsules (cheaper than measuring the smallest distance).
-  return collision::PathCertifier(model_, data_, required_.motionClearanceAt(q)).start(q);
+  // The test of a walk's first waypoint (PathCertifier::start: every pair at least its own m) without the budgets a
+  // certifier measures beyond m for the motions that follow: hasClearance's spheres, capsules and hulls settle
+  // most pairs before any exact distance, where a certifier's start measures each pair up to m + 5 cm.
+  return collision::hasClearance(model_, data_, q, required_.motionClearanceAt(q));
 }
 
 Rejection PathValidator::explain(const RejectedMotion& motion) {
