@@ -101,15 +101,18 @@ double linkGap(const Implementation& impl, const Workspace& data, const Implemen
 }
 
 double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
-                     bool boundsOverlap, const CollisionModelOptions& options) {
+                     bool boundsOverlap, const CollisionModelOptions& options, Eigen::Vector3d* axis) {
   // No relative or absolute error allowance. libccd's GJK stops once an iteration improves the
   // distance by less than distance_tolerance; FCL's default 1e-6 left errors up to 4e-5 m against the
   // exact triangle distances of the BVHs, 1e-9 agrees with them to 1e-6 m.
   static const fcl::DistanceRequestd request(false, false, 0.0, 0.0, 1e-9);
+  static const fcl::DistanceRequestd withPoints(true, false, 0.0, 0.0, 1e-9);
   fcl::DistanceResultd result;
   double d = 0.0;
   if (options.convexDistance && a.convexGeometry && b.convexGeometry) {
-    d = fcl::distance(a.convexGeometry.get(), poseA, b.convexGeometry.get(), poseB, request, result);
+    d = fcl::distance(a.convexGeometry.get(), poseA, b.convexGeometry.get(), poseB, axis ? withPoints : request,
+                      result);
+    if (axis != nullptr) keepAxis(result, poseA, *axis);
   } else {
     if (boundsOverlap && oneInsideOther(a, poseA, b, poseB)) return 0.0;
     d = fcl::distance(a.distanceGeometry.get(), poseA, b.distanceGeometry.get(), poseB, request, result);
@@ -123,31 +126,52 @@ double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, con
   return hullGap(a, poseA, b, poseB, options, enough, none);
 }
 
+namespace {
+
+// The largest projection on `direction` (in the part's frame) of the part's hull; +infinity for a part without one.
+double supportAlong(const Part& part, const Eigen::Vector3d& direction) {
+  if (!part.hullGeometry) return std::numeric_limits<double>::infinity();
+  if (part.hullGeometry->getNodeType() == fcl::GEOM_CONVEX) {
+    double highest = -std::numeric_limits<double>::infinity();
+    for (const auto& v : static_cast<const fcl::Convexd&>(*part.hullGeometry).getVertices())
+      highest = std::max(highest, direction.dot(v));
+    return highest;
+  }
+  // The primitives in their FCL frames (centred; a cylinder along z), whose support functions are closed-form.
+  const detail::Solid& solid = part.solid;
+  switch (solid.kind) {
+    case detail::Solid::Kind::Box:
+      return solid.halfExtents.dot(direction.cwiseAbs());
+    case detail::Solid::Kind::Sphere:
+      return solid.radius * direction.norm();
+    case detail::Solid::Kind::Cylinder:
+      return solid.radius * std::hypot(direction.x(), direction.y()) + solid.halfLength * std::abs(direction.z());
+    default:
+      return std::numeric_limits<double>::infinity();
+  }
+}
+
+}  // namespace
+
 double separatingGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                      const Eigen::Vector3d& axisInA) {
-  constexpr double kNone = -std::numeric_limits<double>::infinity();
-  if (!a.hullGeometry || !b.hullGeometry || a.hullGeometry->getNodeType() != fcl::GEOM_CONVEX ||
-      b.hullGeometry->getNodeType() != fcl::GEOM_CONVEX)
-    return kNone;
+  // a reaches at most supportA(n) beyond its origin along n, b at least −supportB(−n) (both in their own frames).
   const Eigen::Vector3d world = poseA.linear() * axisInA;
-  const Eigen::Vector3d inA = axisInA, inB = poseB.linear().transpose() * world;
-  double highestA = kNone, lowestB = std::numeric_limits<double>::infinity();
-  for (const auto& v : static_cast<const fcl::Convexd&>(*a.hullGeometry).getVertices())
-    highestA = std::max(highestA, inA.dot(v));
-  for (const auto& v : static_cast<const fcl::Convexd&>(*b.hullGeometry).getVertices())
-    lowestB = std::min(lowestB, inB.dot(v));
-  return lowestB + world.dot(poseB.translation()) - highestA - world.dot(poseA.translation());
+  const double highestA = supportAlong(a, axisInA) + world.dot(poseA.translation());
+  const double lowestB = -supportAlong(b, -(poseB.linear().transpose() * world)) + world.dot(poseB.translation());
+  return lowestB - highestA;  // −infinity where a part has no support function
 }
 
 double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                const CollisionModelOptions& options, double enough, Eigen::Vector3d& axis) {
   if (!options.hullLayer || !a.hullGeometry || !b.hullGeometry) return 0.0;
-  if (options.convexDistance && a.convexGeometry && b.convexGeometry) return 0.0;
   if (!axis.isZero()) {
     // Rounding of the dot products (~1e-16 m per vertex coordinate) is far below the slack taken off.
     const double along = separatingGap(a, poseA, b, poseB, axis) - kHullDistanceSlack;
     if (along >= enough) return along;
   }
+  // Convex parts are their own hulls: partsDistance's GJK on them (which keeps its direction) is the measurement.
+  if (options.convexDistance && a.convexGeometry && b.convexGeometry) return 0.0;
   static const fcl::DistanceRequestd request(true, false, 0.0, 0.0, 1e-9);
   fcl::DistanceResultd result;
   if (a.coarseHullGeometry || b.coarseHullGeometry) {
@@ -430,6 +454,17 @@ bool detail::keepsDistances(const CollisionModel& model, CollisionData& workspac
     return std::tie(impl.robotParts[pair.first], data.partPoses[pair.first], secondPart(impl, *pair.group, pair.second),
                     secondPose(impl, data, *pair.group, pair.second));
   };
+  // A pair apart by more than required along the direction its last GJK found (separatingGap: vertex projections
+  // or a primitive's closed form, a fraction of a GJK) is settled; successive queries of a search are nearby states.
+  const auto apartAlongItsAxis = [&](const std::pair<int, bool>& open) {
+    const Eigen::Vector3d& axis = data.pairAxes[open.first];
+    if (axis.isZero()) return false;
+    const auto [a, poseA, b, poseB] = parts(open);
+    return detail::separatingGap(a, poseA, b, poseB, axis) - kHullDistanceSlack >=
+           requiredOf(*impl.partPairs[open.first].group);
+  };
+  data.openPairs.erase(std::remove_if(data.openPairs.begin(), data.openPairs.end(), apartAlongItsAxis),
+                       data.openPairs.end());
   // A witness point inside the clearance refuses the state before any GJK (a gripper part in or beside a board).
   for (const auto& open : data.openPairs) {
     const auto [a, poseA, b, poseB] = parts(open);
@@ -448,7 +483,8 @@ bool detail::keepsDistances(const CollisionModel& model, CollisionData& workspac
     if (detail::hullGap(a, poseA, b, poseB, model.options(), required, data.pairAxes[open.first]) >= required ||
         detail::containingMeshGap(a, poseA, b, poseB, model.options()) >= required)
       continue;
-    if (partsDistance(a, poseA, b, poseB, open.second, model.options()) < required) return false;
+    if (partsDistance(a, poseA, b, poseB, open.second, model.options(), &data.pairAxes[open.first]) < required)
+      return false;
   }
   return true;
 }

@@ -163,9 +163,11 @@ inline double boundGap(const Implementation& impl, Workspace& data, int i, int j
 // (and the obstacle parts' bounds); <= 0 when they overlap.
 double linkGap(const Implementation& impl, const Workspace& data, const Implementation::PairGroup& group);
 
-// Distance between two parts (0 when they touch or one is inside the other).
+// Distance between two parts (0 when they touch or one is inside the other). With `axis`, where GJK runs on the
+// parts themselves (convex parts, CollisionModelOptions::convexDistance), the direction between its nearest points is
+// kept there (in a's frame, as hullGap keeps it; left as it was where they touch).
 double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
-                     bool boundsOverlap, const CollisionModelOptions& options);
+                     bool boundsOverlap, const CollisionModelOptions& options, Eigen::Vector3d* axis = nullptr);
 
 // A lower bound of partsDistance(a, b) from the parts' hulls (GJK, less its tolerance): 0 when the
 // hulls touch, when the layer is off, or when partsDistance would run GJK on the parts themselves.
@@ -173,12 +175,13 @@ double partsDistance(const Part& a, const Eigen::Isometry3d& poseA, const Part& 
 double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                const CollisionModelOptions& options, double enough);
 // hullGap of the part pair measured again and again (Workspace::pairAxes[pair]): first the bound along the direction
-// GJK found last time (separatingGap), returned when it reaches `enough`; else hullGap, whose GJK leaves its direction.
+// GJK found last time (separatingGap), returned when it reaches `enough`; else hullGap, whose GJK leaves its direction
+// (convex parts: 0, as above; partsDistance with the axis measures them and leaves its direction).
 double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                const CollisionModelOptions& options, double enough, Eigen::Vector3d& axis);
 // A lower bound of the distance of two convex hulls from any direction n (unit, a's frame, pointing from a to b):
-// min over b's hull vertices of n·x − max over a's of n·x (their support functions), −infinity unless both parts
-// have an fcl::Convex hull.
+// min over b's hull of n·x − max over a's of n·x (their support functions: the vertices of an fcl::Convex hull,
+// closed-form for a box, sphere or cylinder), −infinity where a part has neither.
 double separatingGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                      const Eigen::Vector3d& axisInA);
 

@@ -56,9 +56,18 @@ using detail::kSmallestMinimumClearance;
 
 namespace detail {
 
-PairMeasurement measurePair(const CollisionModel& model, Workspace& data, const Implementation::PairGroup& group,
-                            double wanted, double minimumClearance) {
+Eigen::Vector3d& motionAxis(Workspace& data, int pair) {
+  if (data.pairAxisMotions[pair] != data.motion) {  // a direction from an earlier query: not taken
+    data.pairAxes[pair].setZero();
+    data.pairAxisMotions[pair] = data.motion;
+  }
+  return data.pairAxes[pair];
+}
+
+PairMeasurement measurePair(const CollisionModel& model, Workspace& data, std::size_t groupIndex, double wanted,
+                            double minimumClearance) {
   const Implementation& impl = detail::implementationOf(model);
+  const Implementation::PairGroup& group = *impl.groups[groupIndex];
   if (group.rigid) return {group.rigidDistance - kDistanceSlack, group.rigidDistance < minimumClearance};
   double gap = std::max(detail::linkGap(impl, data, group), group.floor);
   if (gap >= wanted) return {gap, false};
@@ -86,16 +95,19 @@ PairMeasurement measurePair(const CollisionModel& model, Workspace& data, const 
     const auto [i, j] = group.parts[p];
     const auto &first = impl.robotParts[i], &second = detail::secondPart(impl, group, j);
     const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, group, j);
-    // The hulls' lower bound (cheaper than the BVHs) will do unless closer than minimumClearance.
+    // The hulls' lower bound (cheaper than the BVHs; along the direction kept in this motion, cheaper than GJK) will do
+    // unless closer than minimumClearance.
     const double enough = std::min(minimumClearance, exact);
-    double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough);
+    Eigen::Vector3d& axis = motionAxis(data, impl.firstPartPair[groupIndex] + p);
+    double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough, axis);
     if (hull < enough)  // then the containing mesh's bound (a primitive against a many-triangle mesh part)
       hull = std::max(hull, detail::containingMeshGap(first, data.partPoses[i], second, secondPose, model.options()));
     if (hull >= enough) {
       exact = std::min(exact, hull);
       continue;
     }
-    const double d = detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options());
+    const double d =
+        detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options(), &axis);
     if (d < minimumClearance) return {d, true};
     exact = std::min(exact, d - kDistanceSlack);
   }
@@ -168,13 +180,8 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     const auto &first = impl.robotParts[i], &second = detail::secondPart(impl, group, j);
     const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, group, j);
     const double rate = rateOf(p);
-    const int pair = impl.firstPartPair[k] + p;
-    if (data.pairAxisMotions[pair] != data.motion) {  // a direction from an earlier query: not taken
-      data.pairAxes[pair].setZero();
-      data.pairAxisMotions[pair] = data.motion;
-    }
-    const double hull =
-        detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough, data.pairAxes[pair]);
+    Eigen::Vector3d& axis = detail::motionAxis(data, impl.firstPartPair[k] + p);
+    const double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough, axis);
     if (hull >= enough) {
       best = std::min(best, reachOf(hull - minimumClearance, rate));
       continue;
@@ -188,7 +195,8 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     // A witness point inside `enough` rejects as the exact distance would (kWitnessSlack covers its error).
     if (detail::witnessCloser(first, data.partPoses[i], second, secondPose, enough - detail::kWitnessSlack))
       return {0.0, true};
-    const double d = detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options());
+    const double d =
+        detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options(), &axis);
     if (d - kDistanceSlack < enough) return {0.0, true};
     best = std::min(best, reachOf(d - kDistanceSlack - minimumClearance, rate));
   }

@@ -53,7 +53,7 @@ bool advanceBetweenEnds(BetweenEnds& motion, int& measurements) {
       const std::size_t k = uncovered[u];
       const double m = impl.groups[k]->required(motion.minimumClearance);
       const double wanted = m + (to[u] - s) * motion.rate[k];  // what certifies the rest
-      const detail::PairMeasurement gap = detail::measurePair(motion.model, motion.data, *impl.groups[k], wanted, m);
+      const detail::PairMeasurement gap = detail::measurePair(motion.model, motion.data, k, wanted, m);
       if (gap.tooClose || gap.gap - m < acceptanceMargin(m)) return false;
       from[u] = s + (gap.gap - m) / motion.rate[k];
     }
@@ -65,6 +65,9 @@ bool advanceBetweenEnds(BetweenEnds& motion, int& measurements) {
 PathCertifier::PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance)
     : model_(model), data_(data), minimumClearance_(minimumClearance) {
   validate(MotionCheckOptions{MotionCheck::Certified, 0.01, minimumClearance});
+  // A path of its own (motionAxis): directions found while certifying it are taken for its later waypoints, none
+  // from earlier queries.
+  ++detail::workspaceOf(data_).motion;
   budget_.resize(detail::implementationOf(model).groups.size());
   used_.resize(budget_.size());
   bound_.resize(budget_.size());
@@ -78,7 +81,7 @@ bool PathCertifier::anchorAll(const robot::JointRef& q) {
     const double m = impl.groups[k]->required(minimumClearance_);  // this pair's own m
     // The capsule bounds are taken as soon as they leave a few centimetres to spend: enough for several waypoints.
     const detail::PairMeasurement measured =
-        detail::measurePair(model_, detail::workspaceOf(data_), *impl.groups[k], kAnchorBudget + m, m);
+        detail::measurePair(model_, detail::workspaceOf(data_), k, kAnchorBudget + m, m);
     if (measured.tooClose) return false;
     budget_[k] = measured.gap - m;  // what the pair may close in before it is m apart
     used_[k] = 0.0;
@@ -130,7 +133,7 @@ bool PathCertifier::extend(const robot::JointRef& q) {
       startMeasured = true;
     }
     const double m = mOf(k);
-    const detail::PairMeasurement measured = detail::measurePair(model_, data, *impl.groups[k], bound_[k] + m, m);
+    const detail::PairMeasurement measured = detail::measurePair(model_, data, k, bound_[k] + m, m);
     if (measured.tooClose) return false;
     budget_[k] = measured.gap - m;
     used_[k] = 0.0;
@@ -147,7 +150,7 @@ bool PathCertifier::extend(const robot::JointRef& q) {
   for (std::size_t u = 0; u < uncovered.size(); ++u) {
     const std::size_t k = uncovered[u];
     const double m = mOf(k), margin = acceptanceMargin(m);
-    const detail::PairMeasurement measured = detail::measurePair(model_, data, *impl.groups[k], kAnchorBudget + m, m);
+    const detail::PairMeasurement measured = detail::measurePair(model_, data, k, kAnchorBudget + m, m);
     if (measured.tooClose) return false;
     endBudget[u] = measured.gap - m;
     kept = kept && budget_[k] >= margin && endBudget[u] >= margin;
