@@ -184,13 +184,16 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
   }
   if (outcome.solved() || !getAuto() || !fallback_ || ptc()) return outcome;
   detail::ArcOutcome fallback = withQuery(ptc, required, start, goal, [&](const detail::ArcQuery& query) {
-    trajectory::TimeScalingOptions timing;
-    timing.maxTcpSpeed = speedLimit_;
-    return detail::planInJointSpace(
-        query, fallbackSpace(motionCheck, required, start, goal), {seed_, fallbackRange_},
+    trajectory::TimeScalingOptions options;
+    options.maxTcpSpeed = speedLimit_;
+    const robot::RobotModel& robot = collisionModel_->robot();
+    const detail::ExecutionTiming timing{
         [&](const std::vector<robot::Vector6>& joints) {
-          return trajectory::scaleToTcpSpeed(collisionModel_->robot(), joints, timing).duration();
-        });
+          return trajectory::scaleToTcpSpeed(robot, joints, options).duration();
+        },
+        [&](const std::vector<robot::Vector6>& joints) { return trajectory::plannedDuration(robot, joints, options); }};
+    return detail::planInJointSpace(query, fallbackSpace(motionCheck, required, start, goal), {seed_, fallbackRange_},
+                                    timing);
   });
   // What the search met stays part of the answer; its reason leads a failure's.
   fallback.obstacles = std::move(outcome.obstacles);

@@ -59,10 +59,20 @@ ArcOutcome planThesisDetours(const ArcQuery& query, const ArcParameters& shape, 
 // Auto mode: the shortest valid route through via points, corners blended.
 ArcOutcome planViaPoints(const ArcQuery& query);
 
-// Execution time (s) of a joint path at the planner's speed limit. A function rather than a call into
-// trajectory's time scaling, so that the strategies stay free of how a path is timed (ArcPlanner
-// supplies trajectory::scaleToTcpSpeed).
-using ExecutionTimeOf = std::function<double(const std::vector<robot::Vector6>&)>;
+// How a joint path is timed at the planner's speed limit: its execution time (s), and a lower bound of that
+// time at a fraction of its cost, to pass over paths that cannot be the fastest. Functions rather than calls into
+// trajectory's time scaling, so that the strategies stay free of how a path is timed (ArcPlanner supplies
+// trajectory::scaleToTcpSpeed and trajectory::plannedDuration).
+struct ExecutionTiming {
+  using Of = std::function<double(const std::vector<robot::Vector6>&)>;
+  Of time, lowerBound;
+
+  // True when `path` certainly takes longer than `seconds` to execute: its bound is above them by more than the
+  // rounding the bound may differ from the time by where nothing stretches it.
+  bool slowerThan(const std::vector<robot::Vector6>& path, double seconds) const {
+    return lowerBound(path) > seconds * (1.0 + 1e-9);
+  }
+};
 
 // How the fallback's RRTConnect runs: every random draw from generators seeded with `seed`, its `range`
 // as RRTConnect's parameter of that name (0: RRTConnect's default).
@@ -74,9 +84,9 @@ struct JointPlanSettings {
 // RRTConnect on `si` (whose validity keeps the margin), simplified as `plan` and `bench` simplify it (up to 4
 // draws), each also with shortcuts for the TCP where they execute faster, the fastest kept; then of that
 // joint path, its segments as TCP lines where they validate, and mixes of the two, the one of the
-// shortest `executionTime` (its reason says which, with the times). Its reason on failure says only that
+// shortest execution time (`timing`; its reason says which, with the times). Its reason on failure says only that
 // it failed.
 ArcOutcome planInJointSpace(const ArcQuery& query, const ompl::base::SpaceInformationPtr& si,
-                            const JointPlanSettings& settings, const ExecutionTimeOf& executionTime);
+                            const JointPlanSettings& settings, const ExecutionTiming& timing);
 
 }  // namespace arcplan::planners::detail

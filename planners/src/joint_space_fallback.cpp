@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -274,11 +275,12 @@ ArcOutcome pathOf(const ArcQuery& query, const std::vector<Segment>& segments, c
 // line's corners slow the tool down, its joints may move farther), so lines are kept only where they
 // pay. Mixes: from the faster of the two, one segment at a time switched where that is faster.
 // `jointTime` is the joint path's, timed by the caller. Each candidate costs a time scaling (10-60 ms on
-// MBM): once time is up, none is timed and the joint path is kept.
-ArcOutcome fastestPath(const ArcQuery& query, const std::vector<Segment>& segments,
-                       const ExecutionTimeOf& executionTime, double jointTime) {
+// MBM) unless its planned profile (timing.lowerBound) is already slower: once time is up, none is timed and
+// the joint path is kept.
+ArcOutcome fastestPath(const ArcQuery& query, const std::vector<Segment>& segments, const ExecutionTiming& timing,
+                       double jointTime) {
   const auto timeOf = [&](const std::vector<bool>& asLine) {
-    return executionTime(pathOf(query, segments, asLine).path.joints);
+    return timing.time(pathOf(query, segments, asLine).path.joints);
   };
   const std::vector<bool> jointPath(segments.size(), false);
   std::vector<bool> allLines;
@@ -290,6 +292,7 @@ ArcOutcome fastestPath(const ArcQuery& query, const std::vector<Segment>& segmen
     if (!allLines[k]) continue;
     std::vector<bool> mixed = kept;
     mixed[k] = !mixed[k];
+    if (timing.slowerThan(pathOf(query, segments, mixed).path.joints, keptTime)) continue;
     const double time = timeOf(mixed);
     if (time >= keptTime) continue;
     kept = std::move(mixed);
@@ -313,7 +316,8 @@ ArcOutcome fastestPath(const ArcQuery& query, const std::vector<Segment>& segmen
 }  // namespace
 
 ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, const JointPlanSettings& settings,
-                            const ExecutionTimeOf& executionTime) {
+                            const ExecutionTiming& timing) {
+  constexpr double kSlower = std::numeric_limits<double>::infinity();  // a time known to lose, not measured
   const std::uint_fast32_t seed = settings.seed;
   // Each plan, RRTConnect + simplifier, counts as it is and with shortcuts for the TCP (kept only where
   // they execute faster); the fastest path goes on to the line conversion.
@@ -328,14 +332,19 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
         query, si, seed + k, settings.range, k == 0 ? Simplification::ToTheEnd : Simplification::WithinTheLimit);
     if (!planned || (fastest && query.ptc())) continue;
     std::vector<robot::Vector6>& path = planned->waypoints;
-    const double planTime = executionTime(path);
+    // The first plan is timed (it is reported), a later one only where its planned profile leaves it a chance of
+    // being the fastest plan as it came; a shortcut only where it may beat the plan and every path so far.
+    const bool firstTimed = plans++ == 0;
+    const double planTime = k == 0 || firstTimed || !timing.slowerThan(path, fastestPlan) ? timing.time(path) : kSlower;
     if (k == 0) {
       firstPlan = planTime;
       firstSimplification = planned->simplificationTime;
     }
-    fastestPlan = plans++ == 0 ? planTime : std::min(fastestPlan, planTime);
+    fastestPlan = firstTimed ? planTime : std::min(fastestPlan, planTime);
     std::vector<robot::Vector6> shortcut = tcpShortcuts(query, si, path, seed + k);
-    const double shortcutTime = shortcut == path ? planTime : executionTime(shortcut);
+    const double toBeat = fastest ? std::min(fastestTime, planTime) : planTime;
+    const double shortcutTime =
+        shortcut == path || timing.slowerThan(shortcut, toBeat) ? planTime : timing.time(shortcut);
     if (shortcutTime < planTime) path = std::move(shortcut);
     const double time = std::min(planTime, shortcutTime);
     if (fastest && time >= fastestTime) continue;
@@ -343,7 +352,7 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
     fastestTime = time;
   }
   if (!fastest) return failure("the joint-space fallback found no path either");
-  ArcOutcome outcome = fastestPath(query, segmentsOf(query, *fastest, !query.ptc()), executionTime, fastestTime);
+  ArcOutcome outcome = fastestPath(query, segmentsOf(query, *fastest, !query.ptc()), timing, fastestTime);
   outcome.fallbackTimes.jointPath = fastestPlan;
   outcome.fallbackTimes.firstPlan = firstPlan;
   outcome.simplificationTime = firstSimplification;

@@ -220,6 +220,29 @@ TEST(TimeScaling, SparseRrtLikePathRespectsTheLimits) {
   }
 }
 
+// The planned profile's duration bounds the scaled duration from below, and closely: on the thesis line and on sparse
+// RRT-like paths at both thesis speeds, between the time the scaled motion's own TCP path needs at the limit plus one
+// rise time (length / v + rise time, a profile's least) less 1 % and the scaled duration itself.
+TEST(TimeScaling, PlannedDurationBoundsTheScaledOneFromBelow) {
+  robot::Vector6 m1, m2, b;
+  m1 << -0.6, -1.9, 2.0, -1.5, -1.2, -0.2;
+  m2 << 0.1, -1.3, 1.6, -2.2, -1.9, 0.9;
+  b << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399;
+  const JointPath paths[] = {linePath(), JointPath{testing::thesisSeedA(), m1, m2, b}, JointPath{m1, b},
+                             JointPath{b, m2, testing::thesisSeedA()}};
+  for (const JointPath& path : paths) {
+    for (const double speed : {0.149, 0.25}) {
+      TimeScalingOptions options;
+      options.maxTcpSpeed = speed;
+      const TimedTrajectory scaled = scaleToTcpSpeed(robot::ur10e(), path, options);
+      const double planned = plannedDuration(robot::ur10e(), path, options);
+      EXPECT_LE(planned, scaled.duration() * (1.0 + 1e-12));
+      EXPECT_GE(planned, 0.99 * (scaled.tcpPathLength / speed + options.riseTime));
+      EXPECT_GE(planned, 0.98 * scaled.duration());
+    }
+  }
+}
+
 std::string scalingError(const JointPath& path, const TimeScalingOptions& options) {
   try {
     scaleToTcpSpeed(robot::ur10e(), path, options);

@@ -268,23 +268,44 @@ private:
   robot::Vector6 position_, velocity_, acceleration_;
 };
 
+// The steps before the PCHIP check: the dense path and its planned profile.
+struct Plan {
+  robot::Vector6 jointSpeedLimits;
+  double acceleration = 0.0;
+  DensePath dense;
+  PlannedProfile profile;
+};
+
+Plan planOf(const robot::RobotModel& model, const JointPath& path, const TimeScalingOptions& options) {
+  validateOptions(options);
+  validateJointPath(model, path, "time scaling: path");
+  Plan plan;
+  plan.jointSpeedLimits = jointSpeedLimitsOf(model);
+  plan.acceleration = options.maxTcpAcceleration.value_or(options.maxTcpSpeed / options.riseTime);
+  DensificationOptions densification{options.maxJointStep, options.maxTcpStep, options.smoothWaypointSpacing};
+  plan.dense = densifyJointPath(model, path, densification);
+  if (plan.dense.waypoints.size() == 2) {  // a profile from rest to rest needs an interior waypoint
+    densification.maxJointStep = 0.5 * (plan.dense.waypoints[1] - plan.dense.waypoints[0]).cwiseAbs().maxCoeff();
+    plan.dense = densifyJointPath(model, path, densification);
+  }
+  plan.profile = planProfile(plan.dense, plan.jointSpeedLimits, options.maxTcpSpeed * (1.0 - kPlanningHeadroom),
+                             plan.acceleration);
+  return plan;
+}
+
 }  // namespace
+
+double plannedDuration(const robot::RobotModel& model, const JointPath& path, const TimeScalingOptions& options) {
+  return planOf(model, path, options).profile.time.back();
+}
 
 TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath& path,
                                 const TimeScalingOptions& options) {
-  validateOptions(options);
-  validateJointPath(model, path, "time scaling: path");
-  const robot::Vector6 jointSpeedLimits = jointSpeedLimitsOf(model);
-  const double acceleration = options.maxTcpAcceleration.value_or(options.maxTcpSpeed / options.riseTime);
-
-  DensificationOptions densification{options.maxJointStep, options.maxTcpStep, options.smoothWaypointSpacing};
-  DensePath dense = densifyJointPath(model, path, densification);
-  if (dense.waypoints.size() == 2) {  // a profile from rest to rest needs an interior waypoint
-    densification.maxJointStep = 0.5 * (dense.waypoints[1] - dense.waypoints[0]).cwiseAbs().maxCoeff();
-    dense = densifyJointPath(model, path, densification);
-  }
-  const PlannedProfile profile =
-      planProfile(dense, jointSpeedLimits, options.maxTcpSpeed * (1.0 - kPlanningHeadroom), acceleration);
+  Plan plan = planOf(model, path, options);
+  const robot::Vector6& jointSpeedLimits = plan.jointSpeedLimits;
+  const double acceleration = plan.acceleration;
+  DensePath& dense = plan.dense;
+  const PlannedProfile& profile = plan.profile;
 
   TimedTrajectory result;
   placeKnots(dense, profile, options, result.knots, result.knotTimes);

@@ -34,4 +34,10 @@ struct TimeScalingOptions {
 TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath& path,
                                 const TimeScalingOptions& options = {});
 
+// The duration of the planned ramp–cruise–brake profile alone (the steps before the PCHIP knots and their
+// check), about a tenth of scaleToTcpSpeed's cost: never above scaleToTcpSpeed(model, path, options).duration()
+// (beyond rounding), which only ever stretches the planned times. For telling which of several paths cannot be
+// the fastest without timing each. Throws as scaleToTcpSpeed does.
+double plannedDuration(const robot::RobotModel& model, const JointPath& path, const TimeScalingOptions& options = {});
+
 }  // namespace arcplan::trajectory
