@@ -161,6 +161,42 @@ TEST(Pchip, TwoKnotsGiveTheStraightLine) {
   EXPECT_NEAR(value[0], 1.5, 1e-15);
 }
 
+// A refit around a few intervals after the knots moved (some intervals stretched, all later knots shifted) gives, on
+// those intervals, exactly the interpolant a whole fit on the moved knots gives: the same bits, both end rules.
+TEST(Pchip, RefitAroundIntervalsEqualsTheWholeFitThere) {
+  std::vector<double> knots;
+  MatrixXd values(40, 3);
+  for (int k = 0; k < 40; ++k) {
+    knots.push_back(0.1 * k + 0.01 * std::sin(3.0 * k));
+    values.row(k) << std::sin(0.3 * k), std::cos(0.17 * k) * k, (k % 7) - 0.5 * (k % 3);
+  }
+  for (const PchipEnds ends : {PchipEnds::ShapePreserving, PchipEnds::ZeroSlope}) {
+    Pchip refitted(knots, values, ends);
+    std::vector<double> moved = knots;
+    const std::vector<std::size_t> intervals{0, 1, 17, 18, 19, 37, 38};
+    for (const std::size_t stretched : {1, 18, 38}) {
+      const double extra = 0.03 * static_cast<double>(stretched % 5 + 1);
+      for (std::size_t k = stretched + 1; k < moved.size(); ++k) moved[k] += extra;
+    }
+    refitted.refitAround(moved, intervals, ends);
+    const Pchip whole(moved, values, ends);
+    VectorXd a(3), b(3), da(3), db(3), dda(3), ddb(3);
+    for (const std::size_t k : intervals) {
+      for (int i = 0; i <= 10; ++i) {
+        const double t = moved[k] + (moved[k + 1] - moved[k]) * i / 10.0;
+        refitted.evaluateInInterval(k, t, a, da, dda);
+        whole.evaluateInInterval(k, t, b, db, ddb);
+        ASSERT_EQ(a, b) << "interval " << k;
+        ASSERT_EQ(da, db) << "interval " << k;
+        ASSERT_EQ(dda, ddb) << "interval " << k;
+      }
+    }
+  }
+  Pchip pchip(knots, values);
+  EXPECT_THROW(pchip.refitAround(std::vector<double>(39, 0.0), {0}), Error);
+  EXPECT_THROW(pchip.refitAround(knots, {39}), Error);
+}
+
 TEST(Pchip, RejectsBadKnotsAndValues) {
   MatrixXd values(3, 1);
   values << 0.0, 1.0, 2.0;

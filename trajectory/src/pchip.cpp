@@ -57,26 +57,48 @@ void Pchip::fit(const std::vector<double>& knots, const Eigen::MatrixXd& values,
   values_ = values;
   slopes_.resize(values.rows(), values.cols());
   for (Eigen::Index c = 0; c < values.cols(); ++c) {
-    if (n == 2) {
-      const double secant = (values(1, c) - values(0, c)) / (knots[1] - knots[0]);
-      slopes_(0, c) = slopes_(1, c) = secant;
-    } else {
-      double hBefore = knots[1] - knots[0];
-      double secantBefore = (values(1, c) - values(0, c)) / hBefore;
-      for (std::size_t k = 1; k + 1 < n; ++k) {
-        const double hAfter = knots[k + 1] - knots[k];
-        const double secantAfter = (values(k + 1, c) - values(k, c)) / hAfter;
-        slopes_(k, c) = interiorSlope(hBefore, hAfter, secantBefore, secantAfter);
-        hBefore = hAfter;
-        secantBefore = secantAfter;
-      }
-      const auto secant = [&](std::size_t k) { return (values(k + 1, c) - values(k, c)) / (knots[k + 1] - knots[k]); };
-      slopes_(0, c) = endSlope(knots[1] - knots[0], knots[2] - knots[1], secant(0), secant(1));
-      slopes_(n - 1, c) =
-          endSlope(knots[n - 1] - knots[n - 2], knots[n - 2] - knots[n - 3], secant(n - 2), secant(n - 3));
+    slopes_(0, c) = slopeAt(0, c, ends);
+    slopes_(n - 1, c) = slopeAt(n - 1, c, ends);
+    // Interior knots streamed (each secant computed once); the same expressions as slopeAt's, so the same bits.
+    if (n == 2) continue;
+    double hBefore = knots[1] - knots[0];
+    double secantBefore = (values(1, c) - values(0, c)) / hBefore;
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      const double hAfter = knots[k + 1] - knots[k];
+      const double secantAfter = (values(k + 1, c) - values(k, c)) / hAfter;
+      slopes_(k, c) = interiorSlope(hBefore, hAfter, secantBefore, secantAfter);
+      hBefore = hAfter;
+      secantBefore = secantAfter;
     }
-    if (ends == PchipEnds::ZeroSlope) slopes_(0, c) = slopes_(n - 1, c) = 0.0;
   }
+}
+
+void Pchip::refitAround(const std::vector<double>& knots, const std::vector<std::size_t>& intervals, PchipEnds ends) {
+  if (knots.size() != knots_.size()) {
+    throw Error("PCHIP: a refit around intervals keeps the " + std::to_string(knots_.size()) + " knots, got " +
+                std::to_string(knots.size()));
+  }
+  knots_ = knots;
+  for (const std::size_t k : intervals) {
+    if (k + 1 >= knots_.size()) throw Error("PCHIP: no interval " + std::to_string(k) + " to refit");
+    if (!(knots_[k + 1] > knots_[k]))
+      throw Error("PCHIP: knots must be strictly increasing at interval " + std::to_string(k));
+    for (Eigen::Index c = 0; c < values_.cols(); ++c) {
+      slopes_(k, c) = slopeAt(k, c, ends);
+      slopes_(k + 1, c) = slopeAt(k + 1, c, ends);
+    }
+  }
+}
+
+double Pchip::slopeAt(std::size_t k, Eigen::Index c, PchipEnds ends) const {
+  const std::size_t n = knots_.size();
+  const auto h = [&](std::size_t i) { return knots_[i + 1] - knots_[i]; };
+  const auto secant = [&](std::size_t i) { return (values_(i + 1, c) - values_(i, c)) / h(i); };
+  if ((k == 0 || k == n - 1) && ends == PchipEnds::ZeroSlope) return 0.0;
+  if (n == 2) return secant(0);
+  if (k == 0) return endSlope(h(0), h(1), secant(0), secant(1));
+  if (k == n - 1) return endSlope(h(n - 2), h(n - 3), secant(n - 2), secant(n - 3));
+  return interiorSlope(h(k - 1), h(k), secant(k - 1), secant(k));
 }
 
 std::size_t Pchip::intervalOf(double t) const {

@@ -322,12 +322,16 @@ TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath&
     cumulativeTimes(duration, result.knotTimes);
     motion.fit(result.knotTimes, values, PchipEnds::ZeroSlope);
   };
+  refit();
 
   // Stretches the given intervals until they pass on their own fine grids; after too many rounds
-  // scales the whole timing instead.
+  // scales the whole timing instead. Only those intervals are sampled, so only their slopes are refitted
+  // (Pchip::refitAround: the same interpolant there; a whole refit each round was a quarter of the scaling,
+  // where an overshoot creeps back one interval per round for all 25 rounds).
   const auto settle = [&](std::vector<std::size_t> intervals) {
     for (int round = 0; !intervals.empty(); ++round) {
-      refit();
+      cumulativeTimes(duration, result.knotTimes);
+      motion.refitAround(result.knotTimes, intervals, PchipEnds::ZeroSlope);
       check.reset();
       check.sampleIntervals(motion, options.checkTimeStep, intervals);
       if (check.withinLimits()) return;

@@ -34,6 +34,12 @@ public:
   // Refits in place (reusing the storage when the sizes do not change).
   void fit(const std::vector<double>& knots, const Eigen::MatrixXd& values,
            PchipEnds ends = PchipEnds::ShapePreserving);
+  // After fit(), the same values over moved knots (as many), where only `intervals` will be evaluated: their
+  // interpolants are then exactly fit()'s on these knots (a slope depends on its knot's neighbours alone), the
+  // others stale until the next fit(). The time scaling re-times a few intervals at a time and refits a whole
+  // trajectory's knots no more often than it samples all of them.
+  void refitAround(const std::vector<double>& knots, const std::vector<std::size_t>& intervals,
+                   PchipEnds ends = PchipEnds::ShapePreserving);
 
   std::size_t knotCount() const { return knots_.size(); }
   Eigen::Index dimension() const { return values_.cols(); }
@@ -56,6 +62,9 @@ public:
                           Eigen::Ref<Eigen::VectorXd> secondDerivative) const;
 
 private:
+  // The slope at knot k of component c from the knots and values stored (the rule of the header's comment).
+  double slopeAt(std::size_t k, Eigen::Index c, PchipEnds ends) const;
+
   std::vector<double> knots_;
   Eigen::MatrixXd values_;
   Eigen::MatrixXd slopes_;
