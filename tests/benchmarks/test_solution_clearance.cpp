@@ -3,6 +3,7 @@
 // both relax it in the goal's approach zone (collision/endpoint_clearance.h), so both say the path kept
 // its clearance although it comes closer than 1 cm. A plain 1 cm rule would call that path a failure.
 // And the judgement can fail: a hand-made path through an obstacle is "not kept".
+#include <cmath>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -10,8 +11,10 @@
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/moveit_scene.h"
+#include "arcplan/collision/ompl_validity.h"
 #include "arcplan/collision/scene.h"
 #include "arcplan/benchmarks/solution_measurement.h"
+#include "arcplan/common/resources.h"
 #include "arcplan/planners/planning_problem.h"
 #include "arcplan/robot/kinematics.h"
 #include "support/command.h"
@@ -136,6 +139,41 @@ TEST(SolutionClearance, ASelfPairKeepsOneMillimetreOfTheClearance) {
       arcplan::benchmarks::measureSolution(problem, {balls.at(from), balls.at(touching), balls.at(to)}, std::nullopt);
   EXPECT_FALSE(closer.keptClearance());
   EXPECT_LE(closer.clearanceMargin, 0.0005 - 0.01);  // the balls' < 0.5 mm, 1 cm asked
+}
+
+// The measurement answers the waypoints farther than the closest one so far from hasClearance's bounds
+// (solution_measurement.cpp); its minimum obstacle distance and clearance margin are still those of a distance
+// query at every waypoint of the densified path: on the thesis particle problem at 1 cm, the straight joint motion
+// (which passes the particle) and a three-waypoint path through a raised middle configuration.
+TEST(SolutionClearance, TheMinimaAreThoseOfADistanceQueryAtEveryDenseWaypoint) {
+  namespace collision = arcplan::collision;
+  auto scene = std::make_shared<collision::Scene>(
+      collision::loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"));
+  arcplan::planners::PlanningProblemOptions options;
+  options.clearance = 0.01;
+  const auto problem = arcplan::planners::makePlanningProblem(scene, "", options);
+  const auto* validity =
+      dynamic_cast<const collision::CollisionStateValidityChecker*>(problem.setup->getStateValidityChecker().get());
+  ASSERT_NE(validity, nullptr);
+  arcplan::robot::Vector6 raised = 0.5 * (problem.start + problem.goal);
+  raised[1] -= 0.3;
+  for (const arcplan::trajectory::JointPath& path :
+       {arcplan::trajectory::JointPath{problem.start, problem.goal},
+        arcplan::trajectory::JointPath{problem.start, raised, problem.goal}}) {
+    const auto solution =
+        arcplan::benchmarks::measureSolution(problem, path, arcplan::trajectory::TimeScalingOptions{});
+    ASSERT_TRUE(solution.measurement.timed.has_value());
+    collision::CollisionData data(*problem.collisionModel);
+    double obstacle = INFINITY, margin = INFINITY;
+    for (const arcplan::robot::Vector6& q : solution.measurement.timed->densePath) {
+      const collision::DistanceReport report = collision::distance(*problem.collisionModel, data, q);
+      obstacle = std::min(obstacle, report.obstacleDistance);
+      margin = std::min(margin, collision::clearanceOf(report) - validity->requiredClearance().stateClearanceAt(q));
+    }
+    EXPECT_GT(solution.measurement.timed->densePath.size(), 100u);
+    EXPECT_EQ(solution.measurement.metrics.minClearance, obstacle);
+    EXPECT_EQ(solution.clearanceMargin, margin);
+  }
 }
 
 }  // namespace

@@ -50,12 +50,32 @@ TEST(TrajectoryMetrics, HandComputedValues) {
 TEST(TrajectoryMetrics, ClearanceIsTheMinimumOverTheDensePath) {
   std::size_t calls = 0;
   const TrajectoryMetrics metrics =
-      computeMetrics({uniform(0.0), uniform(0.3)}, handMadeTrajectory(), [&](const robot::Vector6& q) {
+      computeMetrics({uniform(0.0), uniform(0.3)}, handMadeTrajectory(), [&](const robot::Vector6& q, double) {
         ++calls;
         return 0.5 - q[0];
       });
   EXPECT_EQ(calls, 3u);
   EXPECT_DOUBLE_EQ(metrics.minClearance, 0.2);
+}
+
+// Each waypoint is asked with the smallest clearance found before it; a function answering `enough` (or more)
+// wherever the true value is not below it still gives the exact minimum, wherever along the path it lies.
+TEST(TrajectoryMetrics, ClearanceIsExactWhereTheFunctionBoundsTheWaypointsAboveTheMinimumSoFar) {
+  JointPath dense;
+  for (int k = 0; k <= 40; ++k) dense.push_back(uniform(0.01 * k));
+  const auto truth = [](const robot::Vector6& q) { return 0.3 + std::cos(9.0 * q[0]) * 0.1 + q[0] * q[0]; };
+  double exact = INFINITY;
+  for (const robot::Vector6& q : dense) exact = std::min(exact, truth(q));
+  std::vector<double> asked;
+  const double bounded = minClearanceAlong(dense, [&](const robot::Vector6& q, double enough) {
+    asked.push_back(enough);
+    const double value = truth(q);
+    return value >= enough ? enough + 1.0 : value;  // any value >= enough
+  });
+  EXPECT_EQ(bounded, exact);
+  ASSERT_EQ(asked.size(), dense.size());
+  EXPECT_EQ(asked.front(), INFINITY);
+  for (std::size_t k = 1; k < asked.size(); ++k) EXPECT_LE(asked[k], asked[k - 1]);  // the running minimum
 }
 
 TEST(TrajectoryMetrics, NoTimeAboveWhenUnderTheLimit) {

@@ -50,7 +50,7 @@ TrajectoryMetrics computeMetrics(const JointPath& path, const TimedTrajectory& t
 double minClearanceAlong(const JointPath& densePath, const ClearanceFunction& clearance) {
   if (!clearance) return std::numeric_limits<double>::quiet_NaN();
   double minimum = std::numeric_limits<double>::infinity();
-  for (const auto& q : densePath) minimum = std::min(minimum, clearance(q));
+  for (const auto& q : densePath) minimum = std::min(minimum, clearance(q, minimum));
   return minimum;
 }
 

@@ -23,8 +23,10 @@ struct TrajectoryMetrics {
 };
 
 // Smallest robot–obstacle distance at a configuration (supplied by the caller, e.g. the collision
-// module, so that trajectory does not depend on it).
-using ClearanceFunction = std::function<double(const robot::Vector6&)>;
+// module, so that trajectory does not depend on it). The exact value is needed only below `enough` (the
+// smallest found so far along the path, +infinity first): at or above it any value ≥ enough will do, so that
+// a caller may answer the many waypoints far from the path's closest one from cheap bounds.
+using ClearanceFunction = std::function<double(const robot::Vector6& q, double enough)>;
 
 // `path` is the planner's path (joint length); the clearance, when given, is evaluated at every
 // waypoint of the trajectory's densified path.
