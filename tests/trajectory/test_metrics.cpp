@@ -73,7 +73,7 @@ TEST(TrajectoryMetrics, ClearanceIsExactWhereTheFunctionBoundsTheWaypointsAboveT
     return value >= enough ? enough + 1.0 : value;  // any value >= enough
   });
   EXPECT_EQ(bounded, exact);
-  ASSERT_EQ(asked.size(), dense.size());
+  ASSERT_EQ(asked.size(), dense.size());  // each waypoint once
   EXPECT_EQ(asked.front(), INFINITY);
   for (std::size_t k = 1; k < asked.size(); ++k) EXPECT_LE(asked[k], asked[k - 1]);  // the running minimum
 }

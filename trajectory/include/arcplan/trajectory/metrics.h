@@ -24,8 +24,8 @@ struct TrajectoryMetrics {
 
 // Smallest robot–obstacle distance at a configuration (supplied by the caller, e.g. the collision
 // module, so that trajectory does not depend on it). The exact value is needed only below `enough` (the
-// smallest found so far along the path, +infinity first): at or above it any value ≥ enough will do, so that
-// a caller may answer the many waypoints far from the path's closest one from cheap bounds.
+// smallest found so far, +infinity first): at or above it any value ≥ enough will do, so that a caller may answer
+// the many waypoints far from the path's closest one from cheap bounds.
 using ClearanceFunction = std::function<double(const robot::Vector6& q, double enough)>;
 
 // `path` is the planner's path (joint length); the clearance, when given, is evaluated at every
@@ -33,7 +33,8 @@ using ClearanceFunction = std::function<double(const robot::Vector6& q, double e
 TrajectoryMetrics computeMetrics(const JointPath& path, const TimedTrajectory& trajectory,
                                  const ClearanceFunction& clearance = {});
 
-// The smallest clearance at the waypoints of a densified path; NaN without a clearance function.
+// The smallest clearance at the waypoints of a densified path; NaN without a clearance function. Each waypoint is
+// asked once, every 16th first, each with the smallest clearance found before it.
 double minClearanceAlong(const JointPath& densePath, const ClearanceFunction& clearance);
 
 // Every trajectory metric under its key from metricDescriptors(); null for a value that is not finite
