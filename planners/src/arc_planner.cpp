@@ -225,7 +225,8 @@ detail::ArcOutcome ArcPlanner::withQuery(const ob::PlannerTerminationCondition& 
                                start,
                                goal,
                                robot::tipPose(robot, start),
-                               robot::tipPose(robot, goal)};
+                               robot::tipPose(robot, goal),
+                               ik_.branchOf(start)};
   return strategy(query);
 }
 

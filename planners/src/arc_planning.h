@@ -28,6 +28,7 @@ struct ArcQuery {
   PathValidator& validator;
   robot::Vector6 start, goal;
   Eigen::Isometry3d a, b;  // TCP poses of start and goal
+  int startBranch;         // the start's IK branch (UrInverseKinematics::branchOf), which every TCP path keeps
 
   JointConversionResult startOnly() const;  // a walk's prefix: the start configuration at arc length 0
 };

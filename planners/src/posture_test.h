@@ -12,7 +12,7 @@ namespace arcplan::planners::detail {
 
 // The configuration at a TCP pose on the start's branch (what a walk would reach there).
 inline std::optional<robot::Vector6> postureAt(const ArcQuery& query, const Eigen::Isometry3d& pose) {
-  return query.ik.solveBranch(pose, query.ik.branchOf(query.start), query.start[5]);
+  return query.ik.solveBranch(pose, query.startBranch, query.start[5]);
 }
 
 // One posture tested on its own against the margin: what the search asks of via points, probes and

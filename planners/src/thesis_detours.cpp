@@ -23,7 +23,7 @@ bool blocksTheLineAtO(const ArcQuery& query, const ArcPath& line, const collisio
   const double fraction = line.straightLength() > 0.0 ? u / line.straightLength() : 0.0;
   const robot::Vector6 seed = query.start + fraction * (query.goal - query.start);
   const std::optional<robot::Vector6> q = query.ik.solveNearest(line.pose(u), seed);
-  if (!q || query.ik.branchOf(*q) != query.ik.branchOf(query.start)) return false;  // the walk will tell
+  if (!q || query.ik.branchOf(*q) != query.startBranch) return false;  // the walk will tell
   if (collision::isCollisionFree(query.model, data, *q)) return false;
   const collision::CollisionReport report = collision::collide(query.model, data, *q);
   return std::any_of(report.collisions.begin(), report.collisions.end(),
