@@ -135,6 +135,7 @@ std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Ei
     if (x > 0.0 && x < length) lift[i] = x <= apexX ? apexX / x : (length - apexX) / (length - x);
   }
   constexpr std::size_t kMarginCount = std::size(kMargins);
+  candidates.reserve(2 * kPlaneSteps * kMarginCount);
   std::vector<double> heights(cluster.hull.size());
   for (int step = 0; step < kPlaneSteps; ++step) {
     const Eigen::Vector3d away = avoidanceDirection(along, 2.0 * M_PI * step / kPlaneSteps);
@@ -157,9 +158,12 @@ std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Ei
     for (std::size_t m = 0; m < kMarginCount; ++m) {
       const double margin = kMargins[m], offset = height + clearance + margin;
       const double enter = inside(x0 - margin), leave = inside(x1 + margin);
-      ViaCandidate over{{p + enter * along + offset * away}, margin};
-      if (leave - enter > 1e-3) over.points.push_back(p + leave * along + offset * away);
-      candidates.push_back(over);
+      // Its points allocated once and moved in: up to 120 candidates per blocked leg.
+      const Eigen::Vector3d entry = p + enter * along + offset * away;
+      candidates.push_back({leave - enter > 1e-3
+                                ? std::vector<Eigen::Vector3d>{entry, p + leave * along + offset * away}
+                                : std::vector<Eigen::Vector3d>{entry},
+                            margin});
       if (apex[m] <= kHighestApex) candidates.push_back({{p + apexX * along + apex[m] * away}, margin});
     }
   }
