@@ -252,7 +252,7 @@ std::optional<std::vector<Eigen::Vector3d>> latticePath(const Eigen::Vector3d& p
         it->second.cost = cost;
         it->second.parent = key;
       }
-      open.emplace(cost + (q - position(cell)).norm(), next);
+      open.emplace(cost + kLatticeGreed * (q - position(cell)).norm(), next);
     }
   }
   return std::nullopt;
