@@ -279,21 +279,20 @@ ArcOutcome pathOf(const ArcQuery& query, const std::vector<Segment>& segments, c
 // the joint path is kept.
 ArcOutcome fastestPath(const ArcQuery& query, const std::vector<Segment>& segments, const ExecutionTiming& timing,
                        double jointTime) {
-  const auto timeOf = [&](const std::vector<bool>& asLine) {
-    return timing.time(pathOf(query, segments, asLine).path.joints);
-  };
+  const auto jointsOf = [&](const std::vector<bool>& asLine) { return pathOf(query, segments, asLine).path.joints; };
   const std::vector<bool> jointPath(segments.size(), false);
   std::vector<bool> allLines;
   for (const Segment& segment : segments) allLines.push_back(segment.line.has_value() && !query.ptc());
-  const double lineTime = allLines == jointPath ? jointTime : timeOf(allLines);
+  const double lineTime = allLines == jointPath ? jointTime : timing.time(jointsOf(allLines));
   std::vector<bool> kept = lineTime <= jointTime ? allLines : jointPath;
   double keptTime = std::min(lineTime, jointTime);
   for (std::size_t k = 0; k < segments.size() && !query.ptc(); ++k) {
     if (!allLines[k]) continue;
     std::vector<bool> mixed = kept;
     mixed[k] = !mixed[k];
-    if (timing.slowerThan(pathOf(query, segments, mixed).path.joints, keptTime)) continue;
-    const double time = timeOf(mixed);
+    const std::vector<robot::Vector6> joints = jointsOf(mixed);
+    if (timing.slowerThan(joints, keptTime)) continue;
+    const double time = timing.time(joints);
     if (time >= keptTime) continue;
     kept = std::move(mixed);
     keptTime = time;

@@ -192,9 +192,14 @@ TEST(Pchip, RefitAroundIntervalsEqualsTheWholeFitThere) {
       }
     }
   }
+  // Refused (other knot count, no such interval, knots not increasing) with the fit left as it was.
   Pchip pchip(knots, values);
+  std::vector<double> decreasing = knots;
+  decreasing[20] = decreasing[18];
   EXPECT_THROW(pchip.refitAround(std::vector<double>(39, 0.0), {0}), Error);
   EXPECT_THROW(pchip.refitAround(knots, {39}), Error);
+  EXPECT_THROW(pchip.refitAround(decreasing, {5}), Error);
+  EXPECT_EQ(pchip.knots(), knots);
 }
 
 TEST(Pchip, RejectsBadKnotsAndValues) {

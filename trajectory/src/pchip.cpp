@@ -31,6 +31,18 @@ double endSlope(double hNear, double hFar, double secantNear, double secantFar) 
   return slope;
 }
 
+// Throws naming the first knot that is not finite or not above the one before it.
+void checkKnots(const std::vector<double>& knots) {
+  for (std::size_t k = 0; k < knots.size(); ++k) {
+    if (!std::isfinite(knots[k])) throw Error("PCHIP: knot " + std::to_string(k) + " is not finite");
+    if (k > 0 && !(knots[k] > knots[k - 1])) {
+      throw Error("PCHIP: knots must be strictly increasing, but knot " + std::to_string(k) + " (" +
+                  std::to_string(knots[k]) + ") is not greater than knot " + std::to_string(k - 1) + " (" +
+                  std::to_string(knots[k - 1]) + ")");
+    }
+  }
+}
+
 }  // namespace
 
 Pchip::Pchip(const std::vector<double>& knots, const Eigen::MatrixXd& values, PchipEnds ends) {
@@ -43,14 +55,7 @@ void Pchip::fit(const std::vector<double>& knots, const Eigen::MatrixXd& values,
   if (static_cast<std::size_t>(values.rows()) != n) {
     throw Error("PCHIP: " + std::to_string(n) + " knots but " + std::to_string(values.rows()) + " rows of values");
   }
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!std::isfinite(knots[k])) throw Error("PCHIP: knot " + std::to_string(k) + " is not finite");
-    if (k > 0 && !(knots[k] > knots[k - 1])) {
-      throw Error("PCHIP: knots must be strictly increasing, but knot " + std::to_string(k) + " (" +
-                  std::to_string(knots[k]) + ") is not greater than knot " + std::to_string(k - 1) + " (" +
-                  std::to_string(knots[k - 1]) + ")");
-    }
-  }
+  checkKnots(knots);
   if (!values.allFinite()) throw Error("PCHIP: the values must be finite numbers");
 
   knots_ = knots;
@@ -78,11 +83,13 @@ void Pchip::refitAround(const std::vector<double>& knots, const std::vector<std:
     throw Error("PCHIP: a refit around intervals keeps the " + std::to_string(knots_.size()) + " knots, got " +
                 std::to_string(knots.size()));
   }
+  // Everything checked before anything changes: a refused refit leaves the fit as it was.
+  checkKnots(knots);
+  for (const std::size_t k : intervals) {
+    if (k + 1 >= knots.size()) throw Error("PCHIP: no interval " + std::to_string(k) + " to refit");
+  }
   knots_ = knots;
   for (const std::size_t k : intervals) {
-    if (k + 1 >= knots_.size()) throw Error("PCHIP: no interval " + std::to_string(k) + " to refit");
-    if (!(knots_[k + 1] > knots_[k]))
-      throw Error("PCHIP: knots must be strictly increasing at interval " + std::to_string(k));
     for (Eigen::Index c = 0; c < values_.cols(); ++c) {
       slopes_(k, c) = slopeAt(k, c, ends);
       slopes_(k + 1, c) = slopeAt(k + 1, c, ends);
