@@ -241,19 +241,26 @@ bool detail::certifiedMotionFree(const CollisionModel& model, CollisionData& wor
   const detail::SphereMotion spheres = detail::sphereMotion(model, data, qa, qb, minimumClearance, bothEnds);
   if (spheres == detail::SphereMotion::Free) return true;
   if (spheres == detail::SphereMotion::Collides && bothEnds) return false;
-  const bool selfPairsLeft = spheres == detail::SphereMotion::SelfPairsLeft;
-  if (bothEnds && !selfPairsLeft && !probesClear(model, workspace, qa, qb, minimumClearance)) return false;
+  const bool pairsLeft = spheres == detail::SphereMotion::PairsLeft;
+  // PairsLeft: per body whether the spheres left its obstacle pairs, then per self pair of the prefilter.
+  const auto deferred = [&](int p) { return data.spheres->deferred[p] != 0; };
+  const int bodies = pairsLeft ? impl.prefilter->tables().bodyCount : 0;
+  bool obstaclesLeft = !pairsLeft;
+  for (int b = 0; b < bodies; ++b) obstaclesLeft = obstaclesLeft || deferred(b);
+  // Where only self pairs are left, the motion keeps its clearance from obstacles: nothing for the probes to find.
+  if (bothEnds && obstaclesLeft && !probesClear(model, workspace, qa, qb, minimumClearance)) return false;
   ++data.motion;
   auto& pairs = data.motionPairs;
   // The pairs still to certify, in group order; a pair drops out once its certificates meet (on MBM ~400 groups,
   // most of them settled after the first measurement at each end, or by the spheres).
   auto& active = data.activePairs;
   active.clear();
-  if (selfPairsLeft) {  // the spheres certified every pair but the deferred ones over the whole motion
+  if (pairsLeft) {  // the spheres certified every pair but the deferred ones over the whole motion
     const detail::SpherePrefilter& prefilter = *impl.prefilter;
-    const int bodies = prefilter.tables().bodyCount;
+    for (int k = 0; k < static_cast<int>(impl.obstacleGroups.size()); ++k)
+      if (deferred(impl.obstacleGroups[k].firstBody)) active.push_back(k);
     for (int p = bodies; p < prefilter.pairCount(); ++p)
-      if (data.spheres->deferred[p])
+      if (deferred(p))
         active.push_back(static_cast<int>(impl.obstacleGroups.size()) + prefilter.selfGroupOf(p - bodies));
   } else {
     for (int k = 0; k < static_cast<int>(pairs.size()); ++k) active.push_back(k);

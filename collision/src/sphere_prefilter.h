@@ -25,7 +25,7 @@ struct SphereWorkspace {
   // fraction its clearance certifies each way, and the work list of intervals.
   std::vector<double> rates, samples, reach;
   std::vector<char> floored;   // per pair: its floor (PairGroup::floor) keeps the motion's clearance everywhere
-  std::vector<char> deferred;  // per pair: a self pair the spheres left to the certified check (SelfPairsLeft)
+  std::vector<char> deferred;  // per pair: one the spheres left to the certified check (PairsLeft)
   std::vector<std::pair<int, int>> intervals, next;
   std::vector<int> pending;
 };
@@ -75,18 +75,19 @@ private:
 // Whether the spheres prove q free (false: FCL decides). q must have robot().dof() values.
 bool sphereFree(const SpherePrefilter& prefilter, SphereWorkspace& workspace, const robot::JointRef& q);
 
-// What the spheres tell about a straight motion qa -> qb (sphere_motion_check.cpp); SelfPairsLeft only when
-// deferSelfPairs (else such a motion is Unknown).
+// What the spheres tell about a straight motion qa -> qb (sphere_motion_check.cpp); PairsLeft only when
+// deferPairs (else such a motion is Unknown).
 enum class SphereMotion {
   Free,      // every pair keeps more than m + acceptanceMargin(m) all along: the certified check accepts it too
   Collides,  // a state on it collides (FCL said so): the certified check rejects it too
   Unknown,   // the certified check decides
-  // Every pair keeps more than m + acceptanceMargin(m) all along except the self pairs marked in
-  // SphereWorkspace::deferred, whose spheres came too close somewhere: the certified check need only follow those.
-  SelfPairsLeft
+  // Every pair keeps more than m + acceptanceMargin(m) all along except those marked in SphereWorkspace::deferred
+  // (a body against its obstacles, a self pair), whose spheres came too close somewhere: the certified check need
+  // only follow those (for a body, its obstacle groups).
+  PairsLeft
 };
 SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const robot::JointRef& qa,
-                          const robot::JointRef& qb, double minimumClearance, bool deferSelfPairs);
+                          const robot::JointRef& qb, double minimumClearance, bool deferPairs);
 
 // isCollisionFree without the prefilter (collision_model.cpp).
 bool exactlyCollisionFree(const CollisionModel& model, Workspace& data, const robot::JointRef& q);

@@ -277,8 +277,7 @@ TEST(NearBoards, SelfPairsTheSpheresCannotSeparateAreLeftToTheExactCheck) {
               isMotionCollisionFree(*shelf.plain, shelf.plainData, start, end, &plainLast, shelf.options));
     EXPECT_EQ(layeredLast, plainLast) << motions;
     auto& workspace = detail::workspaceOf(shelf.layeredData);
-    left +=
-        detail::sphereMotion(*shelf.layered, workspace, start, end, 0.01, true) == detail::SphereMotion::SelfPairsLeft;
+    left += detail::sphereMotion(*shelf.layered, workspace, start, end, 0.01, true) == detail::SphereMotion::PairsLeft;
     freeWithoutDeferring +=
         detail::sphereMotion(*shelf.layered, workspace, start, end, 0.01, false) == detail::SphereMotion::Free;
     accepted += expected;
