@@ -21,15 +21,19 @@ void areCollisionFree(const CollisionModel& model, CollisionData& data, const Ei
   free.assign(static_cast<std::size_t>(count), false);
   for (Eigen::Index first = 0; first < count; first += detail::prefilter::kLanes) {
     const int lanes = static_cast<int>(std::min<Eigen::Index>(detail::prefilter::kLanes, count - first));
-    std::uint32_t cleared = 0;
-    if (prefilter) {
+    if (!prefilter || !prefilter->usable()) {
       for (int lane = 0; lane < lanes; ++lane)
-        prefilter->loadLane(*workspace.spheres, lane, states.col(first + lane).data());
-      cleared = prefilter->freeLanes(*workspace.spheres, lanes);
+        free[first + lane] = detail::exactlyCollisionFree(model, workspace, states.col(first + lane));
+      continue;
     }
+    for (int lane = 0; lane < lanes; ++lane)
+      prefilter->loadLane(*workspace.spheres, lane, states.col(first + lane).data());
+    const std::uint32_t cleared = prefilter->freeLanes(*workspace.spheres, lanes);
+    // The lanes the spheres do not clear: FCL for the pairs whose spheres touch there.
+    if (cleared != (1u << lanes) - 1u) detail::collisionGaps(*prefilter, *workspace.spheres);
     for (int lane = 0; lane < lanes; ++lane) {
-      free[first + lane] =
-          ((cleared >> lane) & 1u) != 0 || detail::exactlyCollisionFree(model, workspace, states.col(first + lane));
+      free[first + lane] = ((cleared >> lane) & 1u) != 0 ||
+                           !detail::unclearedPairsCollide(model, workspace, states.col(first + lane), lane);
     }
   }
 }

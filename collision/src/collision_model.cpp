@@ -12,6 +12,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/common/text_formatting.h"
 #include "model_implementation.h"
+#include "pair_floor_grid.h"
 #include "sphere_prefilter.h"
 
 namespace arcplan::collision {
@@ -326,13 +327,48 @@ bool exactlyCollisionFree(const CollisionModel& model, Workspace& data, const ro
   return true;
 }
 
+bool unclearedPairsCollide(const CollisionModel& model, Workspace& data, const robot::JointRef& q, int lane,
+                           const char* skip) {
+  const Implementation& impl = detail::implementationOf(model);
+  const SpherePrefilter& prefilter = *impl.prefilter;
+  const int bodies = prefilter.tables().bodyCount;
+  bool placed = false;
+  const auto place = [&] {
+    if (!placed) updateRobot(model, data, q);
+    placed = true;
+  };
+  for (int p = 0; p < prefilter.pairCount(); ++p) {
+    if ((skip != nullptr && skip[p]) || data.spheres->gaps[p * prefilter::kLanes + lane] > 0.0f) continue;
+    if (p >= bodies) {
+      const auto& group = impl.selfGroups[prefilter.selfGroupOf(p - bodies)];
+      if (group.floorGrid && group.floorGrid->at(q, groupAxes(impl, data, group)) > 0.0) continue;
+      place();
+      if (groupCollides(model, data, group)) return true;
+      continue;
+    }
+    for (const auto& group : impl.obstacleGroups) {
+      if (group.firstBody != p) continue;
+      place();
+      if (groupCollides(model, data, group)) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace detail
 
 bool isCollisionFree(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
   Workspace& data = detail::workspaceOf(workspace);
   const Implementation& impl = detail::implementationOf(model);
-  if (impl.prefilter && detail::sphereFree(*impl.prefilter, *data.spheres, q)) return true;
-  return detail::exactlyCollisionFree(model, data, q);
+  // (A state of the wrong size: exactlyCollisionFree throws the usual message.)
+  if (!impl.prefilter || !impl.prefilter->usable() || q.size() != impl.prefilter->dof())
+    return detail::exactlyCollisionFree(model, data, q);
+  if (detail::sphereFree(*impl.prefilter, *data.spheres, q)) return true;
+  // FCL for the pairs whose spheres touch: on MBM's UR5 two self pairs' spheres overlap in every state, and a full
+  // check passed all ~400 pair groups through their capsules for them.
+  for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) impl.prefilter->loadLane(*data.spheres, lane, q.data());
+  detail::collisionGaps(*impl.prefilter, *data.spheres);
+  return !detail::unclearedPairsCollide(model, data, q, 0);
 }
 
 CollisionReport collide(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
@@ -442,6 +478,9 @@ bool detail::keepsDistances(const CollisionModel& model, CollisionData& workspac
     if (k < obstacleGroups ? settled(impl.groups[k]->firstBody, required)
                            : spheres != nullptr && spheres->kernelPairOf(k - obstacleGroups) >= 0 &&
                                  settled(bodies + spheres->kernelPairOf(k - obstacleGroups), required))
+      continue;
+    if (impl.groups[k]->floorGrid &&
+        impl.groups[k]->floorGrid->at(q, &data.pairAxes[impl.firstPartPair[k]]) >= required)
       continue;
     if (!placed) updateRobot(model, data, q);
     placed = true;

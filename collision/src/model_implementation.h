@@ -16,6 +16,7 @@
 namespace arcplan::collision::detail {
 
 class SpherePrefilter;  // sphere_prefilter.h
+class PairFloorGrid;    // pair_floor_grid.h
 struct SphereWorkspace;
 
 // GJK's distances are exact to about 1e-6 m (docs/collision.md); a hull's (or containing mesh's)
@@ -60,6 +61,9 @@ struct ModelImplementation {
     // that depends on that joint only: its smallest value over the joint's range is measured when the
     // model is built (measurePairFloors), and no query measures the pair while its floor answers.
     double floor = 0.0;
+    // A self pair that two joints alone move against each other: floors per cell of the two angles (pair_floor_grid.h;
+    // null otherwise). Shared with other models of the same robot.
+    std::shared_ptr<const PairFloorGrid> floorGrid = nullptr;
     // What a clearance c asks of this pair (requiredDistance, collision_model.h).
     double required(double clearance) const { return requiredDistance(self, clearance); }
   };
@@ -201,6 +205,13 @@ bool witnessCloser(const Part& a, const Eigen::Isometry3d& poseA, const Part& b,
                    double distance);
 inline constexpr double kWitnessSlack = 1e-5;
 
+// The group's part pairs' entries of Workspace::pairAxes (what a floor grid keeps between its cells).
+inline Eigen::Vector3d* groupAxes(const Implementation& impl, Workspace& data, const Implementation::PairGroup& group) {
+  const std::size_t first = group.self ? impl.obstacleGroups.size() + (&group - impl.selfGroups.data())
+                                       : static_cast<std::size_t>(&group - impl.obstacleGroups.data());
+  return &data.pairAxes[impl.firstPartPair[first]];
+}
+
 inline const Part& secondPart(const Implementation& impl, const Implementation::PairGroup& group, int j) {
   return group.self ? impl.robotParts[j] : impl.obstacleParts[j];
 }
@@ -220,7 +231,8 @@ bool groupCollides(const CollisionModel& model, Workspace& data, const ModelImpl
 
 // Measures the self pairs whose relativeReach is 0 once and marks them rigid (collision_model_building.cpp).
 void measureRigidPairs(const CollisionModel& model, ModelImplementation& impl);
-// PairGroup::floor of the self pairs one joint alone moves against each other (pair_floors.cpp).
+// PairGroup::floor of the self pairs one joint alone moves against each other, PairGroup::floorGrid of those two
+// joints move (pair_floors.cpp).
 void measurePairFloors(const CollisionModel& model, ModelImplementation& impl);
 
 // Fills impl.jointReach, impl.movedBy, impl.partPairReach and every group's relativeReach (motion_bounds.cpp).

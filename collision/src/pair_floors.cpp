@@ -1,4 +1,5 @@
-// Floors of the self pairs one joint alone moves against each other (ModelImplementation::PairGroup::floor).
+// Floors of the self pairs one joint alone moves against each other (ModelImplementation::PairGroup::floor), and
+// the floor grids of those two joints move (PairGroup::floorGrid, pair_floor_grid.h).
 //
 // When only joint j changes the relative pose of two bodies, their distance is a function d(θ) of that
 // joint's angle, and on any motion it changes by at most relativeReach_j per radian of θ (the motion
@@ -20,6 +21,7 @@
 
 #include "lru_cache.h"
 #include "model_implementation.h"
+#include "pair_floor_grid.h"
 
 namespace arcplan::collision::detail {
 namespace {
@@ -30,34 +32,17 @@ constexpr double kFloorCap = 0.05;
 // kMaxCells of them (a long tool on the last joint: fewer, wider cells, a lower floor, still a bound).
 constexpr double kCellLoss = 5e-4;
 constexpr int kMaxCells = 2048;
-// GJK's distances are exact to about 1e-6 m (docs/collision.md): a lower bound takes them ten times that
-// smaller, headroom over the documented tolerance that costs nothing beside centimetre floors.
-constexpr double kDistanceSlack = 1e-5;
+// A grid's cells lose at most this much of a part pair's distance. MBM's UR5: 110 x 50 cells for forearm_link –
+// wrist_2_link, 87 x 111 for base_link – upper_arm_link (1–1.8 cm apart): most cells keep the 1.3 mm a self pair
+// must keep on a certified motion.
+constexpr double kGridCellLoss = 8e-3;
 
-// The joint that alone moves the group's bodies against each other, or -1.
-int onlyJoint(const Implementation::PairGroup& group) {
-  int joint = -1;
-  for (int j = 0; j < group.relativeReach.size(); ++j) {
-    if (!(group.relativeReach[j] > 0.0)) continue;
-    if (joint >= 0) return -1;
-    joint = j;
-  }
-  return joint;
-}
-
-// A lower bound of the distance of robot parts i and j in the current configuration (updateRobot), at most
-// `cap`: GJK on convex parts, the hulls' bound on mesh parts, the capsules' where neither layer is on.
-double partPairLowerBound(const CollisionModel& model, const Implementation& impl, Workspace& data, int i, int j,
-                          double cap) {
-  const double bound = boundGap(impl, data, i, j, true);  // places both parts
-  if (bound >= cap) return bound;
-  const Part &a = impl.robotParts[i], &b = impl.robotParts[j];
-  const CollisionModelOptions& options = model.options();
-  if (options.convexDistance && a.convexGeometry && b.convexGeometry)
-    return partsDistance(a, data.partPoses[i], b, data.partPoses[j], bound <= 0.0, options) - kDistanceSlack;
-  if (options.hullLayer && a.hullGeometry && b.hullGeometry)
-    return hullGap(a, data.partPoses[i], b, data.partPoses[j], options, cap);
-  return bound;
+// The joints that move the group's bodies against each other.
+std::vector<int> movingJoints(const Implementation::PairGroup& group) {
+  std::vector<int> joints;
+  for (int j = 0; j < group.relativeReach.size(); ++j)
+    if (group.relativeReach[j] > 0.0) joints.push_back(j);
+  return joints;
 }
 
 double groupFloor(const CollisionModel& model, const Implementation& impl, Workspace& data,
@@ -70,13 +55,16 @@ double groupFloor(const CollisionModel& model, const Implementation& impl, Works
   const double step = (to - from) / cells, loss = reach * step / 2.0;
   robot::JointVector q = robot::JointVector::Zero(model.robot().dof());
   double floor = std::numeric_limits<double>::infinity();
+  std::vector<Eigen::Vector3d> axes(group.parts.size(), Eigen::Vector3d::Zero());  // kept from cell to cell
   for (int k = 0; k < cells && floor > 0.0; ++k) {
     q[joint] = from + (k + 0.5) * step;
     updateRobot(model, data, q);
     double nearest = kFloorCap;
-    for (const auto& [i, j] : group.parts) {
+    for (std::size_t p = 0; p < group.parts.size(); ++p) {
+      const auto [i, j] = group.parts[p];
       if (boundGap(impl, data, i, j, true) >= nearest) continue;
-      nearest = std::min(nearest, partPairLowerBound(model, impl, data, i, j, nearest));
+      nearest = std::min(nearest, partPairLowerBound(impl.robotParts[i], data.partPoses[i], impl.robotParts[j],
+                                                     data.partPoses[j], model.options(), nearest, axes[p]));
     }
     floor = std::min(floor, nearest - loss);
   }
@@ -90,7 +78,8 @@ double groupFloor(const CollisionModel& model, const Implementation& impl, Works
 // mesh share their geometries (mesh_part_cache.h), so their addresses identify them; the entry holds those
 // geometries, so no address is reused by another geometry while the entry exists.
 struct FloorEntry {
-  double floor;
+  double floor = 0.0;
+  std::shared_ptr<const PairFloorGrid> grid;  // two joints: its cells measured so far serve every model
   std::vector<std::shared_ptr<fcl::CollisionGeometryd>> geometries;
 };
 
@@ -119,13 +108,16 @@ void appendPart(std::string& key, std::vector<std::shared_ptr<fcl::CollisionGeom
 }
 
 std::string floorKey(const CollisionModel& model, const Implementation& impl, const Implementation::PairGroup& group,
-                     int joint, std::vector<std::shared_ptr<fcl::CollisionGeometryd>>& geometries) {
+                     const std::vector<int>& joints,
+                     std::vector<std::shared_ptr<fcl::CollisionGeometryd>>& geometries) {
   std::string key;
   const CollisionModelOptions& options = model.options();
   append(key, options.convexDistance);
   append(key, options.hullLayer);
-  append(key, joint);
-  append(key, group.relativeReach[joint]);
+  for (const int joint : joints) {
+    append(key, joint);
+    append(key, group.relativeReach[joint]);
+  }
   append(key, model.robot().dof());
   for (const auto& [i, j] : group.parts) {
     appendPart(key, geometries, impl, i);
@@ -153,25 +145,46 @@ FloorCache& floorCache() {
   return instance;
 }
 
+std::shared_ptr<const PairFloorGrid> makeGrid(const CollisionModel& model, const Implementation& impl,
+                                              const Implementation::PairGroup& group, int groupIndex,
+                                              const std::vector<int>& joints) {
+  std::vector<PairFloorGrid::PartPair> parts;
+  for (std::size_t p = 0; p < group.parts.size(); ++p) {
+    const auto [i, j] = group.parts[p];
+    const Eigen::Index row = impl.firstPartPair[groupIndex] + static_cast<Eigen::Index>(p);
+    parts.push_back({impl.robotParts[i], impl.robotParts[j], impl.robotPartLink[i], impl.robotPartLink[j],
+                     impl.partPairReach(row, joints[0]), impl.partPairReach(row, joints[1])});
+  }
+  return std::make_shared<const PairFloorGrid>(model.sharedRobot(), model.options(), joints[0], joints[1],
+                                               std::move(parts), kGridCellLoss);
+}
+
 }  // namespace
 
 void measurePairFloors(const CollisionModel& model, Implementation& impl) {
   Workspace data(model);
   FloorCache& cache = floorCache();
-  for (auto& group : impl.selfGroups) {
+  for (std::size_t s = 0; s < impl.selfGroups.size(); ++s) {
+    auto& group = impl.selfGroups[s];
     if (group.rigid) continue;
-    const int joint = onlyJoint(group);
-    if (joint < 0) continue;
+    const std::vector<int> joints = movingJoints(group);
+    if (joints.size() != 1 && joints.size() != 2) continue;
     FloorEntry entry;
-    const std::string key = floorKey(model, impl, group, joint, entry.geometries);
+    const std::string key = floorKey(model, impl, group, joints, entry.geometries);
     {
       const std::lock_guard<std::mutex> lock(cache.mutex);
       if (const FloorEntry* found = cache.entries.find(key)) {
         group.floor = found->floor;
+        group.floorGrid = found->grid;
         continue;
       }
     }
-    entry.floor = group.floor = groupFloor(model, impl, data, group, joint);
+    if (joints.size() == 1) {
+      entry.floor = group.floor = groupFloor(model, impl, data, group, joints[0]);
+    } else {  // measured cell by cell as queries ask
+      entry.grid = group.floorGrid =
+          makeGrid(model, impl, group, static_cast<int>(impl.obstacleGroups.size() + s), joints);
+    }
     const std::lock_guard<std::mutex> lock(cache.mutex);
     cache.entries.insert(key, std::move(entry));
   }

@@ -27,6 +27,7 @@
 
 #include "model_implementation.h"
 #include "motion_clearance.h"
+#include "pair_floor_grid.h"
 #include "sphere_prefilter.h"
 
 namespace arcplan::collision::detail {
@@ -34,11 +35,6 @@ namespace {
 
 using prefilter::kLanes;
 
-// The exact check rejects a pair it measures closer than m + acceptanceMargin(m) (motion_check.h)
-// and measures distances to 1e-6 m; a motion along which every pair keeps 10 µm more than that is
-// measured clear by it everywhere, so it accepts the motion too and the two answer alike.
-constexpr double kSlack = 1e-5;
-double keptClearance(double minimumClearance) { return minimumClearance + acceptanceMargin(minimumClearance) + kSlack; }
 // Samples before the exact check takes over (a motion grazing an obstacle would need many).
 constexpr int kMaxSamples = 256;
 // Searching a motion the spheres cannot certify: states at most this far apart (largest joint
@@ -92,6 +88,10 @@ struct Rake {
             continue;
           }
           work.reach[sample * pairs + p] = work.rates[p] > 0.0 ? room / work.rates[p] : kInfinity;
+          if (room <= 0.0 && gridKeeps(p)) {
+            work.floored[p] = 1;
+            continue;
+          }
           if (room > 0.0 || !deferring) {
             smallest = std::min(smallest, room);
             continue;
@@ -116,6 +116,14 @@ struct Rake {
   }
 
   double kept(int p) const { return p < bodies ? keptObstacle : keptSelf; }
+  // Whether self pair p's floor grid proves it apart by more than keptSelf all along the motion. Asked only where
+  // the spheres cannot separate the pair: a grid measures its cells when first asked.
+  bool gridKeeps(int p) const {
+    if (p < bodies) return false;
+    const Implementation& impl = implementationOf(model);
+    const auto& group = impl.selfGroups[prefilter.selfGroupOf(p - bodies)];
+    return group.floorGrid && group.floorGrid->keepsAlong(qa, qb, keptSelf, groupAxes(impl, data, group));
+  }
   // A pair the spheres no longer measure on this motion: its floor keeps it apart, or it is deferred. The search
   // measures only the deferred bodies (their collisions are what it looks for).
   bool skipped(int p) const {
@@ -124,31 +132,19 @@ struct Rake {
   }
 
   // FCL's answer at sample `sample` (lane `lane` of the batch just evaluated) whether the state collides, from the
-  // pairs whose spheres leave a gap <= 0 there: the others are apart (the spheres contain the geometry, the gaps are
-  // less the float margin), so this is exactlyCollisionFree's answer. On MBM's UR5 two self pairs' spheres overlap in
-  // every state (base_link – upper_arm_link, forearm_link – wrist_2_link, never more than 1.8 cm apart), so the rake
-  // never certifies a motion there and spends its time in these checks: a full check (exactlyCollisionFree) passes
-  // all its ~400 pair groups through their capsules, 80 % of the rake's perf samples on bookshelf_thin 0004 at 1 cm.
+  // pairs whose spheres touch there (detail::unclearedPairsCollide), less the floored ones and, in the search, all but
+  // the deferred bodies.
   bool unclearedPairsCollide(int sample, int lane) {
     data.motionJoints = qa + work.samples[sample] * (qb - qa);
-    updateRobot(model, data, data.motionJoints);
-    const Implementation& impl = implementationOf(model);
-    for (int p = 0; p < pairs; ++p) {
-      if (work.floored[p] || (searching && skipped(p)) || work.gaps[p * kLanes + lane] > 0.0f) continue;
-      if (p >= bodies) {
-        if (groupCollides(model, data, impl.selfGroups[prefilter.selfGroupOf(p - bodies)])) return true;
-        continue;
-      }
-      for (const auto& group : impl.obstacleGroups)
-        if (group.firstBody == p && groupCollides(model, data, group)) return true;
-    }
-    return false;
+    work.skip.resize(pairs);
+    for (int p = 0; p < pairs; ++p) work.skip[p] = work.floored[p] || (searching && skipped(p));
+    return detail::unclearedPairsCollide(model, data, data.motionJoints, lane, work.skip.data());
   }
 
   bool covered(int i, int j) const {
     const double length = work.samples[j] - work.samples[i];
     for (int p = 0; p < pairs; ++p) {
-      if (work.deferred[p]) continue;  // a sample before its deferral holds a reach for it
+      if (work.deferred[p] || work.floored[p]) continue;  // a sample before holds a reach for it
       if (work.reach[i * pairs + p] + work.reach[j * pairs + p] < length) return false;
     }
     return true;

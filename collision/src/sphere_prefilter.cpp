@@ -326,6 +326,12 @@ void SpherePrefilter::gaps(SphereWorkspace& workspace) const {
   prefilter::gapsPortable(tables_, workspace.q.data(), workspace.enough.data(), workspace.gaps.data());
 }
 
+void collisionGaps(const SpherePrefilter& prefilter, SphereWorkspace& workspace) {
+  std::fill(workspace.enough.begin(), workspace.enough.begin() + prefilter.pairCount(),
+            static_cast<float>(prefilter.margin()));
+  prefilter.gaps(workspace);
+}
+
 bool sphereFree(const SpherePrefilter& prefilter, SphereWorkspace& workspace, const robot::JointRef& q) {
   if (q.size() != prefilter.dof()) return false;
   prefilter.loadLane(workspace, 0, q.data());

@@ -26,6 +26,7 @@ struct SphereWorkspace {
   std::vector<double> rates, samples, reach;
   std::vector<char> floored;   // per pair: its floor (PairGroup::floor) keeps the motion's clearance everywhere
   std::vector<char> deferred;  // per pair: one the spheres left to the certified check (PairsLeft)
+  std::vector<char> skip;      // per pair: not asked of FCL (unclearedPairsCollide)
   std::vector<std::pair<int, int>> intervals, next;
   std::vector<int> pending;
 };
@@ -91,5 +92,13 @@ SphereMotion sphereMotion(const CollisionModel& model, Workspace& data, const ro
 
 // isCollisionFree without the prefilter (collision_model.cpp).
 bool exactlyCollisionFree(const CollisionModel& model, Workspace& data, const robot::JointRef& q);
+// Whether q, in lane `lane` of the last SpherePrefilter::gaps(), collides: FCL asked for the pairs whose sphere gap
+// there is not positive (q placed by updateRobot when one is), but not those with skip[p] set (none when skip is null)
+// nor the self pairs whose floor grid proves them apart; the others are apart (the spheres contain the geometry, the
+// gaps are less the float margin), so with none skipped this is exactlyCollisionFree's answer (collision_model.cpp).
+bool unclearedPairsCollide(const CollisionModel& model, Workspace& data, const robot::JointRef& q, int lane,
+                           const char* skip = nullptr);
+// workspace.gaps of the loaded lanes, fine enough to tell for every pair whether it is apart (gap > 0).
+void collisionGaps(const SpherePrefilter& prefilter, SphereWorkspace& workspace);
 
 }  // namespace arcplan::collision::detail

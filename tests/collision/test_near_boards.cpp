@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <random>
 
 #include <fcl/fcl.h>
@@ -255,14 +256,15 @@ TEST(NearBoards, ADirectionBoundsTheHullsDistanceFromBelow) {
 }
 
 // Certified 0.35 rad motions from random states at 1 cm: base_link – upper_arm_link and forearm_link – wrist_2_link are
-// never 1.8 cm apart, so their spheres overlap in every state and the rake could certify no motion; it leaves them to
-// the exact check (SelfPairsLeft), which follows them alone, and the answers stay those taken without spheres — the
-// last valid state too, where the rake defers nothing.
-TEST(NearBoards, SelfPairsTheSpheresCannotSeparateAreLeftToTheExactCheck) {
+// never 1.8 cm apart, so their spheres overlap in every state. Their floor grids separate them where a cell's floor
+// keeps the clearance; elsewhere, and for other self pairs too close for their spheres, the rake leaves them to the
+// exact check (PairsLeft), which follows them alone. The
+// answers stay those taken without spheres — the last valid state too, where the rake defers nothing.
+TEST(NearBoards, SelfPairsTheSpheresCannotSeparateAreLeftToFloorsOrTheExactCheck) {
   ShelfWithAndWithoutSpheres shelf;
   std::mt19937_64 random(17);
   std::normal_distribution<double> gaussian;
-  int accepted = 0, motions = 0, left = 0, freeWithoutDeferring = 0;
+  int accepted = 0, motions = 0, certified = 0, left = 0;
   while (motions < 200) {
     const Eigen::VectorXd start = arcplan::testing::randomJointState(shelf.layered->robot(), random);
     if (!hasClearance(*shelf.plain, shelf.plainData, start, 0.01)) continue;
@@ -277,15 +279,18 @@ TEST(NearBoards, SelfPairsTheSpheresCannotSeparateAreLeftToTheExactCheck) {
               isMotionCollisionFree(*shelf.plain, shelf.plainData, start, end, &plainLast, shelf.options));
     EXPECT_EQ(layeredLast, plainLast) << motions;
     auto& workspace = detail::workspaceOf(shelf.layeredData);
-    left += detail::sphereMotion(*shelf.layered, workspace, start, end, 0.01, true) == detail::SphereMotion::PairsLeft;
-    freeWithoutDeferring +=
-        detail::sphereMotion(*shelf.layered, workspace, start, end, 0.01, false) == detail::SphereMotion::Free;
+    const detail::SphereMotion spheres = detail::sphereMotion(*shelf.layered, workspace, start, end, 0.01, true);
+    certified += expected && spheres == detail::SphereMotion::Free;
+    left += expected && spheres == detail::SphereMotion::PairsLeft;
     accepted += expected;
     ++motions;
   }
   EXPECT_GT(accepted, 50);
-  EXPECT_GT(left, accepted / 2) << "the rake certified the rest of most accepted motions";
-  EXPECT_LT(freeWithoutDeferring, left / 4) << "without deferring, the self pairs keep it from certifying them";
+  std::cerr << accepted << " accepted: " << certified << " certified by spheres and floors, " << left << " left\n";
+  EXPECT_GT(certified + left, accepted * 9 / 10) << "the rake settled the obstacles of most accepted motions";
+  // (Without the grids none: the two pairs' spheres overlap everywhere. The motions left mostly bring other self pairs
+  // close too, pairs three or more joints apart, which have no grid.)
+  EXPECT_GT(certified, accepted / 3) << "the floor grids separated the close self pairs on many accepted motions";
 }
 
 }  // namespace
