@@ -97,8 +97,9 @@ TEST(PairFloorGrid, PairsTwoJointsApartHaveGridsOnThoseJoints) {
   EXPECT_EQ(grids, 5);
 }
 
-// 300 random states per pair, angles anywhere in (−2π, 2π), half of them at cells' corners: each floor is below FCL's distance of its pair, and the two
-// pairs always within 1.8 cm get floors that keep a self pair's clearance at most states (the grid is of use).
+// 300 random states per pair, angles anywhere in (−2π, 2π), half of them at cells' corners: each floor is below FCL's
+// distance of its pair, and the two pairs always within 1.8 cm get floors that keep a self pair's clearance at most
+// states (the grid is of use).
 TEST(PairFloorGrid, FloorsAreBelowFclsDistance) {
   Ur5 ur5;
   std::mt19937_64 random(7);
