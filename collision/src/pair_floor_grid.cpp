@@ -25,6 +25,9 @@ int cellsFor(double reach, double cellLoss) {
 
 long floorIndex(double x) { return static_cast<long>(std::floor(x)); }
 
+// Angles whose cell index a long holds exactly (a query may pass any value; NaN or 1e300 get no floor).
+bool gridded(double angle) { return std::abs(angle) < 1e6; }
+
 int wrapped(long index, int cells) {
   const long r = index % cells;
   return static_cast<int>(r < 0 ? r + cells : r);
@@ -88,11 +91,14 @@ double PairFloorGrid::cellFloor(long a, long b, Eigen::Vector3d* axes) const {
 }
 
 double PairFloorGrid::at(const robot::JointRef& q, Eigen::Vector3d* axes) const {
+  if (!gridded(q[jointA_]) || !gridded(q[jointB_])) return -std::numeric_limits<double>::infinity();
   return cellFloor(floorIndex((q[jointA_] + M_PI) / stepA_), floorIndex((q[jointB_] + M_PI) / stepB_), axes);
 }
 
 bool PairFloorGrid::keepsAlong(const robot::JointRef& qa, const robot::JointRef& qb, double distance,
                                Eigen::Vector3d* axes) const {
+  for (const double angle : {qa[jointA_], qa[jointB_], qb[jointA_], qb[jointB_]})
+    if (!gridded(angle)) return false;
   // The cells a straight line crosses, in order (Amanatides & Woo's grid traversal), in cell units.
   const double u0 = (qa[jointA_] + M_PI) / stepA_, v0 = (qa[jointB_] + M_PI) / stepB_;
   const double du = (qb[jointA_] - qa[jointA_]) / stepA_, dv = (qb[jointB_] - qa[jointB_]) / stepB_;

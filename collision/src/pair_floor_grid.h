@@ -39,13 +39,14 @@ public:
   int cellCount() const { return cellsA_ * cellsB_; }
   double stepA() const { return stepA_; }  // cell width along each joint [rad]
   double stepB() const { return stepB_; }
-  // A lower bound of the pair's distance at q (dof joint values; only the two joints matter). At most kFloorCap:
+  // A lower bound of the pair's distance at q (dof joint values; only the two joints matter; −infinity for an angle
+  // that is not finite or beyond 1e6 rad). At most kFloorCap:
   // the grid tells whether the pair keeps a self pair's clearance, not how far apart it is. `axes`: the caller's
   // directions per part pair of the group (Workspace::pairAxes), kept from cell to cell: a part pair apart along its
   // last direction by more than the floor so far needs no GJK. The floors do not depend on them.
   double at(const robot::JointRef& q, Eigen::Vector3d* axes) const;
   // Whether the pair stays more than `distance` apart on the whole straight motion qa -> qb: every cell its two angles
-  // pass through has a floor above `distance`.
+  // pass through has a floor above `distance` (false for angles `at` gives no floor).
   bool keepsAlong(const robot::JointRef& qa, const robot::JointRef& qb, double distance, Eigen::Vector3d* axes) const;
   // The cells measured so far (tests).
   int measuredCells() const;

@@ -161,6 +161,19 @@ TEST(PairFloorGrid, MotionsAGridCertifiesKeepTheDistanceAtEveryState) {
   }
 }
 
+// An angle that is not finite, or too large for a cell index, gets no floor (the query measures the pair as before).
+TEST(PairFloorGrid, AnglesWithoutACellGetNoFloor) {
+  Ur5 ur5;
+  for (const auto& [group, exactGroup] : ur5.gridded()) {
+    for (const double angle : {double(NAN), double(INFINITY), 1e300, -1e7}) {
+      Eigen::VectorXd q = Eigen::VectorXd::Zero(ur5.layered->robot().dof());
+      q[group->floorGrid->jointB()] = angle;
+      EXPECT_EQ(group->floorGrid->at(q, ur5.axes.data()), -INFINITY) << angle;
+      EXPECT_FALSE(group->floorGrid->keepsAlong(Eigen::VectorXd::Zero(q.size()), q, 0.0, ur5.axes.data())) << angle;
+    }
+  }
+}
+
 // A second model of the robot (another scene) shares the grids, with the cells the first measured.
 TEST(PairFloorGrid, ModelsOfOneRobotShareTheirGrids) {
   Ur5 ur5;
