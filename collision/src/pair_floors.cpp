@@ -62,7 +62,9 @@ double groupFloor(const CollisionModel& model, const Implementation& impl, Works
     double nearest = kFloorCap;
     for (std::size_t p = 0; p < group.parts.size(); ++p) {
       const auto [i, j] = group.parts[p];
-      if (boundGap(impl, data, i, j, true) >= nearest) continue;
+      ensurePart(impl, data, i);
+      ensurePart(impl, data, j);
+      // (A pair whose capsules are `nearest` apart returns that bound, which cannot lower `nearest`.)
       nearest = std::min(nearest, partPairLowerBound(impl.robotParts[i], data.partPoses[i], impl.robotParts[j],
                                                      data.partPoses[j], model.options(), nearest, axes[p]));
     }
