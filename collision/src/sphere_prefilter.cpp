@@ -259,7 +259,13 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
     kernelPairs_.push_back(never ? -1 : static_cast<int>(selfGroupsOfPairs_.size()));
     if (never) continue;
     selfGroupsOfPairs_.push_back(static_cast<int>(k));
-    selfPairs_.insert(selfPairs_.end(), {group.firstBody, group.secondBody});
+    // The kernel tests each fine sphere of a pair's first body against the second's coarse sphere before any of the
+    // second's fine ones: the body with more fine spheres goes first, so that the small coarse sphere of the other
+    // (a wrist, the shoulder) dismisses most of them. Either order is conservative and, but for float rounding,
+    // decides the same: a sphere clear of a coarse sphere is clear of the fine ones inside it.
+    const bool swap = bodies_[group.secondBody].fineCount > bodies_[group.firstBody].fineCount;
+    selfPairs_.insert(selfPairs_.end(),
+                      {swap ? group.secondBody : group.firstBody, swap ? group.firstBody : group.secondBody});
   }
   if (links_.size() > static_cast<std::size_t>(prefilter::kMaxLinks) ||
       bodies_.size() > static_cast<std::size_t>(prefilter::kMaxBodies) ||

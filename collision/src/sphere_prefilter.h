@@ -21,9 +21,9 @@ struct SphereWorkspace {
   std::vector<float> q;       // dof × kLanes, joint-major
   std::vector<float> gaps;    // pairs × kLanes
   std::vector<float> enough;  // per pair
-  // Batched motion checks (sphere_motion_check.cpp): sample fractions, per sample and pair the
-  // fraction its clearance certifies each way, and the work list of intervals.
-  std::vector<double> rates, samples, reach;
+  // Batched motion checks (sphere_motion_check.cpp): per pair its motion bound (and the one covered() asks of it),
+  // sample fractions, per sample and pair its room (sphere gap less the distance kept), and the work list of intervals.
+  std::vector<double> rates, coveredRates, samples, rooms;
   std::vector<char> floored;   // per pair: its floor (PairGroup::floor) keeps the motion's clearance everywhere
   std::vector<char> deferred;  // per pair: one the spheres left to the certified check (PairsLeft)
   std::vector<char> skip;      // per pair: not asked of FCL (unclearedPairsCollide)
