@@ -11,6 +11,15 @@ namespace {
 
 constexpr double kGoalTolerance = 1e-6;  // rad per joint
 
+// A conversion's reason: what stopped it, and where.
+std::string stoppedAt(const std::string& what, double arcLength, double pathLength) {
+  std::ostringstream message;
+  message << what << " at TCP arc length " << arcLength << " m of " << pathLength << " m";
+  return message.str();
+}
+
+constexpr const char* kRejected = "the waypoint check rejected the waypoint";
+
 class Converter {
 public:
   Converter(const robot::UrInverseKinematics& ik, const TcpPath& path, const JointConversionOptions& options,
@@ -59,7 +68,7 @@ public:
     const robot::Vector6 accepted = arrival && goal_ ? *goal_ : *q;
     if (check_ && !check_(previous, accepted, arcLength)) {
       result_.refused = accepted;
-      return fail(ConversionStatus::Rejected, arcLength, "the waypoint check rejected the waypoint");
+      return fail(ConversionStatus::Rejected, arcLength, kRejected);
     }
     result_.joints.push_back(accepted);
     result_.arcLengths.push_back(arcLength);
@@ -94,10 +103,8 @@ public:
   }
 
   bool fail(ConversionStatus status, double arcLength, const std::string& what) {
-    std::ostringstream message;
-    message << what << " at TCP arc length " << arcLength << " m of " << path_.length() << " m";
     result_.status = status;
-    result_.reason = message.str();
+    result_.reason = stoppedAt(what, arcLength, path_.length());
     result_.failedAtArcLength = arcLength;
     return false;
   }
@@ -170,6 +177,30 @@ JointConversionResult convertToJoints(const robot::UrInverseKinematics& ik, cons
     const bool arrival = sample.arcLength >= end - kEpsilon;
     if (!converter.advance(sample.arcLength, sample.pose, arrival)) return result;
   }
+  return result;
+}
+
+JointConversionResult checkConverted(const JointConversionResult& converted, const TcpPath& path,
+                                     const WaypointCheck& check) {
+  JointConversionResult result;
+  result.joints.push_back(converted.joints.front());
+  result.arcLengths.push_back(converted.arcLengths.front());
+  for (std::size_t k = 1; k < converted.joints.size(); ++k) {
+    const double arcLength = converted.arcLengths[k];
+    if (check && !check(result.joints.back(), converted.joints[k], arcLength)) {
+      result.status = ConversionStatus::Rejected;
+      result.reason = stoppedAt(kRejected, arcLength, path.length());
+      result.failedAtArcLength = arcLength;
+      result.refused = converted.joints[k];
+      return result;
+    }
+    result.joints.push_back(converted.joints[k]);
+    result.arcLengths.push_back(arcLength);
+  }
+  result.status = converted.status;
+  result.reason = converted.reason;
+  result.failedAtArcLength = converted.failedAtArcLength;
+  result.refused = converted.refused;
   return result;
 }
 

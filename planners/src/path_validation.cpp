@@ -70,7 +70,7 @@ PathValidator::PathValidator(const collision::CollisionModel& model, const robot
                     std::move(waypointValid), std::move(stop)) {}
 
 Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefix,
-                         const std::optional<robot::Vector6>& goal) {
+                         const std::optional<robot::Vector6>& goal, const JointConversionResult* converted) {
   // One certifier per walk and clearance, started at the motion's first configuration: it reuses a
   // waypoint's measured clearance for the following motions, so it must never carry over from another
   // path, nor to a motion that must keep another clearance (entering or leaving an approach zone).
@@ -102,8 +102,10 @@ Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefi
     return state <= clearance || collision::PathCertifier(model_, data_, state).start(q);
   };
   const JointConversionResult continuation =
-      convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_, prefix.arcLengths.back(),
-                      std::numeric_limits<double>::infinity(), check);
+      converted != nullptr && !converted->joints.empty()
+          ? checkConverted(*converted, path, check)
+          : convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_, prefix.arcLengths.back(),
+                            std::numeric_limits<double>::infinity(), check);
   Walk result;
   result.waypoints = prefix;
   JointConversionResult& combined = result.waypoints;
@@ -119,27 +121,46 @@ Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefi
 }
 
 std::optional<Walk> PathValidator::screen(const TcpPath& path, const JointConversionResult& prefix,
-                                          const std::optional<robot::Vector6>& goal) {
+                                          const std::optional<robot::Vector6>& goal,
+                                          JointConversionResult* conversion) {
   if (!certify_) return std::nullopt;  // a waypoint check is as cheap as the screen
-  const JointConversionResult converted =
-      convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_, prefix.arcLengths.back(),
-                      std::numeric_limits<double>::infinity(), {});
-  const std::vector<robot::Vector6>& joints = converted.joints;  // joints[0]: the prefix's last, validated
-  const int last = static_cast<int>(joints.size()) - 1;
-  // Each tested waypoint first by withinMargin (one query where the path keeps its distance), then by refuses.
-  int refusedAt = 0;
+  // Each tested waypoint first by withinMargin (one query where the path keeps its distance), then by refuses. The
+  // path is converted only up to the waypoint refused: the IK of the rest would be for nothing.
   bool near = false, left = false;  // a tested waypoint came within the margin; a later one was out of it again
-  for (int k = kScreenStride; refusedAt == 0 && k < last + kScreenStride; k += kScreenStride) {
-    if (stop_ && stop_()) return std::nullopt;  // the walk reports the stop request
-    const int at = std::min(k, last);
-    const bool within = withinMargin(joints[at]);
+  bool stopped = false;
+  const auto tested = [&](const robot::Vector6& q) {  // true: q is refused (or the stop request came)
+    if (stop_ && stop_()) return stopped = true;      // the walk reports the stop request
+    const bool within = withinMargin(q);
     left = left || (near && !within);
     near = near || within;
-    if (within && refuses(joints[at])) refusedAt = at;
+    return within && refuses(q);
+  };
+  int waypoint = 0;
+  JointConversionResult converted = convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_,
+                                                    prefix.arcLengths.back(), std::numeric_limits<double>::infinity(),
+                                                    [&](const robot::Vector6&, const robot::Vector6& q, double) {
+                                                      return ++waypoint % kScreenStride != 0 || !tested(q);
+                                                    });
+  // joints[0]: the prefix's last, validated; the refused waypoint (if any) is converted.refused, one past the end.
+  const std::vector<robot::Vector6>& joints = converted.joints;
+  int refusedAt = 0;
+  if (converted.refused) {
+    refusedAt = static_cast<int>(joints.size());
+  } else {
+    const int last = static_cast<int>(joints.size()) - 1;  // tested last, where the stride stepped over it
+    if (last % kScreenStride != 0 && tested(joints[last])) refusedAt = last;
   }
+  if (stopped) return std::nullopt;
+  if (refusedAt == 0 && conversion != nullptr) *conversion = std::move(converted);  // the whole path's, unchecked
   // Where the path came within the margin and left it again before the refusal, the walk may stop there already:
   // it decides then.
   if (refusedAt == 0 || left) return std::nullopt;
+  const auto jointsAt = [&](int k) -> const robot::Vector6& {
+    return k < static_cast<int>(joints.size()) ? joints[k] : *converted.refused;
+  };
+  const auto arcLengthAt = [&](int k) {
+    return k < static_cast<int>(joints.size()) ? converted.arcLengths[k] : converted.failedAtArcLength;
+  };
   // A certified walk breaks off where a pair comes within its acceptance margin of the clearance (motion_check.h):
   // at the first of the waypoints just before the refused one that are all within the margin (the stride may have
   // stepped over them). The search decides by the place of the rejection which leg failed.
@@ -148,13 +169,13 @@ std::optional<Walk> PathValidator::screen(const TcpPath& path, const JointConver
   Walk refused;
   refused.waypoints = prefix;
   refused.waypoints.status = ConversionStatus::Rejected;
-  refused.waypoints.failedAtArcLength = converted.arcLengths[first];
-  refused.waypoints.refused = joints[first];
+  refused.waypoints.failedAtArcLength = arcLengthAt(first);
+  refused.waypoints.refused = jointsAt(first);
   std::ostringstream reason;
-  reason << "the waypoint at TCP arc length " << converted.arcLengths[first] << " m of " << path.length()
+  reason << "the waypoint at TCP arc length " << arcLengthAt(first) << " m of " << path.length()
          << " m is closer than a motion there must keep";
   refused.waypoints.reason = reason.str();
-  refused.rejected = RejectedMotion{joints[first - 1], joints[first]};
+  refused.rejected = RejectedMotion{joints[first - 1], jointsAt(first)};
   return refused;
 }
 

@@ -72,7 +72,10 @@ public:
   // Continues the validated `prefix` (at least the start configuration) along `path` to its end,
   // where `goal` (if given) must be met; stops at the first waypoint that fails. Returns prefix +
   // continuation, with the status and reason of the conversion and the motion it refused.
-  Walk walk(const TcpPath& path, const JointConversionResult& prefix, const std::optional<robot::Vector6>& goal);
+  // `converted`, when given and not empty, is the conversion screen() left for the same path, prefix and goal: the
+  // walk then checks its waypoints without solving the IK again (checkConverted; the same walk).
+  Walk walk(const TcpPath& path, const JointConversionResult& prefix, const std::optional<robot::Vector6>& goal,
+            const JointConversionResult* converted = nullptr);
   // A walk's cheap forerunner: the path converted to joints (IK only), then every kScreenStride-th waypoint tested
   // on its own by withinMargin and refuses() (and, after the first it refuses, the ones before it by withinMargin,
   // going back while they are within it). A waypoint it refuses fails every certified walk there or before, so the
@@ -81,8 +84,9 @@ public:
   // certified), the motion refused the one to that waypoint.
   // Nothing when no tested waypoint is refused, when a tested waypoint before the refused one came within the margin
   // and a later one left it (the walk may stop there already), or once `stop` returns true: the walk decides then.
+  // `conversion` (if given) receives the path's conversion (IK only), or is left empty where nothing is screened.
   std::optional<Walk> screen(const TcpPath& path, const JointConversionResult& prefix,
-                             const std::optional<robot::Vector6>& goal);
+                             const std::optional<robot::Vector6>& goal, JointConversionResult* conversion = nullptr);
   // True when a pair at q is closer than a motion ending at q must keep of it (collision::requiredDistance)
   // (EndpointClearance::motionClearanceAt: its approach zone's clearance, else the margin), less kScreenTolerance: so
   // certainly that no certified motion reaches q (collision::hasClearance, whose bounds settle pairs far apart; a

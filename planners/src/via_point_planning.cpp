@@ -235,8 +235,10 @@ private:
   // from every suspect adds one.
   Walk probeThenWalk(const BlendedPath& path) {
     if (std::optional<Walk> probed = failingProbe(query_, posture_, path, suspects_)) return std::move(*probed);
-    std::optional<Walk> screened = query_.validator.screen(path, query_.startOnly(), query_.goal);
-    Walk walked = screened ? std::move(*screened) : query_.validator.walk(path, query_.startOnly(), query_.goal);
+    JointConversionResult converted;
+    std::optional<Walk> screened = query_.validator.screen(path, query_.startOnly(), query_.goal, &converted);
+    Walk walked =
+        screened ? std::move(*screened) : query_.validator.walk(path, query_.startOnly(), query_.goal, &converted);
     if (!walked.rejected) return walked;
     const Eigen::Vector3d rejectedAt = path.position(walked.waypoints.failedAtArcLength);
     const bool known = std::any_of(suspects_.begin(), suspects_.end(), [&](const Suspect& suspect) {
@@ -353,8 +355,9 @@ private:
       if (orientationHeld_ && !viaPointClear(candidate.points()[i + 1])) return std::nullopt;
     }
     if (failingProbe(query_, posture_, candidate, suspects_)) return std::nullopt;
-    if (query_.validator.screen(candidate, query_.startOnly(), query_.goal)) return std::nullopt;
-    Walk walked = query_.validator.walk(candidate, query_.startOnly(), query_.goal);
+    JointConversionResult converted;
+    if (query_.validator.screen(candidate, query_.startOnly(), query_.goal, &converted)) return std::nullopt;
+    Walk walked = query_.validator.walk(candidate, query_.startOnly(), query_.goal, &converted);
     if (!walked.ok()) return std::nullopt;
     return walked;
   }

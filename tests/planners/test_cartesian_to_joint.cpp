@@ -3,6 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <tuple>
+#include <vector>
 
 #include "arcplan/planners/arc_path.h"
 #include "arcplan/planners/cartesian_to_joint.h"
@@ -13,6 +17,7 @@
 namespace {
 
 using arcplan::planners::ArcPath;
+using arcplan::planners::checkConverted;
 using arcplan::planners::ConversionStatus;
 using arcplan::planners::convertToJoints;
 using arcplan::planners::Detour;
@@ -144,6 +149,53 @@ TEST(CartesianToJoint, BranchChangeNamesTheBranchesAndTheirDifference) {
   const std::string all = arcplan::planners::describeBranchChange(0, 7);
   for (const char* part : {"the shoulder", "the wrist", "the elbow"})
     EXPECT_NE(all.find(part), std::string::npos) << all;
+}
+
+// checkConverted against the conversion run with the check (the second method): for checks that accept everything,
+// refuse the first waypoint, one in the middle or the arrival (the goal configuration), and for conversions that
+// fail on their own (out of reach, the goal in another representation), the same waypoints, status, reason, refused
+// waypoint and arc length, and the check asked the same (previous, waypoint, arc length) in the same order.
+TEST(CartesianToJoint, CheckingAConversionAgainEqualsConvertingWithTheCheck) {
+  const Eigen::Isometry3d a = thesisPose(0.4, -0.4, 0.25), b = thesisPose(0.5, 0.4, 0.46);
+  const Vector6 start = exactSolution(a, nearThesisStart()), goal = exactSolution(b, nearThesisGoal());
+  const ArcPath detour(a, b, {Detour{kObstacleDistance, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+  const ArcPath outOfReach(a, thesisPose(2.4, -0.4, 0.25));
+  Vector6 otherTurn = goal;
+  otherTurn[5] -= 2.0 * M_PI;  // the goal pose in another representation: fails on arrival
+  struct Case {
+    const ArcPath& path;
+    std::optional<Vector6> goal;
+  };
+  const ArcPath line(a, b);
+  const Case cases[] = {{detour, goal}, {outOfReach, std::nullopt}, {line, otherTurn}};
+  using Call = std::tuple<Vector6, Vector6, double>;
+  for (const Case& c : cases) {
+    const auto unchecked = convertToJoints(ik(), c.path, start, c.goal, {});
+    ASSERT_GE(unchecked.joints.size(), 3u);
+    const double arrival = unchecked.arcLengths.back();
+    for (const double refuseFrom : {std::numeric_limits<double>::infinity(), 0.0, arrival / 2.0, arrival}) {
+      std::vector<Call> direct, again;
+      const auto checkRecording = [&](std::vector<Call>& calls) {
+        return [&calls, refuseFrom](const Vector6& previous, const Vector6& q, double arcLength) {
+          calls.emplace_back(previous, q, arcLength);
+          return arcLength < refuseFrom;
+        };
+      };
+      const auto expected = convertToJoints(ik(), c.path, start, c.goal, {}, 0.0,
+                                            std::numeric_limits<double>::infinity(), checkRecording(direct));
+      const auto result = checkConverted(unchecked, c.path, checkRecording(again));
+      EXPECT_EQ(result.status, expected.status) << expected.reason;
+      EXPECT_EQ(result.reason, expected.reason);
+      EXPECT_EQ(result.joints, expected.joints);
+      EXPECT_EQ(result.arcLengths, expected.arcLengths);
+      EXPECT_EQ(result.refused, expected.refused);
+      EXPECT_EQ(std::isnan(result.failedAtArcLength), std::isnan(expected.failedAtArcLength));
+      if (!std::isnan(expected.failedAtArcLength)) {
+        EXPECT_EQ(result.failedAtArcLength, expected.failedAtArcLength);
+      }
+      EXPECT_EQ(again, direct);
+    }
+  }
 }
 
 }  // namespace

@@ -65,6 +65,29 @@ TEST(PathValidation, AFailedWalkDoesNotAffectTheNextOne) {
   EXPECT_GE(closestApproach(problem, after.joints), kMargin - 1e-6);
 }
 
+// A walk given the conversion its screen left (nothing refused) is the walk that converts the path itself; a screen
+// that refuses the path leaves no conversion (the walk is not needed, and the path was converted only up to there).
+TEST(PathValidation, AWalkGivenItsScreensConversionIsTheWalkThatConvertsThePath) {
+  auto problem = thesisProblem("thesis_obstacle");
+  const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
+  const Eigen::Isometry3d a = tcpPoses({problem.start})[0], b = tcpPoses({problem.goal})[0];
+  const double o = 0.375 * (b.translation() - a.translation()).norm();
+  const ArcPath detour(a, b, {{o, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+  PathValidator screened = certifyingValidator(problem, ik), alone = certifyingValidator(problem, ik);
+  arcplan::planners::JointConversionResult converted;
+  ASSERT_FALSE(screened.screen(detour, startOnly(problem.start), problem.goal, &converted));
+  ASSERT_GT(converted.joints.size(), 2u);
+  const auto given = screened.walk(detour, startOnly(problem.start), problem.goal, &converted).waypoints;
+  const auto own = alone.walk(detour, startOnly(problem.start), problem.goal).waypoints;
+  ASSERT_TRUE(own.ok()) << own.reason;
+  EXPECT_EQ(given.status, own.status) << given.reason;
+  EXPECT_EQ(given.joints, own.joints);
+  EXPECT_EQ(given.arcLengths, own.arcLengths);
+  arcplan::planners::JointConversionResult throughTheParticle;
+  EXPECT_TRUE(screened.screen(ArcPath(a, b), startOnly(problem.start), problem.goal, &throughTheParticle));
+  EXPECT_TRUE(throughTheParticle.joints.empty());
+}
+
 TEST(PathValidation, KeepsMarginTestsOneConfigurationAndExplainsARejection) {
   auto problem = thesisProblem("thesis_obstacle");
   const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());

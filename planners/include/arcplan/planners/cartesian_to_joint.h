@@ -65,4 +65,11 @@ JointConversionResult convertToJoints(const robot::UrInverseKinematics& ik, cons
                                       double toArcLength = std::numeric_limits<double>::infinity(),
                                       const WaypointCheck& check = {});
 
+// What convertToJoints(..., check) returns, from `converted`, the same conversion without a check: the IK is not
+// solved again, `check` is asked for each of its waypoints in turn. A conversion computes the same waypoints whatever
+// its check says up to the one the check refuses (IK, bisection and goal depend on the path alone), so the result is
+// that call's: its waypoints, status, reason and refused waypoint (a walk after its screen, planners/src).
+JointConversionResult checkConverted(const JointConversionResult& converted, const TcpPath& path,
+                                     const WaypointCheck& check);
+
 }  // namespace arcplan::planners
