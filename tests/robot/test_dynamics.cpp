@@ -221,7 +221,7 @@ TEST(Dynamics, SinglePendulumMatchesTheTextbookFormula) {
     <joint name="hinge" type="continuous"><parent link="base"/><child link="arm"/>
       <origin xyz="0 0 0.5" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/></joint>
   </robot>)";
-  const RobotModel model = arcplan::robot::parseRobotModel(urdf, "pendulum.urdf", {"base", "arm"});
+  const RobotModel model = arcplan::robot::parseRobotModel(urdf, "pendulum.urdf", {"base", "arm", std::nullopt});
   DynamicsData data(model);
   for (double q : {-1.0, 0.0, 0.4, 2.0}) {
     const double qd = 1.3, qdd = -0.8, m = 3.0, l = 0.7, g = 9.81;

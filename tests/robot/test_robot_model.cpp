@@ -144,7 +144,7 @@ TEST(RobotModel, MalformedXmlNamesFileAndLine) {
 
 TEST(RobotModel, UnknownTipListsLinks) {
   try {
-    loadRobotModel(arcplan::robot::ur10eUrdfPath(), {"base_link", "gripper"});
+    loadRobotModel(arcplan::robot::ur10eUrdfPath(), {"base_link", "gripper", std::nullopt});
     FAIL() << "no error";
   } catch (const Error& e) {
     const std::string message = e.what();

@@ -138,7 +138,8 @@ TEST(UrInverseKinematics, WorksWithAToolFrameBeyondTheFlange) {
   text.replace(text.rfind("</robot>"), 8,
                R"(<link name="gripper_tip"/><joint name="tool0-gripper_tip" type="fixed"><parent link="tool0"/>
 <child link="gripper_tip"/><origin xyz="0.01 0 0.2" rpy="0 0 0.3"/></joint></robot>)");
-  const auto model = arcplan::robot::loadRobotModel(writeVariant("gripper_tip", text), {"base_link", "gripper_tip"});
+  const auto model =
+      arcplan::robot::loadRobotModel(writeVariant("gripper_tip", text), {"base_link", "gripper_tip", std::nullopt});
   expectRoundTrips(model, 3, 100, 1e-8);
 }
 
@@ -201,7 +202,7 @@ TEST(UrInverseKinematics, ArmStandingAnywhereInTheBaseFrame) {
   text.replace(text.rfind("</robot>"), 8,
                R"(<link name="world"/><joint name="mount" type="fixed"><parent link="world"/>
 <child link="base_link"/><origin xyz="1 0.5 0.2" rpy="0.1 0 0.7"/></joint></robot>)");
-  const auto model = arcplan::robot::loadRobotModel(writeVariant("mounted", text), {"world", "tool0"});
+  const auto model = arcplan::robot::loadRobotModel(writeVariant("mounted", text), {"world", "tool0", std::nullopt});
   expectRoundTrips(model, 8, 100, 1e-9);
 }
 
