@@ -165,7 +165,8 @@ std::shared_ptr<const arcplan::robot::RobotModel> pendulum(const std::filesystem
     <axis xyz="1 0 0"/><limit lower="-3" upper="3" velocity="1" effort="1"/></joint>
   <joint name="rod_tip" type="fixed"><parent link="rod"/><child link="tip"/><origin xyz="0 0 0.2" rpy="0 0 0"/></joint>
 </robot>)";
-  return std::make_shared<const arcplan::robot::RobotModel>(arcplan::robot::loadRobotModel(urdf, {"base_link", "tip"}));
+  return std::make_shared<const arcplan::robot::RobotModel>(
+      arcplan::robot::loadRobotModel(urdf, {"base_link", "tip", std::nullopt}));
 }
 
 // Distance from a point to a solid cylinder given the point's axial coordinate t (from the centre)
