@@ -68,7 +68,9 @@ void waitUntil(const std::function<bool()>& condition, std::chrono::milliseconds
 void expectResumeEqualsReference(const std::filesystem::path& out, const std::string& expectedNote = "") {
   const auto resumed = runArcplan(benchArguments(reference().suite, out, {"-j", "2"}));
   ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
-  if (!expectedNote.empty()) EXPECT_NE(resumed.err.find(expectedNote), std::string::npos) << resumed.err;
+  if (!expectedNote.empty()) {
+    EXPECT_NE(resumed.err.find(expectedNote), std::string::npos) << resumed.err;
+  }
   EXPECT_EQ(deterministicRuns(out / "benchmark.db"), reference().runs);
   EXPECT_EQ(filesBelow(out / "logs", ".log").size(), 6u);
   EXPECT_TRUE(temporaryFilesBelow(out).empty()) << temporaryFilesBelow(out).front();

@@ -132,9 +132,15 @@ void expectSameEndpoint(const arcplan::collision::QueryEndpoint& read, const arc
   ASSERT_EQ(read.seed.has_value(), given.seed.has_value());
   ASSERT_EQ(read.joints.has_value(), given.joints.has_value());
   for (int i = 0; i < 6; ++i) {
-    if (given.pose) EXPECT_NEAR((*read.pose)[i], (*given.pose)[i], 1e-14);
-    if (given.seed) EXPECT_NEAR((*read.seed)[i], (*given.seed)[i], 1e-14);
-    if (given.joints) EXPECT_NEAR((*read.joints)[i], (*given.joints)[i], 1e-14);
+    if (given.pose) {
+      EXPECT_NEAR((*read.pose)[i], (*given.pose)[i], 1e-14);
+    }
+    if (given.seed) {
+      EXPECT_NEAR((*read.seed)[i], (*given.seed)[i], 1e-14);
+    }
+    if (given.joints) {
+      EXPECT_NEAR((*read.joints)[i], (*given.joints)[i], 1e-14);
+    }
   }
 }
 
@@ -146,8 +152,9 @@ void expectSameScene(const Scene& read, const Scene& given) {
   EXPECT_EQ(read.robot.srdf, given.robot.srdf);
   EXPECT_EQ(read.robot.chain.tipLink, given.robot.chain.tipLink);
   ASSERT_EQ(read.robot.chain.tcpOffset.has_value(), given.robot.chain.tcpOffset.has_value());
-  if (given.robot.chain.tcpOffset)
+  if (given.robot.chain.tcpOffset) {
     EXPECT_TRUE(read.robot.chain.tcpOffset->isApprox(*given.robot.chain.tcpOffset, 1e-14));
+  }
   ASSERT_EQ(read.obstacles.size(), given.obstacles.size());
   for (std::size_t i = 0; i < given.obstacles.size(); ++i) {
     SCOPED_TRACE(given.obstacles[i].name);

@@ -6,6 +6,9 @@
 // noise, and a clean log must get no proposal at all. Also: every library term's expression reproduces its values, and
 // `compare` sees residuals that follow another joint's signals.
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -25,6 +28,15 @@ const std::string kBase = "drive_gain, offset, coulomb, viscous";
 constexpr double kNoise = 0.05;  // A
 
 struct HiddenTerm {
+  // A constructor rather than an aggregate: the last two fields are optional in the table below.
+  HiddenTerm(std::string name, std::string expression, std::vector<int> joints, std::string coefficients,
+             std::string picture = "", std::string baseExtra = "")
+      : name(std::move(name)),
+        expression(std::move(expression)),
+        joints(std::move(joints)),
+        coefficients(std::move(coefficients)),
+        picture(std::move(picture)),
+        baseExtra(std::move(baseExtra)) {}
   std::string name;
   std::string expression;  // the truth, as a user expression (own joint bare, others name_j)
   std::vector<int> joints;
@@ -70,7 +82,9 @@ TEST_P(OutsideTheCatalogue, DiscoveryProposesTheTermAndItReachesTheNoise) {
   EXPECT_TRUE(top.discovered) << diagnosis.summary;
   ASSERT_EQ(top.entry.expressions.size(), 1u) << diagnosis.summary;
   EXPECT_EQ(top.entry.expressions.front(), hidden.expression) << diagnosis.summary;
-  if (!hidden.picture.empty()) EXPECT_NE(top.explanation.find(hidden.picture), std::string::npos) << top.explanation;
+  if (!hidden.picture.empty()) {
+    EXPECT_NE(top.explanation.find(hidden.picture), std::string::npos) << top.explanation;
+  }
   // At least 0.8x of what the true term itself removes from the held-out residual (fitted alone on
   // the training log, scored on the validation log).
   const FitStep truthStep = addEffectsAndFit(base, {jointCurrentModel(truthEntry + "}").effects[0]}, data, &validation);

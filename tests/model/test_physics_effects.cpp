@@ -100,7 +100,9 @@ TEST(KeptModel, WhatChangedIsThePayloadInKilograms) {
     // Joints 0–3 reach the noise. The wrists' drive gains come from the unloaded log, where their
     // own load torque is tiny (wrist 3 carries 0.0003 kg·m² of link), so the kept gains are too
     // uncertain to put the payload's torque there in amps exactly.
-    if (j <= 3) EXPECT_LE(step.afterValidation->channels[j].rmse, 1.3 * kNoise) << j;
+    if (j <= 3) {
+      EXPECT_LE(step.afterValidation->channels[j].rmse, 1.3 * kNoise) << j;
+    }
   }
   const auto& gains = saved.effects[0];
   for (int j = 0; j < 6; ++j) {
