@@ -38,14 +38,18 @@ arcplan::planners::JointConversionResult startOnly(const arcplan::robot::Vector6
   return prefix;
 }
 
+// The thesis' detour with h = 0.5 r around the particle from a to b (valid: thesis regression).
+ArcPath thesisDetour(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  const double o = 0.375 * (b.translation() - a.translation()).norm();
+  return ArcPath(a, b, {{o, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+}
+
 TEST(PathValidation, AFailedWalkDoesNotAffectTheNextOne) {
   auto problem = thesisProblem("thesis_obstacle");
   const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
   const Eigen::Isometry3d a = tcpPoses({problem.start})[0], b = tcpPoses({problem.goal})[0];
-  // The thesis' detour with h = 0.5 r around the particle (valid: thesis regression), and the
-  // straight line through the particle (invalid).
-  const double o = 0.375 * (b.translation() - a.translation()).norm();
-  const ArcPath detour(a, b, {{o, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+  // The detour, and the straight line through the particle (invalid).
+  const ArcPath detour = thesisDetour(a, b);
   const ArcPath line(a, b);
 
   PathValidator fresh = certifyingValidator(problem, ik);
@@ -71,8 +75,7 @@ TEST(PathValidation, AWalkGivenItsScreensConversionIsTheWalkThatConvertsThePath)
   auto problem = thesisProblem("thesis_obstacle");
   const arcplan::robot::UrInverseKinematics ik(arcplan::robot::ur10e());
   const Eigen::Isometry3d a = tcpPoses({problem.start})[0], b = tcpPoses({problem.goal})[0];
-  const double o = 0.375 * (b.translation() - a.translation()).norm();
-  const ArcPath detour(a, b, {{o, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+  const ArcPath detour = thesisDetour(a, b);
   PathValidator screened = certifyingValidator(problem, ik), alone = certifyingValidator(problem, ik);
   arcplan::planners::JointConversionResult converted;
   ASSERT_FALSE(screened.screen(detour, startOnly(problem.start), problem.goal, &converted));
