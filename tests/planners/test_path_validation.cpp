@@ -152,8 +152,7 @@ TEST(PathValidation, TheScreenRefusesAPathWhereItsWalkStopsWithoutCertifyingIt) 
 
   // A path that keeps the margin (the thesis detour, valid by the thesis regression) passes the screen: the walk
   // decides.
-  const double o = 0.375 * (b.translation() - a.translation()).norm();
-  const ArcPath detour(a, b, {{o, {0.1, 0.2, 0.1, 0.2}, 0.0}});
+  const ArcPath detour = thesisDetour(a, b);
   EXPECT_FALSE(validator.screen(detour, startOnly(problem.start), problem.goal));
   EXPECT_TRUE(validator.walk(detour, startOnly(problem.start), problem.goal).ok());
 }
