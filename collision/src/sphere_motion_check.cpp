@@ -161,7 +161,7 @@ struct Rake {
   }
 
   // Whether every pair's rooms at samples i and j cover the interval between them (a settled pair's rate is
-  // -infinity: any room does). Branch-free over the pairs, so that it vectorises.
+  // -infinity: any room does), without a branch per pair.
   bool covered(int i, int j) const {
     const double length = work.samples[j] - work.samples[i];
     const double* roomI = &work.rooms[static_cast<std::size_t>(i) * pairs];
