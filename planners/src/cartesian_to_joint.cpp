@@ -182,6 +182,9 @@ JointConversionResult convertToJoints(const robot::UrInverseKinematics& ik, cons
 
 JointConversionResult checkConverted(const JointConversionResult& converted, const TcpPath& path,
                                      const WaypointCheck& check) {
+  if (converted.joints.empty() || converted.joints.size() != converted.arcLengths.size()) {
+    throw Error("joint conversion: a conversion to check again needs its seed and one arc length per waypoint");
+  }
   JointConversionResult result;
   result.joints.push_back(converted.joints.front());
   result.arcLengths.push_back(converted.arcLengths.front());

@@ -76,15 +76,15 @@ public:
   // walk then checks its waypoints without solving the IK again (checkConverted; the same walk).
   Walk walk(const TcpPath& path, const JointConversionResult& prefix, const std::optional<robot::Vector6>& goal,
             const JointConversionResult* converted = nullptr);
-  // A walk's cheap forerunner: the path converted to joints (IK only), then every kScreenStride-th waypoint tested
-  // on its own by withinMargin and refuses() (and, after the first it refuses, the ones before it by withinMargin,
-  // going back while they are within it). A waypoint it refuses fails every certified walk there or before, so the
-  // walk need not be paid for: returned as a walk rejected there — or at the first of the waypoints just before it
-  // that are all withinMargin, where the walk would stop — its waypoints only `prefix` (nothing after it was
-  // certified), the motion refused the one to that waypoint.
-  // Nothing when no tested waypoint is refused, when a tested waypoint before the refused one came within the margin
-  // and a later one left it (the walk may stop there already), or once `stop` returns true: the walk decides then.
-  // `conversion` (if given) receives the path's conversion (IK only), or is left empty where nothing is screened.
+  // A walk's cheap forerunner: the path converted to joints (IK only, up to the waypoint refused), every
+  // kScreenStride-th waypoint (and the last) tested on its own by withinMargin and refuses() (and, after the first it
+  // refuses, the ones before it by withinMargin, going back while they are within it). A waypoint it refuses fails
+  // every certified walk there or before, so the walk need not be paid for: returned as a walk rejected there — or at
+  // the first of the waypoints just before it that are all withinMargin, where the walk would stop — its waypoints only
+  // `prefix` (nothing after it was certified), the motion refused the one to that waypoint. Nothing when no tested
+  // waypoint is refused, when a tested waypoint before the refused one came within the margin and a later one left it
+  // (the walk may stop there already), or once `stop` returns true: the walk decides then. `conversion` (if given)
+  // receives the path's conversion (IK only), or is left empty where nothing is screened.
   std::optional<Walk> screen(const TcpPath& path, const JointConversionResult& prefix,
                              const std::optional<robot::Vector6>& goal, JointConversionResult* conversion = nullptr);
   // True when a pair at q is closer than a motion ending at q must keep of it (collision::requiredDistance)

@@ -155,14 +155,12 @@ public:
       if (!viasClear(vias)) continue;
       ++walks_;
       if (std::optional<ArcOutcome> found = walkRoute(*route, vias)) return std::move(*found);
-      if (armBlocked_ && !latticeTried_ && walks_ >= kWalksBeforeLattice) {
-        latticeTried_ = true;
-        routesWalked_ = static_cast<int>(search_.routesTried());
+      if (armBlocked_ && walks_ >= kWalksBeforeLattice) {
         if (std::optional<ArcOutcome> found = latticeRoute()) return std::move(*found);
       }
     }
     routesWalked_ = static_cast<int>(search_.routesTried());
-    if (armBlocked_ && !latticeTried_ && !query_.ptc()) {
+    if (armBlocked_ && !query_.ptc()) {
       if (std::optional<ArcOutcome> found = latticeRoute()) return std::move(*found);
     }
     std::ostringstream message;
@@ -174,8 +172,10 @@ public:
 
 private:
   // The last resort of a search the arm kept failing: a way from start to goal through the arm's clear
-  // postures (arm_contact.h, latticeDetour), walked as any route.
+  // postures (arm_contact.h, latticeDetour), walked as any route. Asked once per query: nothing after that.
   std::optional<ArcOutcome> latticeRoute() {
+    if (latticeTried_) return std::nullopt;
+    latticeTried_ = true;
     const Eigen::Vector3d a = query_.a.translation(), b = query_.b.translation();
     const Eigen::Quaterniond from(query_.a.linear()), to(query_.b.linear());
     const PostureClear clear = [&](const Eigen::Vector3d& position) {

@@ -8,6 +8,7 @@
 #include <tuple>
 #include <vector>
 
+#include "arcplan/common/error.h"
 #include "arcplan/planners/arc_path.h"
 #include "arcplan/planners/cartesian_to_joint.h"
 #include "arcplan/robot/kinematics.h"
@@ -196,6 +197,16 @@ TEST(CartesianToJoint, CheckingAConversionAgainEqualsConvertingWithTheCheck) {
       EXPECT_EQ(again, direct);
     }
   }
+}
+
+TEST(CartesianToJoint, CheckingAConversionWithoutItsSeedIsAClearError) {
+  const Eigen::Isometry3d a = thesisPose(0.4, -0.4, 0.25), b = thesisPose(0.5, 0.4, 0.46);
+  arcplan::planners::JointConversionResult broken;
+  EXPECT_THROW(checkConverted(broken, ArcPath(a, b), {}), arcplan::Error);
+  broken.joints.push_back(exactSolution(a, nearThesisStart()));
+  EXPECT_THROW(checkConverted(broken, ArcPath(a, b), {}), arcplan::Error);  // no arc length for it
+  broken.arcLengths.push_back(0.0);
+  EXPECT_EQ(checkConverted(broken, ArcPath(a, b), {}).joints.size(), 1u);
 }
 
 }  // namespace

@@ -68,7 +68,8 @@ JointConversionResult convertToJoints(const robot::UrInverseKinematics& ik, cons
 // What convertToJoints(..., check) returns, from `converted`, the same conversion without a check: the IK is not
 // solved again, `check` is asked for each of its waypoints in turn. A conversion computes the same waypoints whatever
 // its check says up to the one the check refuses (IK, bisection and goal depend on the path alone), so the result is
-// that call's: its waypoints, status, reason and refused waypoint (a walk after its screen, planners/src).
+// that call's: its waypoints, status, reason and refused waypoint (a walk after its screen, planners/src). Throws
+// arcplan::Error for a result without its seed or with arc lengths that do not match its waypoints.
 JointConversionResult checkConverted(const JointConversionResult& converted, const TcpPath& path,
                                      const WaypointCheck& check);
 
