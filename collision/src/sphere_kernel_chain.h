@@ -99,13 +99,20 @@ void generalRotation(const LinkRow& row, const V* parent, const V* s, const V* c
 }
 
 // The chain's poses, parents first. Zero offsets cost no operation either (exact zeros left out of
-// a sum change none of its bits).
+// a sum change none of its bits). The sines and cosines come first, all joints together: independent
+// of each other, they overlap in the pipeline, where computed link by link each waited on the chain's
+// products (free-space batches 383 -> 358 ns).
 template <class V>
 void forwardKinematics(const Tables& tables, const float* q, Pose<V>* poses) {
+  V sines[kMaxJoints], cosines[kMaxJoints];
+  for (int j = 0; j < tables.dof; ++j) sinCos(load<V>(q + j * kLanes), sines[j], cosines[j]);
   for (int l = 0; l < tables.linkCount; ++l) {
     const LinkRow& row = tables.links[l];
     V s = broadcast<V>(0.0f), c = broadcast<V>(1.0f);
-    if (row.joint >= 0) sinCos(load<V>(q + row.joint * kLanes), s, c);
+    if (row.joint >= 0) {
+      s = sines[row.joint];
+      c = cosines[row.joint];
+    }
     Pose<V>& pose = poses[l];
     if (row.parent < 0) {
       generalRotation<V>(row, nullptr, &s, &c, pose.r);

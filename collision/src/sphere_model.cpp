@@ -24,7 +24,10 @@ constexpr std::size_t kMaxScannedVertices = 600;
 // Radii are grown by this much so that rounding in the construction never leaves a vertex a hair outside.
 constexpr double kRadiusPadding = 1e-7;
 // Bumped whenever the construction changes, so that cached models of an older one are not reused.
-constexpr double kGeneratorVersion = 1.0;
+constexpr double kGeneratorVersion = 2.0;
+// Fine spheres per group at most. On the thesis UR10e (12 fine spheres on each arm link) a batch of 8
+// free-space states took 390-399 ns with groups of 4, 407 with 3, 420 with 6 (464 without groups).
+constexpr int kFinePerGroup = 4;
 
 // Balls along `axis` through `origin` covering points with axial coordinates in [t0, t1] whose
 // distance from the axis is at most rho(k) in slab k (slabCount slabs of equal length).
@@ -135,6 +138,32 @@ Sphere enclosing(const std::vector<Sphere>& balls) {
   return result;
 }
 
+// Orders the body's fine spheres along the principal axis of their centres and cuts them into
+// groups of at most kFinePerGroup neighbours, as even as possible, each with its enclosing ball.
+void groupFineSpheres(BodySpheres& body) {
+  const int n = static_cast<int>(body.fine.size());
+  const int groupCount = (n + kFinePerGroup - 1) / kFinePerGroup;
+  if (groupCount <= 1) {
+    body.groups = {{body.coarse, 0, n}};
+    return;
+  }
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& s : body.fine) centroid += s.centre;
+  centroid /= n;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& s : body.fine) covariance += (s.centre - centroid) * (s.centre - centroid).transpose();
+  const Eigen::Vector3d axis = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(2);
+  std::stable_sort(body.fine.begin(), body.fine.end(),
+                   [&](const Sphere& a, const Sphere& b) { return a.centre.dot(axis) < b.centre.dot(axis); });
+  body.groups.clear();
+  for (int g = 0, begin = 0; g < groupCount; ++g) {
+    const int end = n * (g + 1) / groupCount;
+    body.groups.push_back(
+        {enclosing(std::vector<Sphere>(body.fine.begin() + begin, body.fine.begin() + end)), begin, end - begin});
+    begin = end;
+  }
+}
+
 // Everything the spheres are made from, as numbers: the cache key.
 std::vector<double> geometryKey(const ModelImplementation& impl) {
   std::vector<double> key{kGeneratorVersion, static_cast<double>(impl.linkCapsules.size())};
@@ -168,7 +197,9 @@ SphereModel generate(const ModelImplementation& impl) {
     fine.insert(fine.end(), balls.begin(), balls.end());
   }
   for (auto& body : model) {
-    if (!body.fine.empty()) body.coarse = enclosing(body.fine);
+    if (body.fine.empty()) continue;
+    body.coarse = enclosing(body.fine);
+    groupFineSpheres(body);
   }
   return model;
 }
@@ -204,11 +235,25 @@ void checkSphereModel(const ModelImplementation& impl, const SphereModel& sphere
       }
     }
   }
+  const auto within = [](const Sphere& s, const Sphere& ball) {
+    return (s.centre - ball.centre).norm() + s.radius <= ball.radius;
+  };
   for (std::size_t b = 0; b < spheres.size(); ++b) {
-    for (const auto& s : spheres[b].fine) {
-      if ((s.centre - spheres[b].coarse.centre).norm() + s.radius > spheres[b].coarse.radius) {
-        throw Error("sphere model: a sphere of link " + linkNames[b] + " sticks out of its bounding sphere");
+    const BodySpheres& body = spheres[b];
+    int next = 0;
+    for (const auto& group : body.groups) {
+      if (group.begin != next || group.count <= 0) {
+        throw Error("sphere model: the sphere groups of link " + linkNames[b] + " do not cover its spheres in order");
       }
+      for (int k = group.begin; k < group.begin + group.count; ++k) {
+        if (!within(body.fine[k], group.bound) || !within(body.fine[k], body.coarse)) {
+          throw Error("sphere model: a sphere of link " + linkNames[b] + " sticks out of its bounding sphere");
+        }
+      }
+      next += group.count;
+    }
+    if (next != static_cast<int>(body.fine.size())) {
+      throw Error("sphere model: the sphere groups of link " + linkNames[b] + " do not cover its spheres in order");
     }
   }
 }

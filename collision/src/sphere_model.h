@@ -11,8 +11,9 @@
 //     sqrt((slab length / 2)² + rho²) contains the part's points in the slab;
 //   - URDF spheres are themselves, cylinders are slabs with rho = their radius, other parts slabs of
 //     their bounding capsule plus balls at its ends.
-// After generation every vertex is checked to lie inside a fine sphere of its link and every fine
-// sphere inside the coarse one (a failure throws arcplan::Error: it would be a defect).
+// The fine spheres of a link are then grouped (SphereGroup), each group inside its own ball. After
+// generation every vertex is checked to lie inside a fine sphere of its link and every fine sphere
+// inside its group's ball and the coarse one (a failure throws arcplan::Error: it would be a defect).
 //
 // Generation costs a few milliseconds per robot; the result is cached in memory for the process,
 // keyed by a hash of the geometry it was made from (sphere_model.cpp says why not on disk).
@@ -31,10 +32,21 @@ struct Sphere {
   double radius = 0.0;
 };
 
-// In the link frame of the body (ModelImplementation::linkCapsuleLink).
+// Consecutive fine spheres [begin, begin + count) of a body and a ball containing them.
+struct SphereGroup {
+  Sphere bound;
+  int begin = 0, count = 0;
+};
+
+// In the link frame of the body (ModelImplementation::linkCapsuleLink). The fine spheres are ordered
+// group by group; `groups` cover them all, in order. A body with a handful of fine spheres has one
+// group (its bound is then the coarse sphere); a long one (an arm's dozen) has a group per few
+// neighbours along it, so that the kernels test a few group balls, not every fine sphere, where
+// the link is clear of something but its coarse sphere is not.
 struct BodySpheres {
   Sphere coarse;
   std::vector<Sphere> fine;
+  std::vector<SphereGroup> groups;
 };
 
 // One entry per body (CollisionModel::linkNames() order).
@@ -47,7 +59,8 @@ std::shared_ptr<const SphereModel> robotSphereModel(const ModelImplementation& i
 std::vector<Sphere> partSpheres(const Part& part);
 
 // Throws arcplan::Error naming the link when a vertex of one of its parts lies outside every fine
-// sphere, or a fine sphere sticks out of the coarse one.
+// sphere, a fine sphere sticks out of its group's ball or the coarse one, or the groups do not
+// cover the fine spheres in order.
 void checkSphereModel(const ModelImplementation& impl, const SphereModel& spheres,
                       const std::vector<std::string>& linkNames);
 

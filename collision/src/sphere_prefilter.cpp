@@ -215,8 +215,19 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
     bodyRow.coarse[3] = roundedUp(body.coarse.radius);
     bodyRow.fineBegin = static_cast<int>(fineX_.size());
     bodyRow.fineCount = static_cast<int>(body.fine.size());
+    bodyRow.groupBegin = static_cast<int>(groups_.size());
+    bodyRow.groupCount = static_cast<int>(body.groups.size());
     std::vector<Sphere> all = body.fine;
     all.push_back(body.coarse);
+    for (const auto& group : body.groups) {
+      prefilter::GroupRow groupRow{};
+      for (int i = 0; i < 3; ++i) groupRow.ball[i] = static_cast<float>(group.bound.centre[i]);
+      groupRow.ball[3] = roundedUp(group.bound.radius);
+      groupRow.fineBegin = bodyRow.fineBegin + group.begin;
+      groupRow.fineCount = group.count;
+      groups_.push_back(groupRow);
+      all.push_back(group.bound);
+    }
     for (const auto& s : all) {
       const double c = s.centre.norm();
       centreError = std::max(centreError, eT[row] + eR[row] * c + 8.0 * kUnitRoundoff * (reach[row] + c));
@@ -267,9 +278,10 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
     selfPairs_.insert(selfPairs_.end(),
                       {swap ? group.secondBody : group.firstBody, swap ? group.firstBody : group.secondBody});
   }
-  if (links_.size() > static_cast<std::size_t>(prefilter::kMaxLinks) ||
+  if (links_.size() > static_cast<std::size_t>(prefilter::kMaxLinks) || robot.dof() > prefilter::kMaxJoints ||
       bodies_.size() > static_cast<std::size_t>(prefilter::kMaxBodies) ||
-      fineX_.size() > static_cast<std::size_t>(prefilter::kMaxFineSpheres)) {
+      fineX_.size() > static_cast<std::size_t>(prefilter::kMaxFineSpheres) ||
+      groups_.size() > static_cast<std::size_t>(prefilter::kMaxGroups)) {
     usable_ = false;
   }
 
@@ -288,6 +300,7 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
   tables_.fineY = fineY_.data();
   tables_.fineZ = fineZ_.data();
   tables_.fineR = fineR_.data();
+  tables_.groups = groups_.data();
   tables_.obstacles = obstacles_.data();
   tables_.obstacleIndex = obstacleIndex_.data();
   tables_.selfPairs = selfPairs_.data();
@@ -301,16 +314,6 @@ void SpherePrefilter::prepare(SphereWorkspace& workspace) const {
   workspace.q.assign(static_cast<std::size_t>(tables_.dof) * kLanes, 0.0f);
   workspace.gaps.assign(static_cast<std::size_t>(pairCount()) * kLanes, 0.0f);
   workspace.enough.assign(static_cast<std::size_t>(pairCount()), 0.0f);
-}
-
-void SpherePrefilter::loadLane(SphereWorkspace& workspace, int lane, const double* joints) const {
-  for (int j = 0; j < tables_.dof; ++j) {
-    // The kernels' sine and cosine take |angle| <= 2 pi (every UR joint range): larger angles are
-    // reduced in double first.
-    double angle = joints[j];
-    if (!(std::abs(angle) <= 2.0 * M_PI)) angle -= 2.0 * M_PI * std::nearbyint(angle / (2.0 * M_PI));
-    workspace.q[static_cast<std::size_t>(j * kLanes + lane)] = static_cast<float>(angle);
-  }
 }
 
 std::uint32_t SpherePrefilter::freeLanes(SphereWorkspace& workspace, int lanes) const {

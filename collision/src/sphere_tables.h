@@ -14,8 +14,10 @@ constexpr int kLanes = 8;
 // Fixed bounds that keep the kernels' scratch space on the stack; SpherePrefilter switches itself
 // off (every query goes to FCL) for a robot beyond them.
 constexpr int kMaxLinks = 32;
+constexpr int kMaxJoints = 32;
 constexpr int kMaxBodies = 64;
 constexpr int kMaxFineSpheres = 384;
+constexpr int kMaxGroups = 192;
 
 // One link of the chain: rotation in the parent frame = c0 + cos q·c1 + sin q·c2 (row-major 3×3;
 // c1 = c2 = 0 for a fixed joint), translation t in the parent frame. Parents come first.
@@ -36,13 +38,22 @@ struct LinkRow {
   float t[3];
 };
 
-// A link with collision geometry: its coarse sphere (x, y, z, r in the link frame) and its fine
-// spheres (rows fineBegin .. fineBegin + fineCount of the fine arrays), the obstacles it is checked
-// against (obstacleIndex[obstacleBegin .. + obstacleCount]).
+// A group of a body's fine spheres (sphere_model.h SphereGroup): its ball (x, y, z, r in the link
+// frame) and its fine spheres, rows fineBegin .. fineBegin + fineCount of the fine arrays.
+struct GroupRow {
+  float ball[4];
+  int fineBegin, fineCount;
+};
+
+// A link with collision geometry: its coarse sphere (x, y, z, r in the link frame), its fine
+// spheres (rows fineBegin .. fineBegin + fineCount of the fine arrays) in groups (rows groupBegin ..
+// + groupCount of the group table; a body of one group has no ball of its own but the coarse one), the
+// obstacles it is checked against (obstacleIndex[obstacleBegin .. + obstacleCount]).
 struct BodyRow {
   int link;
   float coarse[4];
   int fineBegin, fineCount;
+  int groupBegin, groupCount;
   int obstacleBegin, obstacleCount;
 };
 
@@ -63,6 +74,7 @@ struct Tables {
   const LinkRow* links = nullptr;
   const BodyRow* bodies = nullptr;
   const float *fineX = nullptr, *fineY = nullptr, *fineZ = nullptr, *fineR = nullptr;
+  const GroupRow* groups = nullptr;
   const ObstacleRow* obstacles = nullptr;
   const int* obstacleIndex = nullptr;
   const int* selfPairs = nullptr;  // (body a, body b) pairs, 2 per pair
@@ -76,7 +88,9 @@ std::uint32_t freeLanesPortable(const Tables& tables, const float* q, int lanes)
 std::uint32_t freeLanesAvx2(const Tables& tables, const float* q, int lanes);
 // Lower bounds of the pairs' distances, already reduced by the margin: for each body its smallest
 // distance to its obstacles, then each self pair, as gaps[pair * kLanes + lane]. A pair whose coarse
-// bound reaches enough[pair] in every lane keeps that bound; otherwise its fine spheres are measured.
+// bound reaches enough[pair] in every lane keeps that bound; otherwise its groups are measured, and a
+// group (of a self pair: a pair of groups) whose balls reach enough[pair] in every lane keeps their
+// bound, the others their fine spheres'. A gap below enough[pair] is therefore the fine spheres' gap.
 void gapsPortable(const Tables& tables, const float* q, const float* enough, float* gaps);
 void gapsAvx2(const Tables& tables, const float* q, const float* enough, float* gaps);
 

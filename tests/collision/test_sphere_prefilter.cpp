@@ -101,10 +101,25 @@ TEST(SphereModel, ContainsRandomPointsOfEveryPartsHull) {
                                       [&](const detail::Sphere& s) { return (inLink - s.centre).norm() <= s.radius; });
       ASSERT_TRUE(inside) << "link " << model->linkNames()[part.body] << " point " << inLink.transpose();
       ASSERT_LE((inLink - body.coarse.centre).norm(), body.coarse.radius);
+      const bool inGroup = std::any_of(body.groups.begin(), body.groups.end(), [&](const detail::SphereGroup& g) {
+        return (inLink - g.bound.centre).norm() <= g.bound.radius;
+      });
+      ASSERT_TRUE(inGroup) << "link " << model->linkNames()[part.body] << " point " << inLink.transpose();
       ++checked;
     }
   }
   EXPECT_GT(checked, 10000);
+  // The arm links are long enough to be cut into several groups, each a few neighbouring spheres.
+  for (const auto& body : spheres) {
+    int covered = 0;
+    for (const auto& group : body.groups) {
+      EXPECT_EQ(group.begin, covered);
+      EXPECT_LE(group.count, 4);
+      covered += group.count;
+    }
+    EXPECT_EQ(covered, static_cast<int>(body.fine.size()));
+  }
+  EXPECT_GE(std::count_if(spheres.begin(), spheres.end(), [](const auto& body) { return body.groups.size() >= 3; }), 2);
   // Within the kernels' fixed limit.
   std::size_t total = 0;
   for (const auto& body : spheres) total += body.fine.size();
@@ -161,6 +176,73 @@ TEST(SpherePrefilter, FloatGapsAgreeWithDoubleWithinTheMargin) {
   EXPECT_LT(largestError, prefilter.margin() / 2.0);
   EXPECT_GT(largestError, 0.0);         // float really differs from double: the comparison measured something
   EXPECT_LT(prefilter.margin(), 1e-3);  // and the margin stays small enough to clear most free states
+}
+
+// With a finite `enough` the kernels may stop at a coarse sphere or a group's ball: every gap must stay
+// a lower bound of the fine spheres' distance (computed here in double, for obstacles and self pairs),
+// and a pair whose gap falls below `enough` must have been measured with its fine spheres.
+TEST(SpherePrefilter, GapsBelowTheirThresholdAreTheFineSpheresGaps) {
+  const Scene scene = sceneFile("thesis_obstacle.yaml");
+  const auto model = modelOf(scene, true);
+  const auto& prefilter = prefilterOf(*model);
+  const auto& impl = detail::implementationOf(*model);
+  const auto& spheres = prefilter.spheres();
+  const int bodies = static_cast<int>(spheres.size());
+  detail::SphereWorkspace work;
+  prefilter.prepare(work);
+  arcplan::robot::KinematicsData kinematics(model->robot());
+  std::mt19937_64 random(41);
+  std::uniform_real_distribution<float> threshold(0.0f, 0.3f);
+  const double tolerance = prefilter.margin() / 2.0;
+  int below = 0, above = 0;
+  for (int batch = 0; batch < 200; ++batch) {
+    std::vector<VectorXd> qs;
+    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
+      qs.push_back(arcplan::testing::randomJointState(model->robot(), random));
+      prefilter.loadLane(work, lane, qs.back().data());
+    }
+    for (auto& enough : work.enough) enough = threshold(random);
+    prefilter.gaps(work);
+    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
+      arcplan::robot::forwardKinematics(model->robot(), qs[lane], kinematics);
+      const auto world = [&](int b, const detail::Sphere& s) {
+        return Eigen::Vector3d(kinematics.linkPoses[impl.linkCapsuleLink[b]] * s.centre);
+      };
+      std::vector<double> expected(static_cast<std::size_t>(prefilter.pairCount()), INFINITY);
+      for (int b = 0; b < bodies; ++b) {
+        for (const auto& group : impl.obstacleGroups) {
+          if (group.firstBody != b) continue;
+          const Obstacle& obstacle = scene.obstacles[group.secondBody];
+          for (const auto& s : spheres[b].fine) {
+            const Eigen::Vector3d local = obstacle.pose.inverse() * world(b, s);
+            const double d = obstacle.shape == Obstacle::Shape::Box ? boxDistance(local, obstacle.size / 2.0)
+                                                                    : local.norm() - obstacle.radius;
+            expected[b] = std::min(expected[b], d - s.radius);
+          }
+        }
+      }
+      for (int p = 0; p < prefilter.tables().selfPairCount; ++p) {
+        const int a = prefilter.tables().selfPairs[2 * p], b = prefilter.tables().selfPairs[2 * p + 1];
+        for (const auto& sa : spheres[a].fine)
+          for (const auto& sb : spheres[b].fine)
+            expected[bodies + p] =
+                std::min(expected[bodies + p], (world(a, sa) - world(b, sb)).norm() - sa.radius - sb.radius);
+      }
+      for (int pair = 0; pair < prefilter.pairCount(); ++pair) {
+        if (!std::isfinite(expected[pair])) continue;
+        const double measured = work.gaps[pair * detail::prefilter::kLanes + lane] + prefilter.margin();
+        ASSERT_LE(measured, expected[pair] + tolerance) << "pair " << pair << " batch " << batch;
+        if (measured < work.enough[pair] - tolerance) {
+          ASSERT_NEAR(measured, expected[pair], tolerance) << "pair " << pair << " batch " << batch;
+          ++below;
+        } else {
+          ++above;
+        }
+      }
+    }
+  }
+  EXPECT_GT(below, 1000);  // both sides of the thresholds were met
+  EXPECT_GT(above, 1000);
 }
 
 TEST(SpherePrefilter, KernelsAndBatchesTakeTheSameDecisions) {
