@@ -26,8 +26,7 @@ void areCollisionFree(const CollisionModel& model, CollisionData& data, const Ei
         free[first + lane] = detail::exactlyCollisionFree(model, workspace, states.col(first + lane));
       continue;
     }
-    for (int lane = 0; lane < lanes; ++lane)
-      prefilter->loadLane(*workspace.spheres, lane, states.col(first + lane).data());
+    prefilter->loadLanes(*workspace.spheres, states.col(first).data(), states.outerStride(), lanes);
     const std::uint32_t cleared = prefilter->freeLanes(*workspace.spheres, lanes);
     // The lanes the spheres do not clear: FCL for the pairs whose spheres touch there.
     if (cleared != (1u << lanes) - 1u) detail::collisionGaps(*prefilter, *workspace.spheres);

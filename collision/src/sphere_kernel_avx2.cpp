@@ -69,4 +69,42 @@ void gapsAvx2(const Tables& tables, const float* q, const float* enough, float* 
   gaps<Avx2Lanes>(tables, q, enough, out);
 }
 
+// Four joints of the 8 states at a time: each state's 4 doubles converted to 4 floats, then an 8 × 4
+// transpose (states k and k + 4 share a register, a 4 × 4 transpose in each half). Converting and
+// storing the 48 values of a UR batch one by one took 32 ns, a tenth of a free-space batch.
+bool loadLanesAvx2(const double* states, std::int64_t stride, int dof, int lanes, float* q) {
+  const double* state[kLanes];
+  for (int lane = 0; lane < kLanes; ++lane) state[lane] = states + (lane < lanes ? lane : 0) * stride;
+  const __m256d magnitude = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+  const __m256d largest = _mm256_set1_pd(kLargestAngle);
+  __m256d beyond = _mm256_setzero_pd();
+  int j = 0;
+  for (; j + 4 <= dof; j += 4) {
+    __m128 f[kLanes];
+    for (int lane = 0; lane < kLanes; ++lane) {
+      const __m256d d = _mm256_loadu_pd(state[lane] + j);
+      // Not |d| <= largest: beyond it, or NaN.
+      beyond = _mm256_or_pd(beyond, _mm256_cmp_pd(_mm256_and_pd(d, magnitude), largest, _CMP_NLE_UQ));
+      f[lane] = _mm256_cvtpd_ps(d);
+    }
+    const __m256 r0 = _mm256_set_m128(f[4], f[0]), r1 = _mm256_set_m128(f[5], f[1]);
+    const __m256 r2 = _mm256_set_m128(f[6], f[2]), r3 = _mm256_set_m128(f[7], f[3]);
+    const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
+    const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
+    _mm256_storeu_ps(q + j * kLanes, _mm256_shuffle_ps(t0, t2, 0x44));
+    _mm256_storeu_ps(q + (j + 1) * kLanes, _mm256_shuffle_ps(t0, t2, 0xEE));
+    _mm256_storeu_ps(q + (j + 2) * kLanes, _mm256_shuffle_ps(t1, t3, 0x44));
+    _mm256_storeu_ps(q + (j + 3) * kLanes, _mm256_shuffle_ps(t1, t3, 0xEE));
+  }
+  bool inRange = _mm256_movemask_pd(beyond) == 0;
+  for (; j < dof; ++j) {
+    for (int lane = 0; lane < kLanes; ++lane) {
+      const double x = state[lane][j];
+      inRange = inRange & (x <= kLargestAngle && x >= -kLargestAngle);
+      q[j * kLanes + lane] = static_cast<float>(x);
+    }
+  }
+  return inRange;
+}
+
 }  // namespace arcplan::collision::detail::prefilter

@@ -149,4 +149,16 @@ void gapsPortable(const Tables& tables, const float* q, const float* enough, flo
   gaps<PortableLanes<kLanes>>(tables, q, enough, out);
 }
 
+bool loadLanesPortable(const double* states, std::int64_t stride, int dof, int lanes, float* q) {
+  bool inRange = true;
+  for (int lane = 0; lane < kLanes; ++lane) {
+    const double* state = states + (lane < lanes ? lane : 0) * stride;
+    for (int j = 0; j < dof; ++j) {
+      inRange = inRange & (std::fabs(state[j]) <= kLargestAngle);
+      q[j * kLanes + lane] = static_cast<float>(state[j]);
+    }
+  }
+  return inRange;
+}
+
 }  // namespace arcplan::collision::detail::prefilter

@@ -65,11 +65,13 @@ struct Rake {
   SphereMotion evaluate(double h) {
     for (std::size_t first = 0; first < work.pending.size(); first += kLanes) {
       const int lanes = static_cast<int>(std::min<std::size_t>(kLanes, work.pending.size() - first));
+      const int dof = prefilter.dof();
+      double* states = work.laneStates.data();
       for (int lane = 0; lane < kLanes; ++lane) {
         const double s = work.samples[work.pending[first + std::min(lane, lanes - 1)]];
-        data.motionJoints = qa + s * (qb - qa);
-        prefilter.loadLane(work, lane, data.motionJoints.data());
+        for (int j = 0; j < dof; ++j) states[lane * dof + j] = qa[j] + s * (qb[j] - qa[j]);
       }
+      prefilter.loadLanes(work, states, dof, kLanes);
       for (int p = 0; p < pairs; ++p)
         work.enough[p] = skipped(p) ? -kFar : static_cast<float>(kept(p) + work.rates[p] * h + prefilter.margin());
       prefilter.gaps(work);

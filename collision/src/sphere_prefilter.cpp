@@ -20,7 +20,8 @@ namespace {
 using prefilter::kLanes;
 
 // The float rounding margin. With u = 2^-24 (float unit roundoff), per link row of the chain (sphere_kernel.h):
-//   - sin and cos are within 5e-7 of the truth (tests), the angle's rounding to float adds at most
+//   - sin and cos are within 1.1e-7 of the truth (measured, sphere_kernel_chain.h), the angle's rounding to float adds
+//   at most
 //     2 pi·u = 4e-7; kTrigError = 2e-6 is taken for both together;
 //   - the local rotation c0 + cos·c1 + sin·c2 (c0, c1, c2 from an orthonormal origin rotation, so
 //     each of norm <= 1) is off by at most 2·kTrigError + 12u in each entry, the product with the
@@ -312,8 +313,23 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
 
 void SpherePrefilter::prepare(SphereWorkspace& workspace) const {
   workspace.q.assign(static_cast<std::size_t>(tables_.dof) * kLanes, 0.0f);
+  workspace.laneStates.assign(static_cast<std::size_t>(tables_.dof) * kLanes, 0.0);
   workspace.gaps.assign(static_cast<std::size_t>(pairCount()) * kLanes, 0.0f);
   workspace.enough.assign(static_cast<std::size_t>(pairCount()), 0.0f);
+}
+
+void SpherePrefilter::loadLanes(SphereWorkspace& workspace, const double* states, std::ptrdiff_t stride,
+                                int lanes) const {
+  float* q = workspace.q.data();
+#ifdef ARCPLAN_HAVE_AVX2_KERNEL
+  const bool loaded = avx2_ ? prefilter::loadLanesAvx2(states, stride, tables_.dof, lanes, q)
+                            : prefilter::loadLanesPortable(states, stride, tables_.dof, lanes, q);
+#else
+  const bool loaded = prefilter::loadLanesPortable(states, stride, tables_.dof, lanes, q);
+#endif
+  if (loaded) return;
+  // An angle beyond the kernels' range: each state reduced on its own.
+  for (int lane = 0; lane < kLanes; ++lane) loadLane(workspace, lane, states + (lane < lanes ? lane : 0) * stride);
 }
 
 std::uint32_t SpherePrefilter::freeLanes(SphereWorkspace& workspace, int lanes) const {

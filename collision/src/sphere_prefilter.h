@@ -19,9 +19,10 @@ namespace arcplan::collision::detail {
 
 // Per-thread scratch of the prefilter queries (part of CollisionData's workspace).
 struct SphereWorkspace {
-  std::vector<float> q;       // dof × kLanes, joint-major
-  std::vector<float> gaps;    // pairs × kLanes
-  std::vector<float> enough;  // per pair
+  std::vector<float> q;            // dof × kLanes, joint-major
+  std::vector<double> laneStates;  // kLanes × dof, state-major: a batch's states before loadLanes
+  std::vector<float> gaps;         // pairs × kLanes
+  std::vector<float> enough;       // per pair
   // Batched motion checks (sphere_motion_check.cpp): per pair its motion bound (and the one covered() asks of it),
   // sample fractions, per sample and pair its room (sphere gap less the distance kept), and the work list of intervals.
   std::vector<double> rates, coveredRates, samples, rooms;
@@ -59,13 +60,15 @@ public:
   // state, through the shared library's PLT it cost 9 % of a free-space batch.
   void loadLane(SphereWorkspace& workspace, int lane, const double* joints) const {
     for (int j = 0; j < tables_.dof; ++j) {
-      // The kernels' sine and cosine take |angle| <= 2 pi (every UR joint range): larger angles are
-      // reduced in double first.
       double angle = joints[j];
-      if (!(std::abs(angle) <= 2.0 * M_PI)) angle -= 2.0 * M_PI * std::nearbyint(angle / (2.0 * M_PI));
+      if (!(std::abs(angle) <= prefilter::kLargestAngle))
+        angle -= prefilter::kLargestAngle * std::nearbyint(angle / prefilter::kLargestAngle);
       workspace.q[static_cast<std::size_t>(j * prefilter::kLanes + lane)] = static_cast<float>(angle);
     }
   }
+  // Puts `lanes` states (dof values each, state k at states + k * stride) into the lanes, the other
+  // lanes repeating the first: the same floats as loadLane for each.
+  void loadLanes(SphereWorkspace& workspace, const double* states, std::ptrdiff_t stride, int lanes) const;
   // Lanes (bit k) of the first `lanes` loaded states that the spheres prove free.
   std::uint32_t freeLanes(SphereWorkspace& workspace, int lanes) const;
   // workspace.gaps for all kLanes loaded lanes (workspace.enough set per pair).

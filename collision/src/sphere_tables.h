@@ -81,6 +81,16 @@ struct Tables {
   float margin = 0.0f;             // clearance that covers every float rounding [m] (sphere_prefilter.cpp)
 };
 
+// The kernels' sine and cosine take |angle| <= this (every UR joint range); larger angles are reduced
+// before they reach the kernels (SpherePrefilter::loadLane).
+constexpr double kLargestAngle = 2.0 * 3.14159265358979323846;
+
+// States into lanes: state k (dof doubles at states + k * stride) into lane k of q, for k < lanes;
+// the other lanes repeat state 0. false when an angle is beyond ±kLargestAngle (or NaN): the caller then
+// loads those states itself. Both give the same floats (each angle rounded to nearest).
+bool loadLanesPortable(const double* states, std::int64_t stride, int dof, int lanes, float* q);
+bool loadLanesAvx2(const double* states, std::int64_t stride, int dof, int lanes, float* q);
+
 // q: dof × kLanes floats, joint-major (q[j * kLanes + lane]), each |q| <= 2 pi + 1e-6.
 // The lanes whose spheres are clear of every checked obstacle and every checked body pair by more
 // than the margin: bit k set = lane k is free (only lanes < `lanes` are reported).

@@ -245,6 +245,52 @@ TEST(SpherePrefilter, GapsBelowTheirThresholdAreTheFineSpheresGaps) {
   EXPECT_GT(above, 1000);
 }
 
+// A batch loaded at once (both loaders, through SpherePrefilter::loadLanes and directly) holds the very
+// floats of its states loaded one by one: full and partial batches, states further apart than their
+// joints, angles beyond 2 pi (which loadLane reduces) in some batches.
+TEST(SpherePrefilter, LoadingABatchEqualsLoadingItsStatesOneByOne) {
+  const auto model = modelOf(sceneFile("thesis_obstacle.yaml"), true);
+  const auto& prefilter = prefilterOf(*model);
+  const int dof = prefilter.dof(), kLanes = detail::prefilter::kLanes;
+  detail::SphereWorkspace batch, single;
+  prefilter.prepare(batch);
+  prefilter.prepare(single);
+  std::mt19937_64 random(43);
+  std::uniform_real_distribution<double> angle(-6.0, 6.0), wide(-20.0, 20.0);
+  int reduced = 0;
+  for (int round = 0; round < 400; ++round) {
+    const int lanes = 1 + round % kLanes, stride = dof + round % 3;
+    const bool beyond = round % 5 == 0;
+    std::vector<double> states(static_cast<std::size_t>(kLanes * stride), NAN);  // the gaps between states: NaN
+    for (int lane = 0; lane < lanes; ++lane)
+      for (int j = 0; j < dof; ++j)
+        states[lane * stride + j] = beyond && j == lane % dof ? wide(random) : angle(random);
+    for (int lane = 0; lane < kLanes; ++lane)
+      prefilter.loadLane(single, lane, &states[(lane < lanes ? lane : 0) * stride]);
+    prefilter.loadLanes(batch, states.data(), stride, lanes);
+    ASSERT_EQ(batch.q, single.q) << "round " << round;
+    std::vector<float> portable(batch.q.size()), avx2(batch.q.size());
+    const bool inRange = detail::prefilter::loadLanesPortable(states.data(), stride, dof, lanes, portable.data());
+    bool outside = false;
+    for (int lane = 0; lane < lanes; ++lane)
+      for (int j = 0; j < dof; ++j) outside = outside || std::abs(states[lane * stride + j]) > 2.0 * M_PI;
+    ASSERT_EQ(inRange, !outside) << "round " << round;
+    reduced += outside;
+    if (inRange) {
+      ASSERT_EQ(portable, single.q) << "round " << round;
+    }
+#if defined(__x86_64__)
+    if (prefilter.usesAvx2()) {
+      ASSERT_EQ(detail::prefilter::loadLanesAvx2(states.data(), stride, dof, lanes, avx2.data()), inRange);
+      if (inRange) {
+        ASSERT_EQ(avx2, single.q) << "round " << round;
+      }
+    }
+#endif
+  }
+  EXPECT_GT(reduced, 40);  // the reducing path was taken too
+}
+
 TEST(SpherePrefilter, KernelsAndBatchesTakeTheSameDecisions) {
   const auto model = modelOf(randomScene(3, 12), true);
   const auto& prefilter = prefilterOf(*model);
