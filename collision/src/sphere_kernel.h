@@ -236,7 +236,7 @@ void gaps(const Tables& tables, const float* q, const float* enough, float* out)
   }
   for (int b = 0; b < tables.bodyCount; ++b) {
     const BodyRow& body = tables.bodies[b];
-    V best = broadcast<V>(kFar);
+    V best = broadcast<V>(body.fixedGap);
     for (int k = 0; k < body.obstacleCount; ++k) {
       const ObstacleRow& o = tables.obstacles[tables.obstacleIndex[body.obstacleBegin + k]];
       const V coarseGap = obstacleDistance(o, coarse[b]) - broadcast<V>(body.coarse[3]);

@@ -114,6 +114,11 @@ void forwardKinematics(const Tables& tables, const float* q, Pose<V>* poses) {
       c = cosines[row.joint];
     }
     Pose<V>& pose = poses[l];
+    if (row.fixedPose) {
+      for (int i = 0; i < 9; ++i) pose.r[i] = broadcast<V>(row.fixedR[i]);
+      for (int i = 0; i < 3; ++i) pose.t[i] = broadcast<V>(row.fixedT[i]);
+      continue;
+    }
     if (row.parent < 0) {
       generalRotation<V>(row, nullptr, &s, &c, pose.r);
       for (int i = 0; i < 3; ++i) pose.t[i] = broadcast<V>(row.t[i]);

@@ -20,9 +20,8 @@ namespace {
 using prefilter::kLanes;
 
 // The float rounding margin. With u = 2^-24 (float unit roundoff), per link row of the chain (sphere_kernel.h):
-//   - sin and cos are within 1.1e-7 of the truth (measured, sphere_kernel_chain.h), the angle's rounding to float adds
-//   at most
-//     2 pi·u = 4e-7; kTrigError = 2e-6 is taken for both together;
+//   - sin and cos are within 1.1e-7 of the truth (measured, sphere_kernel_chain.h), the angle's rounding
+//     to float adds at most 2 pi·u = 4e-7; kTrigError = 2e-6 is taken for both together;
 //   - the local rotation c0 + cos·c1 + sin·c2 (c0, c1, c2 from an orthonormal origin rotation, so
 //     each of norm <= 1) is off by at most 2·kTrigError + 12u in each entry, the product with the
 //     parent's rotation adds 9u per entry; summed over the 9 entries (a bound of the spectral norm)
@@ -36,7 +35,9 @@ using prefilter::kLanes;
 // (|cos|, |sin| <= 1), to the translation error twice the offsets' (rotated by a parent of norm < 2),
 // for the permuted path the origin's entries plus 5·|a − a'| for the axis, and an obstacle's rotation
 // moves a world point p by at most its sum × |p| (<= the robot's extent). The kernels require the
-// spheres to be clear by twice all that, and the radii are rounded up to float.
+// spheres to be clear by twice all that, and the radii are rounded up to float. Rows no joint moves are
+// posed in double and rounded to float once (LinkRow::fixedPose): their error, u per entry, stays below
+// the bound above, which is kept for them.
 constexpr double kUnitRoundoff = 1.0 / 16777216.0;
 constexpr double kTrigError = 2e-6;
 
@@ -106,6 +107,26 @@ prefilter::ObstacleRow obstacleRow(const Part& part, double& snapped) {
   const Eigen::Vector3d translation = -(toLocal * part.offset.translation()) - centre;
   for (int i = 0; i < 3; ++i) row.translation[i] = static_cast<float>(translation[i]);
   return row;
+}
+
+// Distance of the world point p from the row's volume (what the kernels' obstacleDistance computes in float),
+// in double; the rotation snapping (`snapped`, obstacleRow) taken off as it may move p in the obstacle's frame.
+double rowDistance(const prefilter::ObstacleRow& row, double snapped, const Eigen::Vector3d& p) {
+  Eigen::Vector3d local;
+  for (int i = 0; i < 3; ++i) {
+    local[i] = row.rotation[3 * i] * p.x() + row.rotation[3 * i + 1] * p.y() + row.rotation[3 * i + 2] * p.z() +
+               row.translation[i];
+  }
+  double distance = 0.0;
+  if (row.kind == 0) {
+    distance = local.norm() - row.size[0];
+  } else if (row.kind == 1) {
+    distance = (local.cwiseAbs() - Eigen::Vector3d(row.size[0], row.size[1], row.size[2])).cwiseMax(0.0).norm();
+  } else {
+    distance = std::hypot(std::max(std::hypot(local.x(), local.y()) - row.size[0], 0.0),
+                          std::max(std::abs(local.z()) - row.size[1], 0.0));
+  }
+  return distance - snapped * p.norm();
 }
 
 // Whether the snapped origin rotation is a signed permutation and the joint axis a coordinate axis
@@ -192,12 +213,22 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
     for (int l = link; l >= 0 && !needed[l]; l = links[l].parent) needed[l] = true;
   std::vector<int> rowOf(links.size(), -1);
   std::vector<double> eR, eT, reach;
+  std::vector<Eigen::Isometry3d> worldPose;  // per row: its world pose where no joint moves it (fixedPose)
   for (std::size_t l = 0; l < links.size(); ++l) {
     if (!needed[l]) continue;
     const int parent = links[l].parent < 0 ? -1 : rowOf[links[l].parent];
     rowOf[l] = static_cast<int>(links_.size());
     double snappedRotation = 0.0, snappedTranslation = 0.0;
     links_.push_back(linkRow(links[l], parent, snappedRotation, snappedTranslation));
+    prefilter::LinkRow& row = links_.back();
+    row.fixedPose = links[l].joint < 0 && (parent < 0 || links_[parent].fixedPose);
+    worldPose.push_back(parent < 0 ? links[l].originInParent : worldPose[parent] * links[l].originInParent);
+    if (row.fixedPose) {
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) row.fixedR[3 * i + j] = static_cast<float>(worldPose.back().linear()(i, j));
+        row.fixedT[i] = static_cast<float>(worldPose.back().translation()[i]);
+      }
+    }
     const double offset = links[l].originInParent.translation().norm();
     const double parentR = parent < 0 ? 0.0 : eR[parent], parentT = parent < 0 ? 0.0 : eT[parent];
     reach.push_back((parent < 0 ? 0.0 : reach[parent]) + offset);
@@ -246,23 +277,17 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
   }
   // Obstacles: the bounding volume of every part, and per body the parts of its non-allowed obstacles.
   double obstacleExtent = 0.0, obstacleSnapped = 0.0;
+  std::vector<double> partSnapped;
   for (const Part& part : impl.obstacleParts) {
     double snapped = 0.0;
     obstacles_.push_back(obstacleRow(part, snapped));
+    partSnapped.push_back(snapped);
     obstacleSnapped = std::max(obstacleSnapped, snapped);
     const auto& row = obstacles_.back();
     obstacleExtent =
         std::max(obstacleExtent,
                  part.offset.translation().norm() + Eigen::Vector3f(row.size[0], row.size[1], row.size[2]).norm() +
                      Eigen::Vector3f(row.translation[0], row.translation[1], row.translation[2]).norm());
-  }
-  for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    bodies_[b].obstacleBegin = static_cast<int>(obstacleIndex_.size());
-    for (const auto& group : impl.obstacleGroups) {
-      if (group.firstBody == static_cast<int>(b))
-        obstacleIndex_.insert(obstacleIndex_.end(), group.obstacleParts.begin(), group.obstacleParts.end());
-    }
-    bodies_[b].obstacleCount = static_cast<int>(obstacleIndex_.size()) - bodies_[b].obstacleBegin;
   }
   // A rigid pair apart (measured once, ModelImplementation::PairGroup) can never touch: not in the tables.
   for (std::size_t k = 0; k < impl.selfGroups.size(); ++k) {
@@ -290,6 +315,34 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
   const double rounding = 16.0 * kUnitRoundoff * (robotExtent + obstacleExtent) + 2.0 * kUnitRoundoff * radiusSum +
                           obstacleSnapped * robotExtent;
   tables_.margin = roundedUp(2.0 * (2.0 * centreError + rounding));
+  // Per body the parts of its non-allowed obstacles; a body no joint moves measures them once (BodyRow::fixedGap).
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    prefilter::BodyRow& body = bodies_[b];
+    body.obstacleBegin = static_cast<int>(obstacleIndex_.size());
+    const bool fixed = links_[body.link].fixedPose != 0;
+    double fixedGap = INFINITY;
+    for (const auto& group : impl.obstacleGroups) {
+      if (group.firstBody != static_cast<int>(b)) continue;
+      for (const int part : group.obstacleParts) {
+        double gap = -INFINITY;
+        if (fixed) {
+          gap = INFINITY;
+          for (const Sphere& s : (*spheres_)[b].fine)
+            gap = std::min(gap, rowDistance(obstacles_[part], partSnapped[part], worldPose[body.link] * s.centre) -
+                                    static_cast<double>(roundedUp(s.radius)));
+        }
+        if (gap > tables_.margin) {
+          fixedGap = std::min(fixedGap, gap);
+        } else {
+          obstacleIndex_.push_back(part);
+        }
+      }
+    }
+    body.obstacleCount = static_cast<int>(obstacleIndex_.size()) - body.obstacleBegin;
+    // Rounded down to float: still a lower bound.
+    const float rounded = static_cast<float>(std::min(fixedGap, 1e30));
+    body.fixedGap = static_cast<double>(rounded) <= fixedGap ? rounded : std::nextafter(rounded, -INFINITY);
+  }
   tables_.dof = robot.dof();
   tables_.linkCount = static_cast<int>(links_.size());
   tables_.bodyCount = static_cast<int>(bodies_.size());

@@ -172,6 +172,10 @@ TEST(SpherePrefilter, FloatGapsAgreeWithDoubleWithinTheMargin) {
       }
     }
   }
+  // The base (no joint moves it) has its one obstacle, the particle, measured once: not in the kernel's
+  // tables, yet its gap above was the fine spheres' gap like every other body's.
+  EXPECT_EQ(prefilter.tables().bodies[0].obstacleCount, 0);
+  EXPECT_LT(prefilter.tables().bodies[0].fixedGap, 1.0f);
   // The margin is twice the derived bound: the measured error must stay below half of it.
   EXPECT_LT(largestError, prefilter.margin() / 2.0);
   EXPECT_GT(largestError, 0.0);         // float really differs from double: the comparison measured something
