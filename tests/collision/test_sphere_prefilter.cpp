@@ -132,6 +132,36 @@ double boxDistance(const Eigen::Vector3d& local, const Eigen::Vector3d& half) {
   return (local.cwiseAbs() - half).cwiseMax(0.0).norm();
 }
 
+// The smallest gap between body b's fine spheres, placed by `kinematics`, and its obstacles of the thesis scene
+// (boxes and spheres), in double; infinite for a body checked against none.
+double fineObstacleGap(const Scene& scene, const detail::ModelImplementation& impl, const detail::SphereModel& spheres,
+                       const arcplan::robot::KinematicsData& kinematics, int b) {
+  const auto& pose = kinematics.linkPoses[impl.linkCapsuleLink[b]];
+  double gap = INFINITY;
+  for (const auto& group : impl.obstacleGroups) {
+    if (group.firstBody != b) continue;
+    const Obstacle& obstacle = scene.obstacles[group.secondBody];
+    for (const auto& s : spheres[b].fine) {
+      const Eigen::Vector3d local = obstacle.pose.inverse() * (pose * s.centre);
+      const double d = obstacle.shape == Obstacle::Shape::Box ? boxDistance(local, obstacle.size / 2.0)
+                                                              : local.norm() - obstacle.radius;
+      gap = std::min(gap, d - s.radius);
+    }
+  }
+  return gap;
+}
+
+// kLanes seeded random states of the robot, loaded into the lanes of `work`.
+std::vector<VectorXd> loadRandomBatch(const detail::SpherePrefilter& prefilter, detail::SphereWorkspace& work,
+                                      const arcplan::robot::RobotModel& robot, std::mt19937_64& random) {
+  std::vector<VectorXd> qs;
+  for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
+    qs.push_back(arcplan::testing::randomJointState(robot, random));
+    prefilter.loadLane(work, lane, qs.back().data());
+  }
+  return qs;
+}
+
 TEST(SpherePrefilter, FloatGapsAgreeWithDoubleWithinTheMargin) {
   const Scene scene = sceneFile("thesis_obstacle.yaml");
   const auto model = modelOf(scene, true);
@@ -145,27 +175,12 @@ TEST(SpherePrefilter, FloatGapsAgreeWithDoubleWithinTheMargin) {
   std::mt19937_64 random(9);
   double largestError = 0.0;
   for (int batch = 0; batch < 200; ++batch) {
-    std::vector<VectorXd> qs;
-    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
-      qs.push_back(arcplan::testing::randomJointState(model->robot(), random));
-      prefilter.loadLane(work, lane, qs.back().data());
-    }
+    const std::vector<VectorXd> qs = loadRandomBatch(prefilter, work, model->robot(), random);
     prefilter.gaps(work);
     for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
       arcplan::robot::forwardKinematics(model->robot(), qs[lane], kinematics);
-      for (std::size_t b = 0; b < spheres.size(); ++b) {
-        const auto& pose = kinematics.linkPoses[impl.linkCapsuleLink[b]];
-        double expected = INFINITY;
-        for (const auto& group : impl.obstacleGroups) {
-          if (group.firstBody != static_cast<int>(b)) continue;
-          const Obstacle& obstacle = scene.obstacles[group.secondBody];
-          for (const auto& s : spheres[b].fine) {
-            const Eigen::Vector3d local = obstacle.pose.inverse() * (pose * s.centre);
-            const double d = obstacle.shape == Obstacle::Shape::Box ? boxDistance(local, obstacle.size / 2.0)
-                                                                    : local.norm() - obstacle.radius;
-            expected = std::min(expected, d - s.radius);
-          }
-        }
+      for (int b = 0; b < static_cast<int>(spheres.size()); ++b) {
+        const double expected = fineObstacleGap(scene, impl, spheres, kinematics, b);
         if (!std::isfinite(expected)) continue;
         const double measured = work.gaps[b * detail::prefilter::kLanes + lane] + prefilter.margin();
         largestError = std::max(largestError, std::abs(measured - expected));
@@ -200,11 +215,7 @@ TEST(SpherePrefilter, GapsBelowTheirThresholdAreTheFineSpheresGaps) {
   const double tolerance = prefilter.margin() / 2.0;
   int below = 0, above = 0;
   for (int batch = 0; batch < 200; ++batch) {
-    std::vector<VectorXd> qs;
-    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
-      qs.push_back(arcplan::testing::randomJointState(model->robot(), random));
-      prefilter.loadLane(work, lane, qs.back().data());
-    }
+    const std::vector<VectorXd> qs = loadRandomBatch(prefilter, work, model->robot(), random);
     for (auto& enough : work.enough) enough = threshold(random);
     prefilter.gaps(work);
     for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
@@ -213,18 +224,7 @@ TEST(SpherePrefilter, GapsBelowTheirThresholdAreTheFineSpheresGaps) {
         return Eigen::Vector3d(kinematics.linkPoses[impl.linkCapsuleLink[b]] * s.centre);
       };
       std::vector<double> expected(static_cast<std::size_t>(prefilter.pairCount()), INFINITY);
-      for (int b = 0; b < bodies; ++b) {
-        for (const auto& group : impl.obstacleGroups) {
-          if (group.firstBody != b) continue;
-          const Obstacle& obstacle = scene.obstacles[group.secondBody];
-          for (const auto& s : spheres[b].fine) {
-            const Eigen::Vector3d local = obstacle.pose.inverse() * world(b, s);
-            const double d = obstacle.shape == Obstacle::Shape::Box ? boxDistance(local, obstacle.size / 2.0)
-                                                                    : local.norm() - obstacle.radius;
-            expected[b] = std::min(expected[b], d - s.radius);
-          }
-        }
-      }
+      for (int b = 0; b < bodies; ++b) expected[b] = fineObstacleGap(scene, impl, spheres, kinematics, b);
       for (int p = 0; p < prefilter.tables().selfPairCount; ++p) {
         const int a = prefilter.tables().selfPairs[2 * p], b = prefilter.tables().selfPairs[2 * p + 1];
         for (const auto& sa : spheres[a].fine)
@@ -306,11 +306,7 @@ TEST(SpherePrefilter, KernelsAndBatchesTakeTheSameDecisions) {
   std::vector<float> portableGaps(work.gaps.size()), avx2Gaps(work.gaps.size());
   int freeCount = 0;
   for (int batch = 0; batch < 300; ++batch) {
-    std::vector<VectorXd> qs;
-    for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
-      qs.push_back(arcplan::testing::randomJointState(model->robot(), random));
-      prefilter.loadLane(work, lane, qs.back().data());
-    }
+    const std::vector<VectorXd> qs = loadRandomBatch(prefilter, work, model->robot(), random);
     const std::uint32_t portable = detail::prefilter::freeLanesPortable(tables, work.q.data(), 8);
     for (int lane = 0; lane < detail::prefilter::kLanes; ++lane) {
       prefilter.loadLane(single, 0, qs[lane].data());
