@@ -18,7 +18,8 @@ void areCollisionFree(const CollisionModel& model, CollisionData& data, const Ei
   const auto& prefilter = detail::implementationOf(model).prefilter;
   detail::Workspace& workspace = detail::workspaceOf(data);
   const Eigen::Index count = states.cols();
-  free.assign(static_cast<std::size_t>(count), false);
+  // All true first: a batch the spheres clear (the common case) then writes nothing.
+  free.assign(static_cast<std::size_t>(count), true);
   for (Eigen::Index first = 0; first < count; first += detail::prefilter::kLanes) {
     const int lanes = static_cast<int>(std::min<Eigen::Index>(detail::prefilter::kLanes, count - first));
     if (!prefilter || !prefilter->usable()) {
@@ -28,11 +29,13 @@ void areCollisionFree(const CollisionModel& model, CollisionData& data, const Ei
     }
     prefilter->loadLanes(*workspace.spheres, states.col(first).data(), states.outerStride(), lanes);
     const std::uint32_t cleared = prefilter->freeLanes(*workspace.spheres, lanes);
+    if (cleared == (1u << lanes) - 1u) continue;
     // The lanes the spheres do not clear: FCL for the pairs whose spheres touch there.
-    if (cleared != (1u << lanes) - 1u) detail::collisionGaps(*prefilter, *workspace.spheres);
+    detail::collisionGaps(*prefilter, *workspace.spheres);
     for (int lane = 0; lane < lanes; ++lane) {
-      free[first + lane] = ((cleared >> lane) & 1u) != 0 ||
-                           !detail::unclearedPairsCollide(model, workspace, states.col(first + lane), lane);
+      if (((cleared >> lane) & 1u) == 0 &&
+          detail::unclearedPairsCollide(model, workspace, states.col(first + lane), lane))
+        free[first + lane] = false;
     }
   }
 }
