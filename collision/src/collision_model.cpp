@@ -460,7 +460,8 @@ bool detail::keepsDistances(const CollisionModel& model, CollisionData& workspac
     std::fill(enough.begin() + bodies, enough.end(), static_cast<float>(selfRequired + spheres->margin()));
     // A pair whose floor answers needs no spheres beyond the coarse ones.
     for (int p = 0; p < spheres->tables().selfPairCount; ++p) {
-      if (impl.selfGroups[spheres->selfGroupOf(p)].floor >= selfRequired) enough[bodies + p] = -1e30f;
+      if (impl.selfGroups[spheres->selfGroupOf(p)].floor >= selfRequired)
+        enough[bodies + p] = -detail::prefilter::kFarGap;
     }
     spheres->gaps(*data.spheres);
   }

@@ -21,12 +21,7 @@ constexpr double kPushOut = 1e-12;
 // qhull refuses flat or degenerate input (with a message on its error stream): those get no hull.
 bool spansVolume(const std::vector<Eigen::Vector3d>& points) {
   if (points.size() < 4) return false;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : points) mean += p;
-  mean /= static_cast<double>(points.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
-  const Eigen::Vector3d spread = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues();
+  const Eigen::Vector3d spread = principalAxes(points).spread;
   return spread[0] > 1e-12 * spread[2];
 }
 
@@ -149,6 +144,16 @@ double largestOutside(const fcl::Convexd& hull, const std::vector<Eigen::Vector3
     for (const auto& p : points) largest = std::max(largest, normal.dot(p - a));
   }
   return largest;
+}
+
+PrincipalAxes principalAxes(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : points) centroid += p;
+  centroid /= static_cast<double>(points.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) covariance += (p - centroid) * (p - centroid).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  return {centroid, solver.eigenvectors(), solver.eigenvalues()};
 }
 
 }  // namespace arcplan::collision::detail

@@ -26,6 +26,16 @@ std::shared_ptr<fcl::Convexd> coarseContainingHull(const std::vector<Eigen::Vect
 // once: the corners of coarseContainingHull, and a part's witness points (parts.h).
 std::vector<Eigen::Vector3d> extremePoints(const std::vector<Eigen::Vector3d>& points, int directions);
 
+// The centroid of a point set and its principal axes: the eigenvectors of the points' covariance (columns, in
+// increasing order of spread, `spread` their eigenvalues). Capsules, sphere slabs and sphere groups are laid
+// along these axes, and a set whose smallest spread vanishes spans no volume.
+struct PrincipalAxes {
+  Eigen::Vector3d centroid;
+  Eigen::Matrix3d axes;
+  Eigen::Vector3d spread;
+};
+PrincipalAxes principalAxes(const std::vector<Eigen::Vector3d>& points);
+
 // Largest signed distance of a point outside the convex shape's face planes (<= 0: all inside).
 double largestOutside(const fcl::Convexd& hull, const std::vector<Eigen::Vector3d>& points);
 

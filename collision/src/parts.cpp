@@ -7,7 +7,6 @@
 #include <map>
 #include <tuple>
 
-#include <Eigen/Eigenvalues>
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/convex.h>
@@ -102,16 +101,12 @@ Capsule fitCapsuleToProfile(const Eigen::Vector3d& centre, const Eigen::Vector3d
 
 // Tries the three principal axes of the points and keeps the smallest capsule.
 Capsule fitCapsule(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (const auto& p : points) centre += p;
-  centre /= static_cast<double>(points.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& p : points) covariance += (p - centre) * (p - centre).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  const PrincipalAxes principal = principalAxes(points);
+  const Eigen::Vector3d& centre = principal.centroid;
   Capsule best;
   double bestVolume = INFINITY;
   for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d axis = solver.eigenvectors().col(k).normalized();
+    const Eigen::Vector3d axis = principal.axes.col(k).normalized();
     std::vector<std::pair<double, double>> profile;
     profile.reserve(points.size());
     for (const auto& p : points) {

@@ -15,8 +15,6 @@
 namespace arcplan::collision::detail::prefilter {
 namespace {
 
-constexpr float kFar = 1e30f;  // "no pair measured": larger than any distance
-
 // The obstacle tests are called from several loops of each kernel; left to itself the compiler stopped
 // inlining them once the group loops came in, and the calls cost 18 % of a free-space batch.
 #if defined(__GNUC__)
@@ -246,7 +244,7 @@ void gaps(const Tables& tables, const float* q, const float* enough, float* out)
       }
       // Group by group: a group whose ball reaches `enough` keeps its ball's bound.
       const V(*balls)[3] = body.groupCount > 1 ? placement.groupsOf(body, b) : nullptr;
-      V fineGap = broadcast<V>(kFar);
+      V fineGap = broadcast<V>(kFarGap);
       for (int g = 0; g < body.groupCount; ++g) {
         const GroupRow& group = tables.groups[body.groupBegin + g];
         V groupGap = coarseGap;  // a body of one group: its ball is the coarse sphere
@@ -258,7 +256,7 @@ void gaps(const Tables& tables, const float* q, const float* enough, float* out)
           }
         }
         const V(*fine)[3] = placement.fineOfGroup(body, body.groupBegin + g);
-        V groupFine = broadcast<V>(kFar);
+        V groupFine = broadcast<V>(kFarGap);
         for (int f = 0; f < group.fineCount; ++f) {
           groupFine =
               minimum(groupFine, obstacleDistance(o, fine[f]) - broadcast<V>(tables.fineR[group.fineBegin + f]));
@@ -278,7 +276,7 @@ void gaps(const Tables& tables, const float* q, const float* enough, float* out)
       // Group against group: a pair of groups whose balls reach `enough` keeps their bound.
       const V(*ballsA)[3] = a.groupCount > 1 ? placement.groupsOf(a, ia) : coarse + ia;
       const V(*ballsB)[3] = b.groupCount > 1 ? placement.groupsOf(b, ib) : coarse + ib;
-      V fineGap = broadcast<V>(kFar);
+      V fineGap = broadcast<V>(kFarGap);
       for (int g = 0; g < a.groupCount; ++g) {
         const GroupRow& groupA = tables.groups[a.groupBegin + g];
         for (int h = 0; h < b.groupCount; ++h) {
@@ -290,7 +288,7 @@ void gaps(const Tables& tables, const float* q, const float* enough, float* out)
           }
           const V(*fineA)[3] = placement.fineOfGroup(a, a.groupBegin + g);
           const V(*fineB)[3] = placement.fineOfGroup(b, b.groupBegin + h);
-          V groupFine = broadcast<V>(kFar);
+          V groupFine = broadcast<V>(kFarGap);
           for (int i = 0; i < groupA.fineCount; ++i) {
             const float radiusA = tables.fineR[groupA.fineBegin + i];
             for (int j = 0; j < groupB.fineCount; ++j) {

@@ -8,9 +8,8 @@
 #include <mutex>
 #include <utility>
 
-#include <Eigen/Eigenvalues>
-
 #include "arcplan/common/error.h"
+#include "convex_hull.h"
 
 namespace arcplan::collision::detail {
 namespace {
@@ -99,15 +98,10 @@ double volumeProxy(const std::vector<Sphere>& balls) {
 
 // The slab balls along the principal axis (of the three) that gives the smallest total volume.
 std::vector<Sphere> pointSpheres(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const auto& p : points) centroid += p;
-  centroid /= static_cast<double>(points.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& p : points) covariance += (p - centroid) * (p - centroid).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  const PrincipalAxes principal = principalAxes(points);
   std::vector<Sphere> best;
   for (int k = 0; k < 3; ++k) {
-    auto balls = hullSlabBalls(points, centroid, solver.eigenvectors().col(k).normalized());
+    auto balls = hullSlabBalls(points, principal.centroid, principal.axes.col(k).normalized());
     if (best.empty() || volumeProxy(balls) < volumeProxy(best)) best = std::move(balls);
   }
   return best;
@@ -147,12 +141,9 @@ void groupFineSpheres(BodySpheres& body) {
     body.groups = {{body.coarse, 0, n}};
     return;
   }
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const auto& s : body.fine) centroid += s.centre;
-  centroid /= n;
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& s : body.fine) covariance += (s.centre - centroid) * (s.centre - centroid).transpose();
-  const Eigen::Vector3d axis = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(2);
+  std::vector<Eigen::Vector3d> centres;
+  for (const auto& s : body.fine) centres.push_back(s.centre);
+  const Eigen::Vector3d axis = principalAxes(centres).axes.col(2);
   std::stable_sort(body.fine.begin(), body.fine.end(),
                    [&](const Sphere& a, const Sphere& b) { return a.centre.dot(axis) < b.centre.dot(axis); });
   body.groups.clear();

@@ -44,7 +44,6 @@ constexpr int kMaxSamples = 256;
 constexpr double kSearchStep = 0.02;
 constexpr int kMaxExactChecks = 4;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr float kFar = 1e30f;  // an `enough` every coarse bound reaches: the kernels skip the pair's fine spheres
 
 struct Rake {
   const CollisionModel& model;
@@ -73,7 +72,8 @@ struct Rake {
       }
       prefilter.loadLanes(work, states, dof, kLanes);
       for (int p = 0; p < pairs; ++p)
-        work.enough[p] = skipped(p) ? -kFar : static_cast<float>(kept(p) + work.rates[p] * h + prefilter.margin());
+        work.enough[p] =
+            skipped(p) ? -prefilter::kFarGap : static_cast<float>(kept(p) + work.rates[p] * h + prefilter.margin());
       prefilter.gaps(work);
       // Of the states the spheres do not clear, the closest (the likeliest collision) goes to FCL.
       int closest = -1, closestLane = 0;

@@ -319,18 +319,20 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     prefilter::BodyRow& body = bodies_[b];
     body.obstacleBegin = static_cast<int>(obstacleIndex_.size());
-    const bool fixed = links_[body.link].fixedPose != 0;
-    double fixedGap = INFINITY;
+    // The fine spheres' gap to an obstacle part, for a body on a fixed row (the same in every state).
+    const auto fineGap = [&](int part) {
+      double gap = INFINITY;
+      for (const Sphere& s : (*spheres_)[b].fine) {
+        gap = std::min(gap, rowDistance(obstacles_[part], partSnapped[part], worldPose[body.link] * s.centre) -
+                                static_cast<double>(roundedUp(s.radius)));
+      }
+      return gap;
+    };
+    double fixedGap = prefilter::kFarGap;
     for (const auto& group : impl.obstacleGroups) {
       if (group.firstBody != static_cast<int>(b)) continue;
       for (const int part : group.obstacleParts) {
-        double gap = -INFINITY;
-        if (fixed) {
-          gap = INFINITY;
-          for (const Sphere& s : (*spheres_)[b].fine)
-            gap = std::min(gap, rowDistance(obstacles_[part], partSnapped[part], worldPose[body.link] * s.centre) -
-                                    static_cast<double>(roundedUp(s.radius)));
-        }
+        const double gap = links_[body.link].fixedPose ? fineGap(part) : -INFINITY;
         if (gap > tables_.margin) {
           fixedGap = std::min(fixedGap, gap);
         } else {
@@ -340,7 +342,7 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
     }
     body.obstacleCount = static_cast<int>(obstacleIndex_.size()) - body.obstacleBegin;
     // Rounded down to float: still a lower bound.
-    const float rounded = static_cast<float>(std::min(fixedGap, 1e30));
+    const float rounded = static_cast<float>(fixedGap);
     body.fixedGap = static_cast<double>(rounded) <= fixedGap ? rounded : std::nextafter(rounded, -INFINITY);
   }
   tables_.dof = robot.dof();

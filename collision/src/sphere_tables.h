@@ -62,7 +62,7 @@ struct BodyRow {
   int obstacleBegin, obstacleCount;
   // A body on a fixed-pose row keeps the same distance to every obstacle: those its fine spheres clear by
   // more than the margin are measured once (in double) and left out of obstacleIndex; their smallest gap
-  // (not yet less the margin, 1e30 if none) starts the body's gap in the gaps kernel.
+  // (not yet less the margin, kFarGap if none) starts the body's gap in the gaps kernel.
   float fixedGap;
 };
 
@@ -89,6 +89,9 @@ struct Tables {
   const int* selfPairs = nullptr;  // (body a, body b) pairs, 2 per pair
   float margin = 0.0f;             // clearance that covers every float rounding [m] (sphere_prefilter.cpp)
 };
+
+// A gap larger than any distance: "no pair measured" in the gaps kernel, and an `enough` every bound reaches.
+constexpr float kFarGap = 1e30f;
 
 // The kernels' sine and cosine take |angle| <= this (every UR joint range); larger angles are reduced
 // before they reach the kernels (SpherePrefilter::loadLane).
