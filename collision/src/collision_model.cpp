@@ -466,19 +466,16 @@ bool detail::keepsDistances(const CollisionModel& model, CollisionData& workspac
     spheres->gaps(*data.spheres);
   }
   const auto settled = [&](int pair, double required) {
-    return spheres != nullptr &&
+    return spheres != nullptr && pair >= 0 &&
            static_cast<double>(data.spheres->gaps[static_cast<std::size_t>(pair) * detail::prefilter::kLanes]) >=
                required;
   };
   data.openPairs.clear();
   bool placed = false;
-  const int obstacleGroups = static_cast<int>(impl.obstacleGroups.size());
   for (int k = 0; k < static_cast<int>(impl.groups.size()); ++k) {
     const double required = requiredOf(*impl.groups[k]);
     if (impl.groups[k]->floor >= required) continue;
-    if (k < obstacleGroups ? settled(impl.groups[k]->firstBody, required)
-                           : spheres != nullptr && spheres->kernelPairOf(k - obstacleGroups) >= 0 &&
-                                 settled(bodies + spheres->kernelPairOf(k - obstacleGroups), required))
+    if (settled(spheres != nullptr ? spheres->gapPairOfGroup(impl, static_cast<std::size_t>(k)) : -1, required))
       continue;
     if (impl.groups[k]->floorGrid &&
         impl.groups[k]->floorGrid->at(q, &data.pairAxes[impl.firstPartPair[k]]) >= required)

@@ -1,12 +1,16 @@
 // PathCertifier (motion_check.h): a joint path certified motion by motion while it grows, each pair spending the
 // clearance it had at its last measurement (its anchor) on the motion bounds of the waypoints since.
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "arcplan/collision/motion_check.h"
+#include "arcplan/common/error.h"
 #include "certified_motion.h"
 #include "model_implementation.h"
 #include "motion_clearance.h"
+#include "sphere_prefilter.h"
 
 namespace arcplan::collision {
 namespace {
@@ -68,23 +72,88 @@ PathCertifier::PathCertifier(const CollisionModel& model, CollisionData& data, d
   // A path of its own (motionAxis): directions found while certifying it are taken for its later waypoints, none
   // from earlier queries.
   ++detail::workspaceOf(data_).motion;
-  budget_.resize(detail::implementationOf(model).groups.size());
+  const Implementation& impl = detail::implementationOf(model);
+  budget_.resize(impl.groups.size());
   used_.resize(budget_.size());
   bound_.resize(budget_.size());
+  if (impl.prefilter && impl.prefilter->usable()) {
+    for (std::size_t k = 0; k < impl.groups.size(); ++k) gapPairs_.push_back(impl.prefilter->gapPairOfGroup(impl, k));
+  }
+}
+
+void PathCertifier::expect(const Eigen::Ref<const Eigen::MatrixXd>& waypoints) {
+  if (waypoints.rows() != model_.robot().dof()) {
+    throw Error("path certifier: expected waypoints need " + std::to_string(model_.robot().dof()) +
+                " joint values each, got " + std::to_string(waypoints.rows()));
+  }
+  expected_ = waypoints;
+  nextExpected_ = windowBegin_ = windowEnd_ = 0;
+}
+
+const float* PathCertifier::expectedGaps(Eigen::Index waypoint, int& lane) {
+  using detail::prefilter::kLanes;
+  if (waypoint < windowBegin_ || waypoint >= windowEnd_) {
+    const Implementation& impl = detail::implementationOf(model_);
+    const detail::SpherePrefilter& prefilter = *impl.prefilter;
+    detail::SphereWorkspace& work = *detail::workspaceOf(data_).spheres;
+    windowBegin_ = waypoint;
+    windowEnd_ = std::min<Eigen::Index>(waypoint + kLanes, expected_.cols());
+    prefilter.loadLanes(work, expected_.col(waypoint).data(), expected_.rows(),
+                        static_cast<int>(windowEnd_ - windowBegin_));
+    // Refined until a pair has the budget a new anchor asks of it (or is as close as its spheres tell).
+    const int bodies = prefilter.tables().bodyCount, pairs = prefilter.pairCount();
+    const auto enough = [&](bool self) {
+      return static_cast<float>(requiredDistance(self, minimumClearance_) + kAnchorBudget + prefilter.margin());
+    };
+    std::fill(work.enough.begin(), work.enough.begin() + bodies, enough(false));
+    std::fill(work.enough.begin() + bodies, work.enough.begin() + pairs, enough(true));
+    prefilter.gaps(work);
+    // Copied: other queries between two extend() calls use the workspace's gaps.
+    windowGaps_.assign(work.gaps.begin(), work.gaps.begin() + static_cast<std::ptrdiff_t>(pairs) * kLanes);
+  }
+  lane = static_cast<int>(waypoint - windowBegin_);
+  return windowGaps_.data();
+}
+
+Eigen::Index PathCertifier::expectedColumn(const robot::JointRef& q) {
+  // The next waypoint, or the one after it when a motion piece ended between the two (an approach zone's boundary).
+  for (Eigen::Index k = nextExpected_; k < std::min<Eigen::Index>(nextExpected_ + 2, expected_.cols()); ++k) {
+    if (expected_.col(k) == q) {
+      nextExpected_ = k + 1;
+      return k;
+    }
+  }
+  return -1;
 }
 
 bool PathCertifier::anchorAll(const robot::JointRef& q) {
   const Implementation& impl = detail::implementationOf(model_);
-  detail::updateRobot(model_, detail::workspaceOf(data_), q);
-  ++measurements_;
+  // At an expected waypoint the spheres give most pairs their budget; the others are measured.
+  const Eigen::Index expectedAt = gapPairs_.empty() ? -1 : expectedColumn(q);
+  int lane = 0;
+  const float* gaps = expectedAt >= 0 ? expectedGaps(expectedAt, lane) : nullptr;
+  bool placed = false;
   for (std::size_t k = 0; k < budget_.size(); ++k) {
     const double m = impl.groups[k]->required(minimumClearance_);  // this pair's own m
+    used_[k] = 0.0;
+    if (gaps != nullptr && gapPairs_[k] >= 0) {
+      const double room =
+          static_cast<double>(gaps[static_cast<std::size_t>(gapPairs_[k]) * detail::prefilter::kLanes + lane]) - m;
+      if (room >= kAnchorBudget) {
+        budget_[k] = room;
+        continue;
+      }
+    }
+    if (!placed) {
+      detail::updateRobot(model_, detail::workspaceOf(data_), q);
+      ++measurements_;
+      placed = true;
+    }
     // The capsule bounds are taken as soon as they leave a few centimetres to spend: enough for several waypoints.
     const detail::PairMeasurement measured =
         detail::measurePair(model_, detail::workspaceOf(data_), k, kAnchorBudget + m, m);
     if (measured.tooClose) return false;
     budget_[k] = measured.gap - m;  // what the pair may close in before it is m apart
-    used_[k] = 0.0;
   }
   last_ = q;
   return true;
@@ -109,19 +178,43 @@ bool PathCertifier::extend(const robot::JointRef& q) {
   checkJoints(model_, last_, q);
   const Implementation& impl = detail::implementationOf(model_);
   detail::Workspace& data = detail::workspaceOf(data_);
+  // q's column of expect()'s waypoints, -1 when it is not the next one.
+  const Eigen::Index expectedAt = gapPairs_.empty() ? -1 : expectedColumn(q);
   step_ = (q - last_).cwiseAbs();
   std::vector<std::size_t> open;  // pairs whose budget does not cover the motion
   for (std::size_t k = 0; k < budget_.size(); ++k) {
     bound_[k] = impl.groups[k]->relativeReach.dot(step_);
     if (used_[k] + bound_[k] >= budget_[k]) open.push_back(k);
   }
+  sphereBudgets_.clear();
   const auto accept = [&] {
     for (std::size_t k = 0; k < budget_.size(); ++k) used_[k] += bound_[k];
+    for (const auto& [k, budget] : sphereBudgets_) {
+      budget_[k] = budget;
+      used_[k] = 0.0;
+    }
     last_ = q;
     return true;
   };
   if (open.empty()) return accept();
   const auto mOf = [&](std::size_t k) { return impl.groups[k]->required(minimumClearance_); };
+  // An expected waypoint's sphere gaps, lower bounds of its pairs' distances: a pair whose room there (gap − m) and
+  // the room left of its budget at the motion's start together reach the motion's bound is certified by the two
+  // certificates, one from each end, and anchored at q with the larger of what it has left.
+  int lane = 0;
+  if (const float* gaps = expectedAt >= 0 ? expectedGaps(expectedAt, lane) : nullptr) {
+    const auto coveredBySpheres = [&](std::size_t k) {
+      if (gapPairs_[k] < 0) return false;
+      const double room =
+          static_cast<double>(gaps[static_cast<std::size_t>(gapPairs_[k]) * detail::prefilter::kLanes + lane]) - mOf(k);
+      const double left = std::max(0.0, budget_[k] - used_[k]);
+      if (room < 0.0 || left + room < bound_[k]) return false;
+      sphereBudgets_.emplace_back(k, std::max(room, left - bound_[k]));
+      return true;
+    };
+    open.erase(std::remove_if(open.begin(), open.end(), coveredBySpheres), open.end());
+    if (open.empty()) return accept();
+  }
   // At the motion's start, the pairs not measured there (a pair anchored there was measured for a new anchor,
   // which asks more of its bounds than this motion would).
   bool startMeasured = false;

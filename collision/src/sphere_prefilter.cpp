@@ -366,6 +366,13 @@ SpherePrefilter::SpherePrefilter(const robot::RobotModel& robot, const ModelImpl
 #endif
 }
 
+int SpherePrefilter::gapPairOfGroup(const ModelImplementation& impl, std::size_t k) const {
+  const std::size_t obstacleGroups = impl.obstacleGroups.size();
+  if (k < obstacleGroups) return impl.obstacleGroups[k].firstBody;
+  const int pair = kernelPairs_[k - obstacleGroups];
+  return pair < 0 ? -1 : tables_.bodyCount + pair;
+}
+
 void SpherePrefilter::prepare(SphereWorkspace& workspace) const {
   workspace.q.assign(static_cast<std::size_t>(tables_.dof) * kLanes, 0.0f);
   workspace.laneStates.assign(static_cast<std::size_t>(tables_.dof) * kLanes, 0.0);

@@ -53,6 +53,9 @@ public:
   // Self pair p of the tables -> its index in selfGroups, and back (-1: not in the tables).
   int selfGroupOf(int p) const { return selfGroupsOfPairs_[p]; }
   int kernelPairOf(int selfGroup) const { return kernelPairs_[selfGroup]; }
+  // The pair of gaps() whose gap bounds group k of impl.groups (obstacle groups: their robot body's, self groups:
+  // kernelPairOf's), -1 for a self group left out of the tables.
+  int gapPairOfGroup(const ModelImplementation& impl, std::size_t k) const;
   int dof() const { return tables_.dof; }
 
   void prepare(SphereWorkspace& workspace) const;

@@ -76,9 +76,17 @@ Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefi
   // path, nor to a motion that must keep another clearance (entering or leaving an approach zone).
   std::optional<collision::PathCertifier> certifier;
   double certifierClearance = 0.0;
+  // A converted path's waypoints are known before the walk: its certifiers expect them (from the motion's start on),
+  // so the spheres measure 8 at a time.
+  const bool known = converted != nullptr && !converted->joints.empty();
+  const Eigen::Map<const Eigen::MatrixXd> waypoints(known ? converted->joints.front().data() : nullptr,
+                                                    robot::Vector6::RowsAtCompileTime,
+                                                    known ? static_cast<Eigen::Index>(converted->joints.size()) : 0);
+  Eigen::Index nextWaypoint = 1;  // the column of waypoints the check is asked next (checkConverted's order)
   const WaypointCheck check = [&](const robot::Vector6& from, const robot::Vector6& q, double) {
     if (stop_ && stop_()) return false;
     if (!certify_) return waypointValid_(q);
+    const Eigen::Index waypoint = nextWaypoint++;
     // Piece by piece, as the problem's motion validator certifies (EndpointClearance::motionPieces): the
     // part of a motion inside an approach zone keeps the zone's clearance, the rest the margin.
     const robot::Vector6 delta = q - from;
@@ -90,6 +98,7 @@ Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefi
       if (!certifier || clearance != certifierClearance) {
         certifier.emplace(model_, data_, clearance);
         certifierClearance = clearance;
+        if (known) certifier->expect(waypoints.rightCols(waypoints.cols() - (waypoint - 1)));  // from `from` on
         if (!certifier->start(pieceStart)) {
           certifier.reset();
           return false;
@@ -102,10 +111,9 @@ Walk PathValidator::walk(const TcpPath& path, const JointConversionResult& prefi
     return state <= clearance || collision::PathCertifier(model_, data_, state).start(q);
   };
   const JointConversionResult continuation =
-      converted != nullptr && !converted->joints.empty()
-          ? checkConverted(*converted, path, check)
-          : convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_, prefix.arcLengths.back(),
-                            std::numeric_limits<double>::infinity(), check);
+      known ? checkConverted(*converted, path, check)
+            : convertToJoints(ik_, path, prefix.joints.back(), goal, conversion_, prefix.arcLengths.back(),
+                              std::numeric_limits<double>::infinity(), check);
   Walk result;
   result.waypoints = prefix;
   JointConversionResult& combined = result.waypoints;

@@ -84,11 +84,22 @@ public:
   // Certifies the straight motion from the last accepted configuration to q and accepts q; false
   // (and q not accepted) if the motion cannot be certified.
   bool extend(const robot::JointRef& q);
+  // The configurations the following extend() calls will take, in order, one per column (a converted path's
+  // waypoints): with the model's sphere prefilter their sphere gaps are computed 8 per kernel call as the walk
+  // reaches them, and a pair whose gaps cover a motion needs no measurement. A hint: an extend() to any other
+  // configuration measures as without it, and what is accepted is the same guarantee either way. start() at the
+  // first of them takes its pairs' budgets from the spheres too.
+  void expect(const Eigen::Ref<const Eigen::MatrixXd>& waypoints);
   // Configurations measured with forward kinematics so far: the cost of the certification.
   int measurements() const { return measurements_; }
 
 private:
   bool anchorAll(const robot::JointRef& q);
+  // q's column of expect()'s waypoints when it is the next one (or the one after), else -1.
+  Eigen::Index expectedColumn(const robot::JointRef& q);
+  // The sphere gaps (pairs × 8, SpherePrefilter::gaps' layout) holding expect()'s column `waypoint` and its lane
+  // there: computed with the 7 waypoints after it when not held yet.
+  const float* expectedGaps(Eigen::Index waypoint, int& lane);
 
   const CollisionModel& model_;
   CollisionData& data_;
@@ -97,6 +108,13 @@ private:
   // Per pair: clearance at its anchor waypoint, motion bound consumed since, bound of this motion.
   std::vector<double> budget_, used_, bound_;
   int measurements_ = 0;
+  // expect(): the waypoints, the next one's column, the columns whose sphere gaps windowGaps_ holds, and per group
+  // its pair of those gaps (-1: none, or no prefilter).
+  Eigen::MatrixXd expected_;
+  Eigen::Index nextExpected_ = 0, windowBegin_ = 0, windowEnd_ = 0;
+  std::vector<float> windowGaps_;
+  std::vector<int> gapPairs_;
+  std::vector<std::pair<std::size_t, double>> sphereBudgets_;  // per pair the spheres covered: its budget at q
 };
 
 // Segments of a discrete check: ceil(largest |qb_j − qa_j| / maxJointStep), at least 1.
