@@ -211,9 +211,18 @@ detail::ArcOutcome ArcPlanner::withQuery(const ob::PlannerTerminationCondition& 
     collision::setJoints(scratch.get(), q);
     return si_->isValid(scratch.get());
   };
+  // Asked at every waypoint a walk or screen meets: the termination condition (with the deadline two clock reads, 3 %
+  // of a quick query) is evaluated every kStopStride-th time, a few microseconds of walking apart; once true it stays.
+  constexpr int kStopStride = 8;
+  int asked = 0;
+  bool stopped = false;
+  const auto stopRequested = [&ptc, &asked, &stopped] {
+    if (!stopped && asked++ % kStopStride == 0) stopped = ptc();
+    return stopped;
+  };
   // The auto mode's routes pass close to obstacles: their motions are always certified.
   PathValidator validator(*collisionModel_, ik_, conversion_, required, checkMotions_ || getAuto(), waypointValid,
-                          [&ptc] { return ptc(); });
+                          stopRequested);
   const robot::RobotModel& robot = collisionModel_->robot();
   const detail::ArcQuery query{*collisionModel_,
                                obstacles_,
