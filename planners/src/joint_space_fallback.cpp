@@ -45,17 +45,31 @@ constexpr std::uint_fast32_t kJointPlans = 4;
 // TCP length of a straight joint motion, from forward kinematics at this many points.
 constexpr int kTcpSamples = 32;
 
-double tcpLengthOf(const robot::RobotModel& robot, const robot::Vector6& from, const robot::Vector6& to) {
-  double length = 0.0;
-  Eigen::Vector3d previous = robot::tipPose(robot, from).translation();
-  for (int k = 1; k <= kTcpSamples; ++k) {
-    const Eigen::Vector3d p =
-        robot::tipPose(robot, from + (to - from) * (static_cast<double>(k) / kTcpSamples)).translation();
-    length += (p - previous).norm();
-    previous = p;
+// With its kinematics workspace allocated once (tipPose allocates one per call), the tip's chain alone placed.
+class TcpLength {
+public:
+  explicit TcpLength(const robot::RobotModel& robot) : robot_(robot), data_(robot) {}
+
+  double operator()(const robot::Vector6& from, const robot::Vector6& to) {
+    double length = 0.0;
+    Eigen::Vector3d previous = tip(from);
+    for (int k = 1; k <= kTcpSamples; ++k) {
+      const Eigen::Vector3d p = tip(from + (to - from) * (static_cast<double>(k) / kTcpSamples));
+      length += (p - previous).norm();
+      previous = p;
+    }
+    return length;
   }
-  return length;
-}
+
+private:
+  Eigen::Vector3d tip(const robot::Vector6& q) {
+    robot::chainKinematics(robot_, q, robot_.tipLink(), data_);
+    return data_.linkPoses[robot_.tipLink()].translation();
+  }
+
+  const robot::RobotModel& robot_;
+  robot::KinematicsData data_;
+};
 
 // The space one plan runs on: the states of `checked` (its validity checker, shared) and `motions` on a
 // joint space of its own whose samplers are allocated as in a campaign run seeded with the plan's seed
@@ -175,20 +189,26 @@ PathPoint pointAt(const std::vector<robot::Vector6>& path, const std::vector<dou
 
 std::vector<robot::Vector6> tcpShortcuts(const ArcQuery& query, const ob::SpaceInformationPtr& si,
                                          std::vector<robot::Vector6> path, std::uint_fast32_t seed) {
-  const robot::RobotModel& robot = query.model.robot();
+  TcpLength tcpLengthOf(query.model.robot());
   ompl::RNG rng;
   rng.setLocalSeed(seed);
   ob::ScopedState<> from(si), to(si);
+  // Per motion of `path`, its TCP length: measured once per path, not once per attempt that spans it.
+  std::vector<double> motionLengths;
   for (int attempt = 0; attempt < kTcpShortcuts && path.size() > 2 && !query.ptc(); ++attempt) {
+    if (motionLengths.empty()) {
+      motionLengths.clear();
+      for (std::size_t k = 0; k + 1 < path.size(); ++k) motionLengths.push_back(tcpLengthOf(path[k], path[k + 1]));
+    }
     std::vector<double> at{0.0};
     for (std::size_t i = 1; i < path.size(); ++i) at.push_back(at.back() + (path[i] - path[i - 1]).norm());
     double s1 = rng.uniformReal(0.0, at.back()), s2 = rng.uniformReal(0.0, at.back());
     if (s1 > s2) std::swap(s1, s2);
     const PathPoint a = pointAt(path, at, s1), b = pointAt(path, at, s2);
     if (a.segment == b.segment) continue;  // a straight motion already
-    double replaced = tcpLengthOf(robot, a.q, path[a.segment + 1]) + tcpLengthOf(robot, path[b.segment], b.q);
-    for (std::size_t k = a.segment + 1; k < b.segment; ++k) replaced += tcpLengthOf(robot, path[k], path[k + 1]);
-    if (tcpLengthOf(robot, a.q, b.q) >= replaced - 1e-4) continue;
+    double replaced = tcpLengthOf(a.q, path[a.segment + 1]) + tcpLengthOf(path[b.segment], b.q);
+    for (std::size_t k = a.segment + 1; k < b.segment; ++k) replaced += motionLengths[k];
+    if (tcpLengthOf(a.q, b.q) >= replaced - 1e-4) continue;
     collision::setJoints(from.get(), a.q);
     collision::setJoints(to.get(), b.q);
     if (!si->checkMotion(from.get(), to.get())) continue;
@@ -200,6 +220,7 @@ std::vector<robot::Vector6> tcpShortcuts(const ArcQuery& query, const ob::SpaceI
       if ((path[k] - shorter.back()).norm() > 1e-12) shorter.push_back(path[k]);
     }
     path = std::move(shorter);
+    motionLengths.clear();
   }
   return path;
 }
@@ -217,11 +238,12 @@ struct Segment {
 // termination condition); without, joint motions only.
 std::vector<Segment> segmentsOf(const ArcQuery& query, const std::vector<robot::Vector6>& simplified, bool asLines) {
   std::vector<Segment> segments;
+  TcpLength tcpLengthOf(query.model.robot());
   for (std::size_t i = 1; i < simplified.size(); ++i) {
     Segment segment;
     segment.from = simplified[i - 1];
     segment.to = simplified[i];
-    segment.jointTcpLength = tcpLengthOf(query.model.robot(), segment.from, segment.to);
+    segment.jointTcpLength = tcpLengthOf(segment.from, segment.to);
     if (!asLines) {
       segments.push_back(std::move(segment));
       continue;

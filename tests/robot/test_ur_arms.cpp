@@ -79,6 +79,34 @@ TEST(MotionBenchMakerUr5, ToolFrameInTheGripperRoundTrips) {
       200);
 }
 
+// Three of this UR5's joints turn about y: every link's pose is compared with the product of its origins and the
+// axis-angle rotations of its joints, composed here link by link (to 1e-12); the tip chain alone (chainKinematics)
+// gives the tip and its ancestors exactly those of the whole model.
+TEST(MotionBenchMakerUr5, LinkPosesAreTheProductsOfOriginsAndAxisAngleRotations) {
+  const RobotModel model = arcplan::robot::loadRobotModel(mbmUr5Urdf());
+  const auto& links = model.links();
+  const bool turnsAboutY = std::any_of(links.begin(), links.end(), [](const arcplan::robot::Link& link) {
+    return link.joint >= 0 && link.axis == Eigen::Vector3d::UnitY();
+  });
+  ASSERT_TRUE(turnsAboutY) << "the test needs joints about another axis than z";
+  std::mt19937 random(3);
+  arcplan::robot::KinematicsData whole(model), chain(model);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Eigen::VectorXd q = randomJointState(model, random);
+    arcplan::robot::forwardKinematics(model, q, whole);
+    std::vector<Eigen::Isometry3d> expected(links.size());
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const arcplan::robot::Link& link = links[i];
+      expected[i] = link.parent < 0 ? link.originInParent : expected[link.parent] * link.originInParent;
+      if (link.joint >= 0) expected[i] = expected[i] * Eigen::AngleAxisd(q[link.joint], link.axis);
+      EXPECT_TRUE(whole.linkPoses[i].isApprox(expected[i], 1e-12)) << link.name << " trial " << trial;
+    }
+    arcplan::robot::chainKinematics(model, q, model.tipLink(), chain);
+    for (int l = model.tipLink(); l >= 0; l = links[l].parent)
+      EXPECT_TRUE(chain.linkPoses[l].matrix() == whole.linkPoses[l].matrix()) << links[l].name;
+  }
+}
+
 }  // namespace
 
 namespace {

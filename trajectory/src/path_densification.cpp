@@ -66,7 +66,7 @@ DensePath densifyJointPath(const robot::RobotModel& model, const JointPath& path
 
   robot::KinematicsData kinematics(model);
   const auto tcpOf = [&](const robot::Vector6& q) {
-    robot::forwardKinematics(model, q, kinematics);
+    robot::chainKinematics(model, q, model.tipLink(), kinematics);
     return Eigen::Vector3d(kinematics.linkPoses[model.tipLink()].translation());
   };
 

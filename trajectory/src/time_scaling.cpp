@@ -247,8 +247,8 @@ public:
 
 private:
   double tcpSpeed(const robot::Vector6& q, const robot::Vector6& qd, Eigen::Vector3d* tcpPosition) {
-    robot::forwardKinematics(model_, q, kinematics_);
     const int tip = model_.tipLink();
+    robot::chainKinematics(model_, q, tip, kinematics_);
     if (tcpPosition != nullptr) *tcpPosition = kinematics_.linkPoses[tip].translation();
     return (robot::jacobian(model_, kinematics_, tip).topRows<3>() * qd).norm();
   }

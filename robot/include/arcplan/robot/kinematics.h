@@ -16,12 +16,18 @@ using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>;  // rows: linear (3),
 struct KinematicsData {
   explicit KinematicsData(const RobotModel& model);
   std::vector<Eigen::Isometry3d> linkPoses;  // in the base link frame, indexed like model.links()
+  std::vector<int> chain;                    // chainKinematics' scratch
 };
 
 // Poses of every link of the model for joint vector q (size model.dof()).
 void forwardKinematics(const RobotModel& model, const JointRef& q, KinematicsData& data);
 
-// Pose of the tip link (allocates a workspace; use forwardKinematics in loops).
+// Poses of `link` and of its ancestors only (the other links' poses left as they were): all that the link's pose and
+// jacobian(model, data, link) need, without the links beside the chain (a gripper's fingers, sensors: 12 of the 22
+// links of MotionBenchMaker's UR5).
+void chainKinematics(const RobotModel& model, const JointRef& q, int link, KinematicsData& data);
+
+// Pose of the tip link (allocates a workspace; use chainKinematics in loops).
 Eigen::Isometry3d tipPose(const RobotModel& model, const JointRef& q);
 
 // Geometric Jacobian of `link` (default: tip) in the base frame, reference point at the link
