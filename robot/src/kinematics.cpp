@@ -5,47 +5,59 @@
 
 namespace arcplan::robot {
 
-KinematicsData::KinematicsData(const RobotModel& model)
-    : linkPoses(model.links().size(), Eigen::Isometry3d::Identity()) {}
-
 namespace {
 
-// The coordinate axis a joint turns about (0, 1, 2 for x, y, z; sign -1 for a negative one), -1 for any other
-// direction.
-int coordinateAxis(const Eigen::Vector3d& axis, double& sign) {
+// The coordinate axis a joint turns about, as KinematicsData::jointAxes holds it.
+signed char coordinateAxis(const Eigen::Vector3d& axis) {
   for (int k = 0; k < 3; ++k) {
-    if (std::abs(axis[k]) == 1.0 && axis[(k + 1) % 3] == 0.0 && axis[(k + 2) % 3] == 0.0) {
-      sign = axis[k];
-      return k;
-    }
+    if (std::abs(axis[k]) == 1.0 && axis[(k + 1) % 3] == 0.0 && axis[(k + 2) % 3] == 0.0)
+      return static_cast<signed char>(axis[k] > 0.0 ? k + 1 : -(k + 1));
   }
-  return -1;
+  return 0;
+}
+
+// The rotation by (c, s) about coordinate axis K of a frame whose other two axes are columns A and B of r, applied to
+// r: it mixes those two columns only (fixed indices keep them in registers).
+template <int A, int B, class Rotation>
+void turnColumns(Rotation&& r, double c, double s) {
+  const Eigen::Vector3d first = r.col(A), second = r.col(B);
+  r.col(A) = c * first + s * second;
+  r.col(B) = c * second - s * first;
 }
 
 // Link i's pose from its parent's (already in data) and q.
-void placeLink(const RobotModel& model, const JointRef& q, std::size_t i, KinematicsData& data) {
+inline void placeLink(const RobotModel& model, const JointRef& q, std::size_t i, KinematicsData& data) {
   const Link& link = model.links()[i];
   Eigen::Isometry3d pose = link.parent < 0 ? link.originInParent : data.linkPoses[link.parent] * link.originInParent;
   if (link.joint >= 0) {
-    double sign = 1.0;
-    const int k = coordinateAxis(link.axis, sign);
-    if (k >= 0) {
-      // About a coordinate axis of the link's frame (every UR joint: z in Universal Robots' URDFs, y for three of
-      // them in older ones such as MotionBenchMaker's UR5), the rotation mixes the other two columns only: a third
-      // of the cost of a general axis-angle product (which took 9 % of an MBM fallback's time).
-      const double c = std::cos(q[link.joint]), s = sign * std::sin(q[link.joint]);
-      const int a = (k + 1) % 3, b = (k + 2) % 3;
-      const Eigen::Vector3d first = pose.linear().col(a), second = pose.linear().col(b);
-      pose.linear().col(a) = c * first + s * second;
-      pose.linear().col(b) = c * second - s * first;
-    } else {
-      pose.linear() *= Eigen::AngleAxisd(q[link.joint], link.axis).toRotationMatrix();
+    // About a coordinate axis of the link's frame (every UR joint: z in Universal Robots' URDFs, y for three of them
+    // in older ones such as MotionBenchMaker's UR5), the rotation mixes the other two columns only: a third of the
+    // cost of a general axis-angle product (which took 9 % of an MBM fallback's time).
+    const int axis = data.jointAxes[i];
+    const double c = std::cos(q[link.joint]), s = (axis < 0 ? -1.0 : 1.0) * std::sin(q[link.joint]);
+    switch (axis < 0 ? -axis : axis) {
+      case 1:
+        turnColumns<1, 2>(pose.linear(), c, s);
+        break;
+      case 2:
+        turnColumns<2, 0>(pose.linear(), c, s);
+        break;
+      case 3:
+        turnColumns<0, 1>(pose.linear(), c, s);
+        break;
+      default:
+        pose.linear() *= Eigen::AngleAxisd(q[link.joint], link.axis).toRotationMatrix();
     }
   }
   data.linkPoses[i] = pose;
 }
 
 }  // namespace
+
+KinematicsData::KinematicsData(const RobotModel& model)
+    : linkPoses(model.links().size(), Eigen::Isometry3d::Identity()) {
+  for (const Link& link : model.links()) jointAxes.push_back(link.joint >= 0 ? coordinateAxis(link.axis) : 0);
+}
 
 void forwardKinematics(const RobotModel& model, const JointRef& q, KinematicsData& data) {
   assert(q.size() == model.dof());
@@ -54,11 +66,14 @@ void forwardKinematics(const RobotModel& model, const JointRef& q, KinematicsDat
 
 void chainKinematics(const RobotModel& model, const JointRef& q, int link, KinematicsData& data) {
   assert(q.size() == model.dof());
+  if (data.chainLink != link) {
+    data.chain.clear();
+    for (int l = link; l >= 0; l = model.links()[l].parent) data.chain.push_back(l);
+    data.chainLink = link;
+  }
   // Links come after their parents (RobotModel): the chain is placed from the base up.
-  std::vector<int>& chain = data.chain;
-  chain.clear();
-  for (int l = link; l >= 0; l = model.links()[l].parent) chain.push_back(l);
-  for (auto l = chain.rbegin(); l != chain.rend(); ++l) placeLink(model, q, static_cast<std::size_t>(*l), data);
+  for (auto l = data.chain.rbegin(); l != data.chain.rend(); ++l)
+    placeLink(model, q, static_cast<std::size_t>(*l), data);
 }
 
 Eigen::Isometry3d tipPose(const RobotModel& model, const JointRef& q) {

@@ -12,11 +12,16 @@ using JointVector = Eigen::VectorXd;
 using JointRef = Eigen::Ref<const Eigen::VectorXd>;
 using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>;  // rows: linear (3), angular (3)
 
-// Scratch space for kinematics; one per thread, reused across calls.
+// Scratch space for the kinematics of one model; one per thread, reused across calls.
 struct KinematicsData {
   explicit KinematicsData(const RobotModel& model);
   std::vector<Eigen::Isometry3d> linkPoses;  // in the base link frame, indexed like model.links()
-  std::vector<int> chain;                    // chainKinematics' scratch
+  // Per link, the coordinate axis its joint turns about (1, 2, 3 for x, y, z, negative for -x, -y, -z; 0 for any other
+  // axis or no joint), worked out once from the model.
+  std::vector<signed char> jointAxes;
+  // chainKinematics: the chain of link chainLink, from it down to the base.
+  std::vector<int> chain;
+  int chainLink = -1;
 };
 
 // Poses of every link of the model for joint vector q (size model.dof()).
