@@ -28,7 +28,15 @@ void turnColumns(Rotation&& r, double c, double s) {
 // Link i's pose from its parent's (already in data) and q.
 inline void placeLink(const RobotModel& model, const JointRef& q, std::size_t i, KinematicsData& data) {
   const Link& link = model.links()[i];
-  Eigen::Isometry3d pose = link.parent < 0 ? link.originInParent : data.linkPoses[link.parent] * link.originInParent;
+  Eigen::Isometry3d& pose = data.linkPoses[i];
+  if (link.parent < 0) {
+    pose = link.originInParent;
+  } else {
+    // Eigen's own Isometry product, written out: the compiler kept it a call (8-12 % of a time scaling's CPU).
+    const Eigen::Isometry3d& parent = data.linkPoses[link.parent];
+    pose.linear().noalias() = parent.linear() * link.originInParent.linear();
+    pose.translation().noalias() = parent.linear() * link.originInParent.translation() + parent.translation();
+  }
   if (link.joint >= 0) {
     // About a coordinate axis of the link's frame (every UR joint: z in Universal Robots' URDFs, y for three of them
     // in older ones such as MotionBenchMaker's UR5), the rotation mixes the other two columns only: a third of the
@@ -49,7 +57,6 @@ inline void placeLink(const RobotModel& model, const JointRef& q, std::size_t i,
         pose.linear() *= Eigen::AngleAxisd(q[link.joint], link.axis).toRotationMatrix();
     }
   }
-  data.linkPoses[i] = pose;
 }
 
 }  // namespace
