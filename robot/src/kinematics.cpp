@@ -89,17 +89,22 @@ Eigen::Isometry3d tipPose(const RobotModel& model, const JointRef& q) {
   return data.linkPoses[model.tipLink()];
 }
 
-Jacobian jacobian(const RobotModel& model, const KinematicsData& data, int link) {
+void jacobian(const RobotModel& model, const KinematicsData& data, int link, Jacobian& out) {
   if (link < 0) link = model.tipLink();
-  Jacobian j = Jacobian::Zero(6, model.dof());
+  out.setZero(6, model.dof());
   const Eigen::Vector3d target = data.linkPoses[link].translation();
   for (int l = link; l >= 0; l = model.links()[l].parent) {
     const Link& current = model.links()[l];
     if (current.joint < 0) continue;
     const Eigen::Vector3d axis = data.linkPoses[l].linear() * current.axis;
-    j.block<3, 1>(0, current.joint) = axis.cross(target - data.linkPoses[l].translation());
-    j.block<3, 1>(3, current.joint) = axis;
+    out.block<3, 1>(0, current.joint) = axis.cross(target - data.linkPoses[l].translation());
+    out.block<3, 1>(3, current.joint) = axis;
   }
+}
+
+Jacobian jacobian(const RobotModel& model, const KinematicsData& data, int link) {
+  Jacobian j;
+  jacobian(model, data, link, j);
   return j;
 }
 

@@ -87,10 +87,13 @@ TEST(Jacobian, MatchesFiniteDifferencesOfForwardKinematics) {
   arcplan::robot::KinematicsData data(model);
   std::mt19937 random(9);
   const double step = 1e-6;
+  // Also into a matrix kept across calls (the time scaling's), which must not keep what it held before.
+  arcplan::robot::Jacobian reused = arcplan::robot::Jacobian::Constant(6, 6, 7.0);
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::VectorXd q = randomConfiguration(random);
-    arcplan::robot::forwardKinematics(model, q, data);
-    const auto j = arcplan::robot::jacobian(model, data);
+    arcplan::robot::chainKinematics(model, q, model.tipLink(), data);
+    arcplan::robot::jacobian(model, data, model.tipLink(), reused);
+    const auto j = trial % 2 == 0 ? arcplan::robot::jacobian(model, data) : reused;
     for (int k = 0; k < 6; ++k) {
       Eigen::VectorXd plus = q, minus = q;
       plus[k] += step;

@@ -250,7 +250,8 @@ private:
     const int tip = model_.tipLink();
     robot::chainKinematics(model_, q, tip, kinematics_);
     if (tcpPosition != nullptr) *tcpPosition = kinematics_.linkPoses[tip].translation();
-    return (robot::jacobian(model_, kinematics_, tip).topRows<3>() * qd).norm();
+    robot::jacobian(model_, kinematics_, tip, jacobian_);
+    return (jacobian_.topRows<3>() * qd).norm();
   }
 
   void record(std::size_t interval, double tcpSpeed, const robot::Vector6& qd) {
@@ -261,6 +262,7 @@ private:
 
   const robot::RobotModel& model_;
   robot::KinematicsData kinematics_;
+  robot::Jacobian jacobian_;  // tcpSpeed's, allocated once
   double maxTcpSpeed_;
   robot::Vector6 jointSpeedLimits_;
   std::vector<double> stretch_;

@@ -38,5 +38,7 @@ Eigen::Isometry3d tipPose(const RobotModel& model, const JointRef& q);
 // Geometric Jacobian of `link` (default: tip) in the base frame, reference point at the link
 // origin: [v; w] = J(q)·qd. Uses data.linkPoses, so call forwardKinematics(q) first.
 Jacobian jacobian(const RobotModel& model, const KinematicsData& data, int link = -1);
+// The same into `out` (resized; no allocation once it has the size): for loops.
+void jacobian(const RobotModel& model, const KinematicsData& data, int link, Jacobian& out);
 
 }  // namespace arcplan::robot
