@@ -3,23 +3,26 @@
 // Issue 23 asks for no arc query over 5x RRTConnect's solve time, issue 22 for an arc median of 0.2 ms:
 // PlannerArcGenerated/<problem> alternates the two planners on one problem and reports both medians and
 // their ratio; PlannerArcGeneratedSuite solves every problem once per iteration and reports the median of
-// the per-problem arc medians, the largest one, and how many problems are over 5x RRTConnect's median.
+// the per-problem arc medians, the largest one, and how many problems are over 5x RRTConnect's median;
+// PlannerArcMbmSuite the same on every 50th MotionBenchMaker UR5 problem (where ../shared/data/mbm_ur5 is).
 // Times are the solving thread's CPU time (both planners are single-threaded): on this shared 2-core machine the
 // wall clock of a millisecond solve moved several-fold with the other engineers' load. RRTConnect's is its solve
 // alone (no simplifier), in process: without the ~0.1 ms of thread and bookkeeping that OMPL's Benchmark adds to
 // its `time` in a campaign (docs/benchmarks.md's table). Run: build/perf/arcplan_perf
-// --benchmark_filter=PlannerArcGenerated
+// --benchmark_filter='PlannerArcGenerated|PlannerArcMbm'
 #include <benchmark/benchmark.h>
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/util/Console.h>
 
 #include <algorithm>
 #include <ctime>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "arcplan/benchmarks/suite.h"
+#include "arcplan/common/resources.h"
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/planning_problem.h"
 
@@ -42,27 +45,36 @@ ompl::base::PlannerPtr plannerOn(PlanningProblem& planning, const std::string& n
   return instance;
 }
 
+// Every `stride`-th problem of a suite with both planners set up on it.
+std::vector<Case> casesOf(const std::string& suiteName, std::size_t stride) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+  const arcplan::benchmarks::Suite suite = arcplan::benchmarks::loadSuite(arcplan::benchmarks::findSuite(suiteName));
+  std::vector<Case> made;
+  for (std::size_t k = 0; k < suite.problems.size(); k += stride) {
+    const arcplan::benchmarks::Problem& problem = suite.problems[k];
+    arcplan::planners::PlanningProblemOptions options;
+    options.clearance = suite.clearance;
+    Case one{problem.name,
+             arcplan::planners::makePlanningProblem(std::make_shared<const arcplan::collision::Scene>(problem.scene),
+                                                    problem.query, options),
+             nullptr, nullptr};
+    one.arc = plannerOn(one.planning, "arc");
+    one.rrtConnect = plannerOn(one.planning, "RRTConnect");
+    made.push_back(std::move(one));
+  }
+  return made;
+}
+
 // Every problem of the generated suite, made once per process (generating and setting up takes ~1 s).
 std::vector<Case>& cases() {
-  static std::vector<Case> all = [] {
-    ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
-    const arcplan::benchmarks::Suite suite =
-        arcplan::benchmarks::loadSuite(arcplan::benchmarks::findSuite("generated"));
-    std::vector<Case> made;
-    made.reserve(suite.problems.size());
-    for (const arcplan::benchmarks::Problem& problem : suite.problems) {
-      arcplan::planners::PlanningProblemOptions options;
-      options.clearance = suite.clearance;
-      Case one{problem.name,
-               arcplan::planners::makePlanningProblem(std::make_shared<const arcplan::collision::Scene>(problem.scene),
-                                                      problem.query, options),
-               nullptr, nullptr};
-      one.arc = plannerOn(one.planning, "arc");
-      one.rrtConnect = plannerOn(one.planning, "RRTConnect");
-      made.push_back(std::move(one));
-    }
-    return made;
-  }();
+  static std::vector<Case> all = casesOf("generated", 1);
+  return all;
+}
+
+// Every 50th of MotionBenchMaker's 500 UR5 problems (the built-in mbm-ur5 suite): 10, two of each family. Every one
+// falls back (docs/planners.md): the arc planner's time there is its fallback's.
+std::vector<Case>& mbmCases() {
+  static std::vector<Case> all = casesOf("mbm-ur5", 50);
   return all;
 }
 
@@ -101,8 +113,9 @@ void PlannerArcGenerated(benchmark::State& state, const std::string& name) {
   state.counters["ratio"] = median(arcTimes) / median(rrtConnectTimes);
 }
 
-void PlannerArcGeneratedSuite(benchmark::State& state) {
-  auto& all = cases();
+// Each problem solved once per iteration by both planners: the median of the per-problem arc medians, the largest,
+// RRTConnect's median of medians, and how many problems are over 5x RRTConnect's median.
+void PlannerArcSuite(benchmark::State& state, std::vector<Case>& all) {
   std::vector<std::vector<double>> arcTimes(all.size()), rrtConnectTimes(all.size());
   for (auto _ : state) {
     for (std::size_t i = 0; i < all.size(); ++i) {
@@ -110,17 +123,21 @@ void PlannerArcGeneratedSuite(benchmark::State& state) {
       rrtConnectTimes[i].push_back(timedSolve(state, all[i], all[i].rrtConnect));
     }
   }
-  std::vector<double> arcMedians;
+  std::vector<double> arcMedians, rrtConnectMedians;
   int over = 0;
   for (std::size_t i = 0; i < all.size(); ++i) {
     arcMedians.push_back(median(arcTimes[i]));
-    if (arcMedians.back() > 5.0 * median(rrtConnectTimes[i])) ++over;
+    rrtConnectMedians.push_back(median(rrtConnectTimes[i]));
+    if (arcMedians.back() > 5.0 * rrtConnectMedians.back()) ++over;
   }
   state.counters["arc_median_of_medians_us"] = median(arcMedians);
   state.counters["arc_largest_median_us"] = *std::max_element(arcMedians.begin(), arcMedians.end());
+  state.counters["rrtconnect_median_of_medians_us"] = median(rrtConnectMedians);
   state.counters["problems_over_5x"] = over;
   state.counters["problems"] = static_cast<double>(all.size());
 }
+
+void PlannerArcGeneratedSuite(benchmark::State& state) { PlannerArcSuite(state, cases()); }
 BENCHMARK(PlannerArcGeneratedSuite)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 // Problems of the families the 5x criterion missed on (docs/benchmarks.md, issue 23's table), one each.
@@ -132,6 +149,13 @@ const bool registered = [] {
                                  std::string(name))
         ->Unit(benchmark::kMicrosecond)
         ->Iterations(100);
+  }
+  // MotionBenchMaker's problems only where ../shared/data/mbm_ur5 is.
+  if (std::filesystem::exists(arcplan::sharedDataDirectory() / "mbm_ur5" / "problems")) {
+    benchmark::RegisterBenchmark("PlannerArcMbmSuite",
+                                 [](benchmark::State& state) { PlannerArcSuite(state, mbmCases()); })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(3);
   }
   return true;
 }();
