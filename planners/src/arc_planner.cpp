@@ -47,6 +47,7 @@ const std::vector<RealParameter>& realParameters() {
       {"deadline", 0.0, 60.0, "0.:0.01:60.", &P::setDeadline, &P::getDeadline},
       {"speed_limit", 0.01, 2.0, "0.01:0.01:2.", &P::setSpeedLimit, &P::getSpeedLimit},
       {"fallback_range", 0.0, 100.0, "0.:0.1:100.", &P::setFallbackRange, &P::getFallbackRange},
+      {"fallback_plans", 1.0, 8.0, "1.:1.:8.", &P::setFallbackPlans, &P::getFallbackPlans},
   };
   return table;
 }
@@ -115,6 +116,12 @@ void ArcPlanner::setClearance(double clearance) { clearance_ = checkedParameter(
 void ArcPlanner::setDeadline(double seconds) { deadline_ = checkedParameter("deadline", seconds); }
 void ArcPlanner::setSpeedLimit(double speed) { speedLimit_ = checkedParameter("speed_limit", speed); }
 void ArcPlanner::setFallbackRange(double range) { fallbackRange_ = checkedParameter("fallback_range", range); }
+void ArcPlanner::setFallbackPlans(double plans) {
+  if (checkedParameter("fallback_plans", plans) != std::round(plans)) {
+    throw Error("arc planner parameter fallback_plans must be a whole number of plans, got " + number(plans));
+  }
+  fallbackPlans_ = static_cast<int>(plans);
+}
 
 void ArcPlanner::clear() {
   Planner::clear();
@@ -192,8 +199,8 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
           return trajectory::scaleToTcpSpeed(robot, joints, options).duration();
         },
         [&](const std::vector<robot::Vector6>& joints) { return trajectory::plannedDuration(robot, joints, options); }};
-    return detail::planInJointSpace(query, fallbackSpace(motionCheck, required, start, goal), {seed_, fallbackRange_},
-                                    timing);
+    return detail::planInJointSpace(query, fallbackSpace(motionCheck, required, start, goal),
+                                    {seed_, fallbackRange_, static_cast<std::uint_fast32_t>(fallbackPlans_)}, timing);
   });
   // What the search met stays part of the answer; its reason leads a failure's.
   fallback.obstacles = std::move(outcome.obstacles);

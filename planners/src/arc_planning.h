@@ -80,6 +80,7 @@ struct ExecutionTiming {
 struct JointPlanSettings {
   std::uint_fast32_t seed = 1;
   double range = 0.0;
+  std::uint_fast32_t plans = 4;  // seeds seed .. seed + plans - 1 (ArcPlanner::setFallbackPlans)
 };
 
 // RRTConnect on `si` (whose validity keeps the margin), simplified as `plan` and `bench` simplify it (up to 4

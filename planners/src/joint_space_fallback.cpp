@@ -36,12 +36,6 @@ namespace {
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
-// Joint-space plans (seeds seed, seed + 1, ...) of which the fastest to execute is kept: one
-// RRTConnect + simplifier path can take twice as long as the next draw's (generated line-cylinder-008:
-// 7.73 s with seed 1, 5.55 s for the benchmark's RRTConnect run), and each costs about as much as the
-// search. Later plans only while the termination condition allows.
-constexpr std::uint_fast32_t kJointPlans = 4;
-
 // TCP length of a straight joint motion, from forward kinematics at this many points.
 constexpr int kTcpSamples = 32;
 
@@ -348,7 +342,11 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
   int plans = 0;
   // Once time is up the fallback returns the best path it has timed: a later plan that ends after the
   // limit is dropped untimed (a time scaling costs 10-60 ms on MBM), and no line is tried.
-  for (std::uint_fast32_t k = 0; k < kJointPlans && (k == 0 || !query.ptc()); ++k) {
+  // Joint-space plans (seeds seed, seed + 1, ...) of which the fastest to execute is kept (settings.plans, 4 by
+  // default): one RRTConnect + simplifier path can take twice as long as the next draw's (generated line-cylinder-008:
+  // 7.73 s with seed 1, 5.55 s for the benchmark's RRTConnect run), and each costs about as much as the search. Later
+  // plans only while the termination condition allows.
+  for (std::uint_fast32_t k = 0; k < settings.plans && (k == 0 || !query.ptc()); ++k) {
     std::optional<JointPlan> planned = simplifiedJointPath(
         query, si, seed + k, settings.range, k == 0 ? Simplification::ToTheEnd : Simplification::WithinTheLimit);
     if (!planned || (fastest && query.ptc())) continue;

@@ -16,6 +16,7 @@
 
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/endpoint_clearance.h"
+#include "arcplan/common/error.h"
 #include "arcplan/planners/arc_planner.h"
 #include "arcplan/planners/seeded_sampling.h"
 #include "arcplan/robot/pose.h"
@@ -230,6 +231,36 @@ TEST(ArcPlannerFallback, ItsFirstPlanIsRRTConnectAndSimplifierOfTheSameSeed) {
   EXPECT_NEAR(arcplan::trajectory::scaleToTcpSpeed(arcplan::robot::ur10e(), solutionJoints(problem)).duration(),
               result.fallbackTimes.kept, 1e-9);
   EXPECT_GE(closestApproach(problem), 0.01 - 1e-6);
+}
+
+// With fallback_plans 1 the fallback draws the same-seed plan alone: its joint path is exactly what RRTConnect +
+// simplifier of that seed executes (not the fastest of four draws), and what it keeps is no slower.
+TEST(ArcPlannerFallback, OnePlanIsRRTConnectAndSimplifierOfTheSameSeed) {
+  const auto scene = elbowBeamScene();
+  auto problem = centimetreProblem(scene);
+  constexpr std::uint32_t kSeed = 5;
+  const auto [planner, status] =
+      solve(problem, "arc", {{"seed", std::to_string(kSeed)}, {"fallback_plans", "1"}}, 30.0);
+  const ArcPlannerResult& result = arcOf(planner).lastResult();
+  ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << result.reason;
+  ASSERT_EQ(result.mode(), "fallback") << result.reason;
+  const double sameSeed = rrtConnectAndSimplifier(scene, kSeed);
+  // One of the later draws executes faster (else this test could not tell one plan from four).
+  double later = rrtConnectAndSimplifier(scene, kSeed + 1);
+  for (std::uint32_t seed = kSeed + 2; seed <= kSeed + 3; ++seed)
+    later = std::min(later, rrtConnectAndSimplifier(scene, seed));
+  ASSERT_LT(later, sameSeed - 1e-6);
+  EXPECT_NEAR(result.fallbackTimes.jointPath, sameSeed, 1e-9);
+  EXPECT_LE(result.fallbackTimes.kept, sameSeed);
+  EXPECT_NE(result.reason.find("the fastest of 1 RRTConnect"), std::string::npos) << result.reason;
+}
+
+TEST(ArcPlannerFallback, APlanCountThatIsNotAWholeNumberFrom1To8IsAnError) {
+  const auto scene = elbowBeamScene();
+  auto problem = centimetreProblem(scene);
+  for (const char* bad : {"0", "9", "2.5", "nan"}) {
+    EXPECT_THROW(solve(problem, "arc", {{"fallback_plans", bad}}, 1.0), arcplan::Error) << bad;
+  }
 }
 
 // A suite that sets RRTConnect's range gives the fallback the same (fallback_range): its plans are then

@@ -141,6 +141,11 @@ public:
   // fallback's first plan stays what a plain RRTConnect run of the same seed computes.
   void setFallbackRange(double range);
   double getFallbackRange() const { return fallbackRange_; }
+  // Joint-space plans (seeds seed, seed + 1, ...) the fallback draws and keeps the fastest of (1–8, default 4; later
+  // plans only while the termination condition allows): fewer answer sooner, more execute faster. The first is
+  // always the plan RRTConnect + simplifier of the same seed gives, so what is kept never executes slower than it.
+  void setFallbackPlans(double plans);
+  double getFallbackPlans() const { return fallbackPlans_; }
   double getDeadline() const { return deadline_; }
   // Giving a detour shape (sagitta) asks for the thesis mode unless auto is set explicitly.
   void setAuto(bool enabled) { autoMode_ = enabled; }
@@ -199,6 +204,7 @@ private:
   double deadline_ = 0.05;
   double speedLimit_ = 0.25;  // m/s: the collaborative limit of the thesis and the benchmark suites
   double fallbackRange_ = 0.0;
+  int fallbackPlans_ = 4;
   ArcPlannerResult result_;
   std::vector<robot::Vector6> solutionJoints_;                        // the last solution's waypoints
   mutable std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
