@@ -186,7 +186,7 @@ EndpointClearance::EndpointClearance(const CollisionModel& model, double clearan
                   std::to_string(dof));
     }
     // Most endpoints keep that: the spheres and bounds of keepsAcceptanceMargin (the same distances) say so without
-    // the exact distance of every pair (a tenth of a quick arc query's time).
+    // the exact distance of every pair (8 % of a quick arc query's time).
     if (motionClearance_ > 0.0 && keepsAcceptanceMargin(model, data, endpoint, motionClearance_)) continue;
     const DistanceReport measured = distance(model, data, endpoint);
     // e: the closest pair a certified motion at c_m cannot leave. That is clearanceOf(measured) (the clearance

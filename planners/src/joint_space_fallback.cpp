@@ -191,7 +191,6 @@ std::vector<robot::Vector6> tcpShortcuts(const ArcQuery& query, const ob::SpaceI
   std::vector<double> motionLengths;
   for (int attempt = 0; attempt < kTcpShortcuts && path.size() > 2 && !query.ptc(); ++attempt) {
     if (motionLengths.empty()) {
-      motionLengths.clear();
       for (std::size_t k = 0; k + 1 < path.size(); ++k) motionLengths.push_back(tcpLengthOf(path[k], path[k + 1]));
     }
     std::vector<double> at{0.0};

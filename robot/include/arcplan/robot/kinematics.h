@@ -36,7 +36,8 @@ void chainKinematics(const RobotModel& model, const JointRef& q, int link, Kinem
 Eigen::Isometry3d tipPose(const RobotModel& model, const JointRef& q);
 
 // Geometric Jacobian of `link` (default: tip) in the base frame, reference point at the link
-// origin: [v; w] = J(q)·qd. Uses data.linkPoses, so call forwardKinematics(q) first.
+// origin: [v; w] = J(q)·qd. Uses the poses of `link` and its ancestors in data.linkPoses, so call forwardKinematics(q)
+// or chainKinematics(q, link) first.
 Jacobian jacobian(const RobotModel& model, const KinematicsData& data, int link = -1);
 // The same into `out` (resized; no allocation once it has the size): for loops.
 void jacobian(const RobotModel& model, const KinematicsData& data, int link, Jacobian& out);
