@@ -48,6 +48,7 @@ const std::vector<RealParameter>& realParameters() {
       {"speed_limit", 0.01, 2.0, "0.01:0.01:2.", &P::setSpeedLimit, &P::getSpeedLimit},
       {"fallback_range", 0.0, 100.0, "0.:0.1:100.", &P::setFallbackRange, &P::getFallbackRange},
       {"fallback_plans", 1.0, 8.0, "1.:1.:8.", &P::setFallbackPlans, &P::getFallbackPlans},
+      {"fallback_threads", 1.0, 8.0, "1.:1.:8.", &P::setFallbackThreads, &P::getFallbackThreads},
   };
   return table;
 }
@@ -121,6 +122,13 @@ void ArcPlanner::setFallbackPlans(double plans) {
     throw Error("arc planner parameter fallback_plans must be a whole number of plans, got " + number(plans));
   }
   fallbackPlans_ = static_cast<int>(plans);
+}
+void ArcPlanner::setFallbackThreads(double threads) {
+  if (checkedParameter("fallback_threads", threads) != std::round(threads)) {
+    throw Error("arc planner parameter fallback_threads must be a whole number of threads, got " + number(threads));
+  }
+  fallbackThreads_ = static_cast<int>(threads);
+  specs_.multithreaded = fallbackThreads_ > 1;
 }
 
 void ArcPlanner::clear() {
@@ -200,7 +208,9 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
         },
         [&](const std::vector<robot::Vector6>& joints) { return trajectory::plannedDuration(robot, joints, options); }};
     return detail::planInJointSpace(query, fallbackSpace(motionCheck, required, start, goal),
-                                    {seed_, fallbackRange_, static_cast<std::uint_fast32_t>(fallbackPlans_)}, timing);
+                                    {seed_, fallbackRange_, static_cast<std::uint_fast32_t>(fallbackPlans_),
+                                     static_cast<std::uint_fast32_t>(fallbackThreads_)},
+                                    timing);
   });
   // What the search met stays part of the answer; its reason leads a failure's.
   fallback.obstacles = std::move(outcome.obstacles);

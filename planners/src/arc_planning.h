@@ -80,7 +80,8 @@ struct ExecutionTiming {
 struct JointPlanSettings {
   std::uint_fast32_t seed = 1;
   double range = 0.0;
-  std::uint_fast32_t plans = 4;  // seeds seed .. seed + plans - 1 (ArcPlanner::setFallbackPlans)
+  std::uint_fast32_t plans = 4;    // seeds seed .. seed + plans - 1 (ArcPlanner::setFallbackPlans)
+  std::uint_fast32_t threads = 1;  // threads drawing the plans at once (ArcPlanner::setFallbackThreads)
 };
 
 // RRTConnect on `si` (whose validity keeps the margin), simplified as `plan` and `bench` simplify it (up to 4

@@ -18,10 +18,13 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <exception>
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include "arc_planning.h"
 #include "arcplan/collision/joint_states.h"
@@ -327,6 +330,42 @@ ArcOutcome fastestPath(const ArcQuery& query, const std::vector<Segment>& segmen
   return outcome;
 }
 
+// The plans (and each plan's shortcuts for the TCP) drawn on `threads` threads at once: each depends only on its own
+// seed, so each is what the serial loop of planInJointSpace draws, and that loop then takes them in order. Later plans
+// are not started once the caller's time is up. An exception of any draw is rethrown here after all threads ended.
+struct DrawnPlans {
+  std::vector<std::optional<JointPlan>> plans;
+  std::vector<std::vector<robot::Vector6>> shortcuts;
+};
+
+DrawnPlans drawPlans(const ArcQuery& query, const ob::SpaceInformationPtr& si, const JointPlanSettings& settings) {
+  DrawnPlans drawn;
+  drawn.plans.resize(settings.plans);
+  drawn.shortcuts.resize(settings.plans);
+  std::atomic<std::uint_fast32_t> next{0};
+  std::vector<std::exception_ptr> errors(settings.threads);
+  const auto draw = [&](std::size_t worker) {
+    try {
+      for (std::uint_fast32_t k = next++; k < settings.plans; k = next++) {
+        if (k > 0 && query.ptc()) continue;
+        drawn.plans[k] = simplifiedJointPath(query, si, settings.seed + k, settings.range,
+                                             k == 0 ? Simplification::ToTheEnd : Simplification::WithinTheLimit);
+        if (drawn.plans[k]) drawn.shortcuts[k] = tcpShortcuts(query, si, drawn.plans[k]->waypoints, settings.seed + k);
+      }
+    } catch (...) {
+      errors[worker] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> workers;
+  for (std::size_t worker = 1; worker < settings.threads; ++worker) workers.emplace_back(draw, worker);
+  draw(0);
+  for (std::thread& worker : workers) worker.join();
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  return drawn;
+}
+
 }  // namespace
 
 ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr& si, const JointPlanSettings& settings,
@@ -345,9 +384,14 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
   // default): one RRTConnect + simplifier path can take twice as long as the next draw's (generated line-cylinder-008:
   // 7.73 s with seed 1, 5.55 s for the benchmark's RRTConnect run), and each costs about as much as the search. Later
   // plans only while the termination condition allows.
+  // With more than one thread the plans are drawn first, all at once (drawPlans), and taken here in order.
+  const bool drawnAtOnce = settings.threads > 1 && settings.plans > 1;
+  DrawnPlans drawn = drawnAtOnce ? drawPlans(query, si, settings) : DrawnPlans{};
   for (std::uint_fast32_t k = 0; k < settings.plans && (k == 0 || !query.ptc()); ++k) {
-    std::optional<JointPlan> planned = simplifiedJointPath(
-        query, si, seed + k, settings.range, k == 0 ? Simplification::ToTheEnd : Simplification::WithinTheLimit);
+    std::optional<JointPlan> planned =
+        drawnAtOnce ? std::move(drawn.plans[k])
+                    : simplifiedJointPath(query, si, seed + k, settings.range,
+                                          k == 0 ? Simplification::ToTheEnd : Simplification::WithinTheLimit);
     if (!planned || (fastest && query.ptc())) continue;
     std::vector<robot::Vector6>& path = planned->waypoints;
     // The first plan is timed (it is reported), a later one only where its planned profile leaves it a chance of
@@ -359,7 +403,8 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
       firstSimplification = planned->simplificationTime;
     }
     fastestPlan = firstTimed ? planTime : std::min(fastestPlan, planTime);
-    std::vector<robot::Vector6> shortcut = tcpShortcuts(query, si, path, seed + k);
+    std::vector<robot::Vector6> shortcut =
+        drawnAtOnce ? std::move(drawn.shortcuts[k]) : tcpShortcuts(query, si, path, seed + k);
     const double toBeat = fastest ? std::min(fastestTime, planTime) : planTime;
     const double shortcutTime =
         shortcut == path || timing.slowerThan(shortcut, toBeat) ? planTime : timing.time(shortcut);

@@ -263,6 +263,38 @@ TEST(ArcPlannerFallback, APlanCountThatIsNotAWholeNumberFrom1To8IsAnError) {
   }
 }
 
+// Plans drawn on several threads at once are the same plans, taken in the same order: the path, its execution times
+// and the reason are those of the fallback drawing them one after the other (the expected values: that serial run).
+TEST(ArcPlannerFallback, PlansDrawnOnSeveralThreadsGiveTheSamePath) {
+  const auto scene = elbowBeamScene();
+  auto serialProblem = centimetreProblem(scene), threadedProblem = centimetreProblem(scene);
+  const auto [serial, serialStatus] = solve(serialProblem, "arc", {{"seed", "5"}, {"fallback_threads", "1"}}, 30.0);
+  const auto [threaded, threadedStatus] =
+      solve(threadedProblem, "arc", {{"seed", "5"}, {"fallback_threads", "3"}}, 30.0);
+  const ArcPlannerResult& one = arcOf(serial).lastResult();
+  const ArcPlannerResult& three = arcOf(threaded).lastResult();
+  ASSERT_EQ(serialStatus, ob::PlannerStatus::EXACT_SOLUTION) << one.reason;
+  ASSERT_EQ(threadedStatus, ob::PlannerStatus::EXACT_SOLUTION) << three.reason;
+  ASSERT_EQ(one.mode(), "fallback") << one.reason;
+  EXPECT_EQ(three.mode(), "fallback");
+  const auto serialJoints = solutionJoints(serialProblem), threadedJoints = solutionJoints(threadedProblem);
+  ASSERT_EQ(threadedJoints.size(), serialJoints.size());
+  for (std::size_t i = 0; i < serialJoints.size(); ++i)
+    EXPECT_EQ(threadedJoints[i], serialJoints[i]) << "waypoint " << i;
+  EXPECT_EQ(three.fallbackTimes.firstPlan, one.fallbackTimes.firstPlan);
+  EXPECT_EQ(three.fallbackTimes.jointPath, one.fallbackTimes.jointPath);
+  EXPECT_EQ(three.fallbackTimes.kept, one.fallbackTimes.kept);
+  EXPECT_EQ(three.reason, one.reason);
+}
+
+TEST(ArcPlannerFallback, AThreadCountThatIsNotAWholeNumberFrom1To8IsAnError) {
+  const auto scene = elbowBeamScene();
+  auto problem = centimetreProblem(scene);
+  for (const char* bad : {"0", "9", "1.5", "nan"}) {
+    EXPECT_THROW(solve(problem, "arc", {{"fallback_threads", bad}}, 1.0), arcplan::Error) << bad;
+  }
+}
+
 // A suite that sets RRTConnect's range gives the fallback the same (fallback_range): its plans are then
 // those of RRTConnect with that range, not with RRTConnect's default (0.2 of the joint space's extent,
 // 3.2 rad on the UR10e's thesis limits).

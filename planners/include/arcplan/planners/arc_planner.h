@@ -146,6 +146,11 @@ public:
   // always the plan RRTConnect + simplifier of the same seed gives, so what is kept never executes slower than it.
   void setFallbackPlans(double plans);
   double getFallbackPlans() const { return fallbackPlans_; }
+  // Threads that draw those plans at once (1–8, default 1): the same plans, taken in the same order, so the same
+  // path; sooner on a machine with cores to spare, the same CPU time in all. One by default, as every other planner
+  // a benchmark compares it with runs on one thread.
+  void setFallbackThreads(double threads);
+  double getFallbackThreads() const { return fallbackThreads_; }
   double getDeadline() const { return deadline_; }
   // Giving a detour shape (sagitta) asks for the thesis mode unless auto is set explicitly.
   void setAuto(bool enabled) { autoMode_ = enabled; }
@@ -205,6 +210,7 @@ private:
   double speedLimit_ = 0.25;  // m/s: the collaborative limit of the thesis and the benchmark suites
   double fallbackRange_ = 0.0;
   int fallbackPlans_ = 4;
+  int fallbackThreads_ = 1;
   ArcPlannerResult result_;
   std::vector<robot::Vector6> solutionJoints_;                        // the last solution's waypoints
   mutable std::shared_ptr<ompl::geometric::PathGeometric> solution_;  // owns the states getPlannerData reports
