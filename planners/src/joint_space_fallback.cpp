@@ -24,6 +24,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "arc_planning.h"
@@ -330,6 +331,14 @@ ArcOutcome fastestPath(const ArcQuery& query, const std::vector<Segment>& segmen
   return outcome;
 }
 
+// Plan k of the fallback: RRTConnect + simplifier of seed + k, the first simplified to the end, later ones within the
+// caller's limit.
+std::optional<JointPlan> planNumber(const ArcQuery& query, const ob::SpaceInformationPtr& si,
+                                    const JointPlanSettings& settings, std::uint_fast32_t k) {
+  return simplifiedJointPath(query, si, settings.seed + k, settings.range,
+                             k == 0 ? Simplification::ToTheEnd : Simplification::WithinTheLimit);
+}
+
 // The plans (and each plan's shortcuts for the TCP) drawn on `threads` threads at once: each depends only on its own
 // seed, so each is what the serial loop of planInJointSpace draws, and that loop then takes them in order. Later plans
 // are not started once the caller's time is up. An exception of any draw is rethrown here after all threads ended.
@@ -348,8 +357,7 @@ DrawnPlans drawPlans(const ArcQuery& query, const ob::SpaceInformationPtr& si, c
     try {
       for (std::uint_fast32_t k = next++; k < settings.plans; k = next++) {
         if (k > 0 && query.ptc()) continue;
-        drawn.plans[k] = simplifiedJointPath(query, si, settings.seed + k, settings.range,
-                                             k == 0 ? Simplification::ToTheEnd : Simplification::WithinTheLimit);
+        drawn.plans[k] = planNumber(query, si, settings, k);
         if (drawn.plans[k]) drawn.shortcuts[k] = tcpShortcuts(query, si, drawn.plans[k]->waypoints, settings.seed + k);
       }
     } catch (...) {
@@ -357,7 +365,13 @@ DrawnPlans drawPlans(const ArcQuery& query, const ob::SpaceInformationPtr& si, c
     }
   };
   std::vector<std::thread> workers;
-  for (std::size_t worker = 1; worker < settings.threads; ++worker) workers.emplace_back(draw, worker);
+  for (std::size_t worker = 1; worker < settings.threads; ++worker) {
+    try {
+      workers.emplace_back(draw, worker);
+    } catch (const std::system_error&) {
+      break;  // no thread to be had: the threads there are draw the rest
+    }
+  }
   draw(0);
   for (std::thread& worker : workers) worker.join();
   for (const std::exception_ptr& error : errors) {
@@ -388,10 +402,7 @@ ArcOutcome planInJointSpace(const ArcQuery& query, const ob::SpaceInformationPtr
   const bool drawnAtOnce = settings.threads > 1 && settings.plans > 1;
   DrawnPlans drawn = drawnAtOnce ? drawPlans(query, si, settings) : DrawnPlans{};
   for (std::uint_fast32_t k = 0; k < settings.plans && (k == 0 || !query.ptc()); ++k) {
-    std::optional<JointPlan> planned =
-        drawnAtOnce ? std::move(drawn.plans[k])
-                    : simplifiedJointPath(query, si, seed + k, settings.range,
-                                          k == 0 ? Simplification::ToTheEnd : Simplification::WithinTheLimit);
+    std::optional<JointPlan> planned = drawnAtOnce ? std::move(drawn.plans[k]) : planNumber(query, si, settings, k);
     if (!planned || (fastest && query.ptc())) continue;
     std::vector<robot::Vector6>& path = planned->waypoints;
     // The first plan is timed (it is reported), a later one only where its planned profile leaves it a chance of
