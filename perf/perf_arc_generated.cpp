@@ -4,7 +4,9 @@
 // PlannerArcGenerated/<problem> alternates the two planners on one problem and reports both medians and
 // their ratio; PlannerArcGeneratedSuite solves every problem once per iteration and reports the median of
 // the per-problem arc medians, the largest one, and how many problems are over 5x RRTConnect's median;
-// PlannerArcMbmSuite the same on every 50th MotionBenchMaker UR5 problem (where ../shared/data/mbm_ur5 is).
+// PlannerArcMbmSuite the same on every 50th MotionBenchMaker UR5 problem (where ../shared/data/mbm_ur5 is);
+// PlannerArcMbmThreads/<n> the arc planner alone on those with `fallback_threads` n, in wall-clock time (its plans are
+// then drawn on n threads: the same paths, sooner where cores are free).
 // Times are the solving thread's CPU time (both planners are single-threaded): on this shared 2-core machine the
 // wall clock of a millisecond solve moved several-fold with the other engineers' load. RRTConnect's is its solve
 // alone (no simplifier), in process: without the ~0.1 ms of thread and bookkeeping that OMPL's Benchmark adds to
@@ -15,6 +17,7 @@
 #include <ompl/util/Console.h>
 
 #include <algorithm>
+#include <chrono>
 #include <ctime>
 #include <filesystem>
 #include <memory>
@@ -113,6 +116,30 @@ void PlannerArcGenerated(benchmark::State& state, const std::string& name) {
   state.counters["ratio"] = median(arcTimes) / median(rrtConnectTimes);
 }
 
+// The arc planner alone on every case with fallback_threads = state.range(0), per iteration once; the median of the
+// per-problem medians and the largest, in the wall clock's milliseconds (the threads' CPU adds up, the wait does not).
+void PlannerArcThreads(benchmark::State& state, std::vector<Case>& all) {
+  const std::string threads = std::to_string(state.range(0));
+  for (Case& one : all) one.arc->params().setParam("fallback_threads", threads);
+  std::vector<std::vector<double>> wallTimes(all.size());
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      all[i].arc->clear();
+      all[i].planning.setup->getProblemDefinition()->clearSolutionPaths();
+      const auto start = std::chrono::steady_clock::now();
+      const auto status = all[i].arc->solve(ompl::base::timedPlannerTerminationCondition(10.0));
+      wallTimes[i].push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      if (status != ompl::base::PlannerStatus::EXACT_SOLUTION) state.SkipWithError("the arc planner found no path");
+    }
+  }
+  for (Case& one : all) one.arc->params().setParam("fallback_threads", "1");
+  std::vector<double> medians;
+  for (const auto& times : wallTimes) medians.push_back(median(times));
+  state.counters["arc_median_of_medians_ms"] = median(medians);
+  state.counters["arc_largest_median_ms"] = *std::max_element(medians.begin(), medians.end());
+}
+
 // Each problem solved once per iteration by both planners: the median of the per-problem arc medians, the largest,
 // RRTConnect's median of medians, and how many problems are over 5x RRTConnect's median.
 void PlannerArcSuite(benchmark::State& state, std::vector<Case>& all) {
@@ -155,6 +182,14 @@ const bool registered = [] {
     benchmark::RegisterBenchmark("PlannerArcMbmSuite",
                                  [](benchmark::State& state) { PlannerArcSuite(state, mbmCases()); })
         ->Unit(benchmark::kMillisecond)
+        ->Iterations(3);
+    benchmark::RegisterBenchmark("PlannerArcMbmThreads",
+                                 [](benchmark::State& state) { PlannerArcThreads(state, mbmCases()); })
+        ->Arg(1)
+        ->Arg(2)
+        ->Arg(4)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
         ->Iterations(3);
   }
   return true;
