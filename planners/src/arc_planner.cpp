@@ -203,9 +203,7 @@ detail::ArcOutcome ArcPlanner::answer(const ob::PlannerTerminationCondition& ptc
     options.maxTcpSpeed = speedLimit_;
     const robot::RobotModel& robot = collisionModel_->robot();
     const detail::ExecutionTiming timing{
-        [&](const std::vector<robot::Vector6>& joints) {
-          return trajectory::scaleToTcpSpeed(robot, joints, options).duration();
-        },
+        [&](const std::vector<robot::Vector6>& joints) { return trajectory::scaledDuration(robot, joints, options); },
         [&](const std::vector<robot::Vector6>& joints) { return trajectory::plannedDuration(robot, joints, options); }};
     return detail::planInJointSpace(query, fallbackSpace(motionCheck, required, start, goal),
                                     {seed_, fallbackRange_, static_cast<std::uint_fast32_t>(fallbackPlans_),

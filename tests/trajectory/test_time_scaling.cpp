@@ -243,6 +243,31 @@ TEST(TimeScaling, PlannedDurationBoundsTheScaledOneFromBelow) {
   }
 }
 
+// scaledDuration is the full scaling's duration, to the bit (the same computation without the samples kept), on the
+// thesis line and sparse RRT-like paths at both thesis speeds and the joint-limited 1 m/s; it refuses what the full
+// scaling refuses.
+TEST(TimeScaling, ScaledDurationIsTheFullScalingsDuration) {
+  robot::Vector6 m1, m2, b;
+  m1 << -0.6, -1.9, 2.0, -1.5, -1.2, -0.2;
+  m2 << 0.1, -1.3, 1.6, -2.2, -1.9, 0.9;
+  b << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399;
+  const JointPath paths[] = {linePath(), JointPath{testing::thesisSeedA(), m1, m2, b}, JointPath{m1, b},
+                             JointPath{b, m2, testing::thesisSeedA()}};
+  for (const JointPath& path : paths) {
+    for (const double speed : {0.149, 0.25, 1.0}) {
+      TimeScalingOptions options;
+      options.maxTcpSpeed = speed;
+      EXPECT_EQ(scaledDuration(robot::ur10e(), path, options),
+                scaleToTcpSpeed(robot::ur10e(), path, options).duration())
+          << speed;
+    }
+  }
+  TimeScalingOptions bad;
+  bad.maxTcpSpeed = 0.0;
+  EXPECT_THROW(scaledDuration(robot::ur10e(), linePath(), bad), Error);
+  EXPECT_THROW(scaledDuration(robot::ur10e(), JointPath{b}, {}), Error);
+}
+
 std::string scalingError(const JointPath& path, const TimeScalingOptions& options) {
   try {
     scaleToTcpSpeed(robot::ur10e(), path, options);

@@ -184,26 +184,34 @@ public:
         jointSpeedLimits_(jointSpeedLimits),
         stretch_(intervals, 1.0) {}
 
-  // Samples the uniform output grid (step <= checkTimeStep) into `result`.
-  void sampleAll(const Pchip& motion, double checkTimeStep, TimedTrajectory& result) {
+  // Samples the uniform output grid (step <= checkTimeStep), into `result` where one is given (else only checked).
+  void sampleAll(const Pchip& motion, double checkTimeStep, TimedTrajectory* result) {
     const auto& knots = motion.knots();
     const double totalTime = knots.back();
     const auto sampleCount = static_cast<std::size_t>(std::ceil(totalTime / checkTimeStep - 1e-9)) + 1;
     const double step = totalTime / static_cast<double>(sampleCount - 1);
-    result.time.resize(sampleCount);
-    result.position.resize(sampleCount);
-    result.velocity.resize(sampleCount);
-    result.acceleration.resize(sampleCount);
-    result.tcpSpeed.resize(sampleCount);
-    result.tcpPosition.resize(sampleCount);
+    if (result != nullptr) {
+      result->time.resize(sampleCount);
+      result->position.resize(sampleCount);
+      result->velocity.resize(sampleCount);
+      result->acceleration.resize(sampleCount);
+      result->tcpSpeed.resize(sampleCount);
+      result->tcpPosition.resize(sampleCount);
+    }
     std::size_t interval = 0;
     for (std::size_t i = 0; i < sampleCount; ++i) {
       const double t = i + 1 == sampleCount ? totalTime : step * static_cast<double>(i);
       while (interval + 2 < knots.size() && t >= knots[interval + 1]) ++interval;
-      result.time[i] = t;
-      motion.evaluateInInterval(interval, t, result.position[i], result.velocity[i], result.acceleration[i]);
-      result.tcpSpeed[i] = tcpSpeed(result.position[i], result.velocity[i], &result.tcpPosition[i]);
-      record(interval, result.tcpSpeed[i], result.velocity[i]);
+      robot::Vector6& position = result != nullptr ? result->position[i] : position_;
+      robot::Vector6& velocity = result != nullptr ? result->velocity[i] : velocity_;
+      robot::Vector6& acceleration = result != nullptr ? result->acceleration[i] : acceleration_;
+      motion.evaluateInInterval(interval, t, position, velocity, acceleration);
+      const double speed = tcpSpeed(position, velocity, result != nullptr ? &result->tcpPosition[i] : nullptr);
+      if (result != nullptr) {
+        result->time[i] = t;
+        result->tcpSpeed[i] = speed;
+      }
+      record(interval, speed, velocity);
     }
   }
 
@@ -301,8 +309,11 @@ double plannedDuration(const robot::RobotModel& model, const JointPath& path, co
   return planOf(model, path, options).profile.time.back();
 }
 
-TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath& path,
-                                const TimeScalingOptions& options) {
+namespace {
+
+// scaleToTcpSpeed with the output grid's samples kept, or only checked (scaledDuration): the same computation.
+TimedTrajectory scaled(const robot::RobotModel& model, const JointPath& path, const TimeScalingOptions& options,
+                       bool keepSamples) {
   Plan plan = planOf(model, path, options);
   const robot::Vector6& jointSpeedLimits = plan.jointSpeedLimits;
   const double acceleration = plan.acceleration;
@@ -350,7 +361,7 @@ TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath&
   for (int fullPass = 0;; ++fullPass) {
     refit();
     check.reset();
-    check.sampleAll(motion, options.checkTimeStep, result);
+    check.sampleAll(motion, options.checkTimeStep, keepSamples ? &result : nullptr);
     if (check.withinLimits()) break;
     if (fullPass >= kLocalRounds) {
       const double factor = check.worstRatio() * (1.0 + kStretchMargin * (fullPass - kLocalRounds + 1));
@@ -363,6 +374,17 @@ TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath&
   result.tcpPathLength = dense.tcpArcLength.back();
   result.densePath = std::move(dense.waypoints);
   return result;
+}
+
+}  // namespace
+
+TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath& path,
+                                const TimeScalingOptions& options) {
+  return scaled(model, path, options, true);
+}
+
+double scaledDuration(const robot::RobotModel& model, const JointPath& path, const TimeScalingOptions& options) {
+  return scaled(model, path, options, false).duration();
 }
 
 }  // namespace arcplan::trajectory

@@ -34,6 +34,11 @@ struct TimeScalingOptions {
 TimedTrajectory scaleToTcpSpeed(const robot::RobotModel& model, const JointPath& path,
                                 const TimeScalingOptions& options = {});
 
+// scaleToTcpSpeed(model, path, options).duration(), computed the same way without keeping the output grid's samples
+// (for comparing paths by execution time: a 15 s trajectory's samples are ~1.3 MB, whose allocation and first
+// touch were a seventh of its time scaling). Throws as scaleToTcpSpeed does.
+double scaledDuration(const robot::RobotModel& model, const JointPath& path, const TimeScalingOptions& options = {});
+
 // The duration of the planned ramp–cruise–brake profile alone (the steps before the PCHIP knots and their
 // check), about a tenth of scaleToTcpSpeed's cost: never above scaleToTcpSpeed(model, path, options).duration()
 // (beyond rounding), which only ever stretches the planned times. For telling which of several paths cannot be
