@@ -3,6 +3,7 @@
 // the URDF and finite differences of the samples, never from the code under test.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -220,17 +221,21 @@ TEST(TimeScaling, SparseRrtLikePathRespectsTheLimits) {
   }
 }
 
-// The planned profile's duration bounds the scaled duration from below, and closely: on the thesis line and on sparse
-// RRT-like paths at both thesis speeds, between the time the scaled motion's own TCP path needs at the limit plus one
-// rise time (length / v + rise time, a profile's least) less 1 % and the scaled duration itself.
-TEST(TimeScaling, PlannedDurationBoundsTheScaledOneFromBelow) {
+// The thesis line and three sparse RRT-like paths through the same configurations.
+std::vector<JointPath> lineAndSparsePaths() {
   robot::Vector6 m1, m2, b;
   m1 << -0.6, -1.9, 2.0, -1.5, -1.2, -0.2;
   m2 << 0.1, -1.3, 1.6, -2.2, -1.9, 0.9;
   b << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399;
-  const JointPath paths[] = {linePath(), JointPath{testing::thesisSeedA(), m1, m2, b}, JointPath{m1, b},
-                             JointPath{b, m2, testing::thesisSeedA()}};
-  for (const JointPath& path : paths) {
+  return {linePath(), JointPath{testing::thesisSeedA(), m1, m2, b}, JointPath{m1, b},
+          JointPath{b, m2, testing::thesisSeedA()}};
+}
+
+// The planned profile's duration bounds the scaled duration from below, and closely: on the thesis line and on sparse
+// RRT-like paths at both thesis speeds, between the time the scaled motion's own TCP path needs at the limit plus one
+// rise time (length / v + rise time, a profile's least) less 1 % and the scaled duration itself.
+TEST(TimeScaling, PlannedDurationBoundsTheScaledOneFromBelow) {
+  for (const JointPath& path : lineAndSparsePaths()) {
     for (const double speed : {0.149, 0.25}) {
       TimeScalingOptions options;
       options.maxTcpSpeed = speed;
@@ -247,13 +252,7 @@ TEST(TimeScaling, PlannedDurationBoundsTheScaledOneFromBelow) {
 // thesis line and sparse RRT-like paths at both thesis speeds and the joint-limited 1 m/s; it refuses what the full
 // scaling refuses.
 TEST(TimeScaling, ScaledDurationIsTheFullScalingsDuration) {
-  robot::Vector6 m1, m2, b;
-  m1 << -0.6, -1.9, 2.0, -1.5, -1.2, -0.2;
-  m2 << 0.1, -1.3, 1.6, -2.2, -1.9, 0.9;
-  b << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399;
-  const JointPath paths[] = {linePath(), JointPath{testing::thesisSeedA(), m1, m2, b}, JointPath{m1, b},
-                             JointPath{b, m2, testing::thesisSeedA()}};
-  for (const JointPath& path : paths) {
+  for (const JointPath& path : lineAndSparsePaths()) {
     for (const double speed : {0.149, 0.25, 1.0}) {
       TimeScalingOptions options;
       options.maxTcpSpeed = speed;
@@ -265,7 +264,7 @@ TEST(TimeScaling, ScaledDurationIsTheFullScalingsDuration) {
   TimeScalingOptions bad;
   bad.maxTcpSpeed = 0.0;
   EXPECT_THROW(scaledDuration(robot::ur10e(), linePath(), bad), Error);
-  EXPECT_THROW(scaledDuration(robot::ur10e(), JointPath{b}, {}), Error);
+  EXPECT_THROW(scaledDuration(robot::ur10e(), JointPath{testing::thesisSeedA()}, {}), Error);
 }
 
 std::string scalingError(const JointPath& path, const TimeScalingOptions& options) {
