@@ -101,6 +101,13 @@ double ArcPlanner::checkedParameter(const std::string& name, double value) const
   return value;
 }
 
+int ArcPlanner::checkedCount(const std::string& name, double value, const std::string& what) const {
+  if (checkedParameter(name, value) != std::round(value)) {
+    throw Error("arc planner parameter " + name + " must be a whole number of " + what + ", got " + number(value));
+  }
+  return static_cast<int>(value);
+}
+
 void ArcPlanner::setSagitta(double sagitta) {
   shape_.sagitta = checkedParameter("sagitta", sagitta);
   shapeGiven_ = true;
@@ -117,17 +124,9 @@ void ArcPlanner::setClearance(double clearance) { clearance_ = checkedParameter(
 void ArcPlanner::setDeadline(double seconds) { deadline_ = checkedParameter("deadline", seconds); }
 void ArcPlanner::setSpeedLimit(double speed) { speedLimit_ = checkedParameter("speed_limit", speed); }
 void ArcPlanner::setFallbackRange(double range) { fallbackRange_ = checkedParameter("fallback_range", range); }
-void ArcPlanner::setFallbackPlans(double plans) {
-  if (checkedParameter("fallback_plans", plans) != std::round(plans)) {
-    throw Error("arc planner parameter fallback_plans must be a whole number of plans, got " + number(plans));
-  }
-  fallbackPlans_ = static_cast<int>(plans);
-}
+void ArcPlanner::setFallbackPlans(double plans) { fallbackPlans_ = checkedCount("fallback_plans", plans, "plans"); }
 void ArcPlanner::setFallbackThreads(double threads) {
-  if (checkedParameter("fallback_threads", threads) != std::round(threads)) {
-    throw Error("arc planner parameter fallback_threads must be a whole number of threads, got " + number(threads));
-  }
-  fallbackThreads_ = static_cast<int>(threads);
+  fallbackThreads_ = checkedCount("fallback_threads", threads, "threads");
   specs_.multithreaded = fallbackThreads_ > 1;
 }
 

@@ -186,6 +186,8 @@ private:
                                    std::chrono::steady_clock::time_point clockStart);
   void setSolution(const JointConversionResult& waypoints);
   double checkedParameter(const std::string& name, double value) const;
+  // checkedParameter for a count: also a whole number (`what` names its unit in the error).
+  int checkedCount(const std::string& name, double value, const std::string& what) const;
 
   std::shared_ptr<const collision::CollisionModel> collisionModel_;
   std::vector<collision::Obstacle> obstacles_;
