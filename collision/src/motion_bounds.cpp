@@ -2,10 +2,12 @@
 // far the body's points are from the joint's axis, per body pair and per part pair how fast their
 // distance can shrink on a straight joint motion.
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "arcplan/common/error.h"
+#include "arcplan/robot/kinematics.h"
 #include "model_implementation.h"
 #include "motion_bounds.h"
 #include "motion_clearance.h"
@@ -179,6 +181,26 @@ void checkJoints(const CollisionModel& model, const robot::JointRef& qa, const r
   if (!qa.allFinite() || !qb.allFinite()) throw Error("motion check: joint values must be finite numbers");
 }
 
+double chordRate(const Implementation& impl, int body, const Eigen::Isometry3d& from, const Eigen::Isometry3d& to,
+                 const robot::JointRef& step) {
+  // What the double-precision poses may be off by, on the chord and on the turn's square root near zero [m].
+  constexpr double kRoundingSlack = 1e-7;
+  const Capsule& capsule = impl.linkCapsules[static_cast<std::size_t>(body)];
+  const Eigen::Vector3d centre = 0.5 * (capsule.start + capsule.end);
+  const double radius = 0.5 * (capsule.end - capsule.start).norm() + capsule.radius;
+  const double turn = std::sqrt(std::max(0.0, 3.0 - (from.linear().transpose() * to.linear()).trace()));
+  const double chord = (to * centre - from * centre).norm() + turn * radius;
+  // Σ_j D_j |Δq_j| (|Δq_j| + 2 Σ_{i<j} |Δq_i|) over the joints that move the link, base first (RobotModel keeps a
+  // chain's joints in that order, so j is the later of each pair).
+  double curvature = 0.0, earlier = 0.0;
+  for (Eigen::Index j = 0; j < step.size(); ++j) {
+    if (!impl.movedBy(body, j)) continue;
+    curvature += impl.jointReach(body, j) * step[j] * (step[j] + 2.0 * earlier);
+    earlier += step[j];
+  }
+  return chord + 0.5 * curvature + kRoundingSlack;
+}
+
 void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl) {
   const std::size_t bodies = impl.linkCapsules.size();
   std::vector<std::vector<BoundingBall>> balls(bodies), partBalls(impl.robotParts.size());
@@ -246,6 +268,17 @@ double relativeMotionBound(const CollisionModel& model, int body, int otherBody,
   checkBody(model, body);
   checkBody(model, otherBody);
   return relativeReach(detail::implementationOf(model), body, otherBody).dot((qb - qa).cwiseAbs());
+}
+
+double chordMotionBound(const CollisionModel& model, int body, const robot::JointRef& qa, const robot::JointRef& qb) {
+  detail::checkJoints(model, qa, qb);
+  checkBody(model, body);
+  const detail::Implementation& impl = detail::implementationOf(model);
+  robot::KinematicsData atA(model.robot()), atB(model.robot());
+  robot::forwardKinematics(model.robot(), qa, atA);
+  robot::forwardKinematics(model.robot(), qb, atB);
+  const int link = impl.linkCapsuleLink[static_cast<std::size_t>(body)];
+  return detail::chordRate(impl, body, atA.linkPoses[link], atB.linkPoses[link], (qb - qa).cwiseAbs());
 }
 
 }  // namespace arcplan::collision

@@ -9,6 +9,7 @@
 #include "arcplan/common/error.h"
 #include "certified_motion.h"
 #include "model_implementation.h"
+#include "motion_bounds.h"
 #include "motion_clearance.h"
 #include "sphere_prefilter.h"
 
@@ -67,12 +68,17 @@ bool advanceBetweenEnds(BetweenEnds& motion, int& measurements) {
 }  // namespace
 
 PathCertifier::PathCertifier(const CollisionModel& model, CollisionData& data, double minimumClearance)
-    : model_(model), data_(data), minimumClearance_(minimumClearance) {
+    : model_(model),
+      data_(data),
+      minimumClearance_(minimumClearance),
+      lastPoses_(model.robot()),
+      nextPoses_(model.robot()) {
   validate(MotionCheckOptions{MotionCheck::Certified, 0.01, minimumClearance});
   // A path of its own (motionAxis): directions found while certifying it are taken for its later waypoints, none
   // from earlier queries.
   ++detail::workspaceOf(data_).motion;
   const Implementation& impl = detail::implementationOf(model);
+  chordRates_.resize(impl.linkCapsules.size());
   budget_.resize(impl.groups.size());
   used_.resize(budget_.size());
   bound_.resize(budget_.size());
@@ -156,7 +162,27 @@ bool PathCertifier::anchorAll(const robot::JointRef& q) {
     budget_[k] = measured.gap - m;  // what the pair may close in before it is m apart
   }
   last_ = q;
+  lastPosed_ = false;
   return true;
+}
+
+void PathCertifier::tightenBounds(const robot::JointRef& q) {
+  const Implementation& impl = detail::implementationOf(model_);
+  if (!lastPosed_) robot::forwardKinematics(model_.robot(), last_, lastPoses_);
+  lastPosed_ = true;
+  robot::forwardKinematics(model_.robot(), q, nextPoses_);
+  nextPosed_ = true;
+  for (std::size_t b = 0; b < chordRates_.size(); ++b) {
+    const int link = impl.linkCapsuleLink[b];
+    chordRates_[b] =
+        detail::chordRate(impl, static_cast<int>(b), lastPoses_.linkPoses[link], nextPoses_.linkPoses[link], step_);
+  }
+  // Every pair's: those covered already spend less of their budgets too.
+  for (std::size_t k = 0; k < bound_.size(); ++k) {
+    const auto& group = *impl.groups[k];
+    const double chord = chordRates_[group.firstBody] + (group.self ? chordRates_[group.secondBody] : 0.0);
+    bound_[k] = std::min(bound_[k], chord);
+  }
 }
 
 bool PathCertifier::start(const robot::JointRef& q) {
@@ -181,6 +207,7 @@ bool PathCertifier::extend(const robot::JointRef& q) {
   // q's column of expect()'s waypoints, -1 when it is not the next one.
   const Eigen::Index expectedAt = gapPairs_.empty() ? -1 : expectedColumn(q);
   step_ = (q - last_).cwiseAbs();
+  nextPosed_ = false;
   std::vector<std::size_t> open;  // pairs whose budget does not cover the motion
   for (std::size_t k = 0; k < budget_.size(); ++k) {
     bound_[k] = impl.groups[k]->relativeReach.dot(step_);
@@ -194,6 +221,9 @@ bool PathCertifier::extend(const robot::JointRef& q) {
       used_[k] = 0.0;
     }
     last_ = q;
+    // q's link poses, when this motion's bounds took them, are the next motion's start.
+    if (nextPosed_) std::swap(lastPoses_, nextPoses_);
+    lastPosed_ = nextPosed_;
     return true;
   };
   if (open.empty()) return accept();
@@ -202,19 +232,29 @@ bool PathCertifier::extend(const robot::JointRef& q) {
   // the room left of its budget at the motion's start together reach the motion's bound is certified by the two
   // certificates, one from each end, and anchored at q with the larger of what it has left.
   int lane = 0;
-  if (const float* gaps = expectedAt >= 0 ? expectedGaps(expectedAt, lane) : nullptr) {
-    const auto coveredBySpheres = [&](std::size_t k) {
-      if (gapPairs_[k] < 0) return false;
-      const double room =
-          static_cast<double>(gaps[static_cast<std::size_t>(gapPairs_[k]) * detail::prefilter::kLanes + lane]) - mOf(k);
-      const double left = std::max(0.0, budget_[k] - used_[k]);
-      if (room < 0.0 || left + room < bound_[k]) return false;
-      sphereBudgets_.emplace_back(k, std::max(room, left - bound_[k]));
-      return true;
-    };
+  const float* gaps = expectedAt >= 0 ? expectedGaps(expectedAt, lane) : nullptr;
+  const auto coveredBySpheres = [&](std::size_t k) {
+    if (gapPairs_[k] < 0) return false;
+    const double room =
+        static_cast<double>(gaps[static_cast<std::size_t>(gapPairs_[k]) * detail::prefilter::kLanes + lane]) - mOf(k);
+    const double left = std::max(0.0, budget_[k] - used_[k]);
+    if (room < 0.0 || left + room < bound_[k]) return false;
+    sphereBudgets_.emplace_back(k, std::max(room, left - bound_[k]));
+    return true;
+  };
+  if (gaps != nullptr) {
     open.erase(std::remove_if(open.begin(), open.end(), coveredBySpheres), open.end());
     if (open.empty()) return accept();
   }
+  // Before anything is measured, the bounds of the links' own moves: on a dense path the joint steps' bound is several
+  // times what the links move. Pairs they cover drop out, by their budgets or again by the spheres.
+  tightenBounds(q);
+  open.erase(std::remove_if(open.begin(), open.end(),
+                            [&](std::size_t k) {
+                              return used_[k] + bound_[k] < budget_[k] || (gaps != nullptr && coveredBySpheres(k));
+                            }),
+             open.end());
+  if (open.empty()) return accept();
   // At the motion's start, the pairs not measured there (a pair anchored there was measured for a new anchor,
   // which asks more of its bounds than this motion would).
   bool startMeasured = false;

@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 
 #include "arcplan/collision/collision_model.h"
+#include "arcplan/robot/kinematics.h"
 
 namespace arcplan::collision {
 
@@ -90,11 +91,15 @@ public:
   // configuration measures as without it, and what is accepted is the same guarantee either way. start() at the
   // first of them takes its pairs' budgets from the spheres too.
   void expect(const Eigen::Ref<const Eigen::MatrixXd>& waypoints);
-  // Configurations measured with forward kinematics so far: the cost of the certification.
+  // Configurations where pairs were measured so far (forward kinematics and distances): the cost of the
+  // certification. The link poses a motion's own bounds take (below) are not counted.
   int measurements() const { return measurements_; }
 
 private:
   bool anchorAll(const robot::JointRef& q);
+  // Where the joint steps' bound (relativeReach · |Δq|) leaves pairs open, each pair's bound of the motion to q
+  // lowered to its links' chord rates (detail::chordRate), from the link poses at last_ and q.
+  void tightenBounds(const robot::JointRef& q);
   // q's column of expect()'s waypoints when it is the next one (or the one after), else -1.
   Eigen::Index expectedColumn(const robot::JointRef& q);
   // The sphere gaps (pairs × 8, SpherePrefilter::gaps' layout) holding expect()'s column `waypoint` and its lane
@@ -115,6 +120,11 @@ private:
   std::vector<float> windowGaps_;
   std::vector<int> gapPairs_;
   std::vector<std::pair<std::size_t, double>> sphereBudgets_;  // per pair the spheres covered: its budget at q
+  // Link poses at last_ (when lastPosed_) and at the configuration being certified (when nextPosed_), and per
+  // body with geometry its chord rate on the motion between them.
+  robot::KinematicsData lastPoses_, nextPoses_;
+  bool lastPosed_ = false, nextPosed_ = false;
+  std::vector<double> chordRates_;
 };
 
 // Segments of a discrete check: ceil(largest |qb_j − qa_j| / maxJointStep), at least 1.
