@@ -5,9 +5,18 @@
 namespace arcplan::planners {
 namespace {
 
-double polylineLength(const std::vector<Eigen::Vector3d>& points) {
+// The length of the polyline route.points[0..leg], way, route.points[leg + 1..]: summed in that order, as over the
+// built route's points, so that equal routes get equal lengths to the bit (the queue's order depends on them).
+double detourLength(const Route& route, std::size_t leg, const std::vector<Eigen::Vector3d>& way) {
   double length = 0.0;
-  for (std::size_t k = 0; k + 1 < points.size(); ++k) length += (points[k + 1] - points[k]).norm();
+  const Eigen::Vector3d* previous = &route.points.front();
+  const auto add = [&](const Eigen::Vector3d& point) {
+    length += (point - *previous).norm();
+    previous = &point;
+  };
+  for (std::size_t k = 1; k <= leg; ++k) add(route.points[k]);
+  for (const Eigen::Vector3d& point : way) add(point);
+  for (std::size_t k = leg + 1; k < route.points.size(); ++k) add(route.points[k]);
   return length;
 }
 
@@ -15,7 +24,10 @@ double polylineLength(const std::vector<Eigen::Vector3d>& points) {
 
 RouteSearch::RouteSearch(const Eigen::Vector3d& start, const Eigen::Vector3d& goal, std::size_t maxViaPoints)
     : maxViaPoints_(maxViaPoints) {
-  push(Route{{start, goal}, {}, 0.0});
+  auto straight = std::make_shared<Route>(Route{{start, goal}, {}, 0.0});
+  straight->length = detourLength(*straight, 0, {});
+  const double length = straight->length;
+  push(Queued{length, std::move(straight), nullptr});
 }
 
 RouteSearch::Leg RouteSearch::legOf(const Route& route, std::size_t k) {
@@ -24,15 +36,34 @@ RouteSearch::Leg RouteSearch::legOf(const Route& route, std::size_t k) {
   return {{a.x(), a.y(), a.z()}, {b.x(), b.y(), b.z()}};
 }
 
-void RouteSearch::push(Route route) {
-  route.length = polylineLength(route.points);
-  queue_.push(std::move(route));
+Route RouteSearch::build(const Queued& queued) {
+  if (!queued.ways) return *queued.from;
+  const Route& from = *queued.from;
+  const ViaCandidate& way = (*queued.ways)[queued.way];
+  const auto leg = static_cast<std::ptrdiff_t>(queued.leg);
+  Route detour;
+  detour.points.reserve(from.points.size() + way.points.size());
+  detour.margins.reserve(from.margins.size() + way.points.size());
+  detour.points.assign(from.points.begin(), from.points.begin() + leg + 1);
+  detour.margins.assign(from.margins.begin(), from.margins.begin() + leg);
+  for (const Eigen::Vector3d& point : way.points) {
+    detour.points.push_back(point);
+    detour.margins.push_back(way.margin);
+  }
+  detour.points.insert(detour.points.end(), from.points.begin() + leg + 1, from.points.end());
+  detour.margins.insert(detour.margins.end(), from.margins.begin() + leg, from.margins.end());
+  detour.length = queued.length;
+  return detour;
+}
+
+void RouteSearch::push(Queued queued) {
+  queue_.push(std::move(queued));
   ++queued_;
 }
 
 std::optional<Route> RouteSearch::next() {
   while (!queue_.empty()) {
-    Route route = queue_.top();
+    Route route = build(queue_.top());
     queue_.pop();
     bool knownToFail = false;
     for (std::size_t k = 0; k + 1 < route.points.size() && !knownToFail; ++k) {
@@ -47,25 +78,14 @@ std::optional<Route> RouteSearch::next() {
 
 void RouteSearch::removeLeg(const Route& route, std::size_t leg) { failedLegs_.insert(legOf(route, leg)); }
 
-void RouteSearch::legFailed(const Route& route, std::size_t leg, const std::vector<ViaCandidate>& ways) {
+void RouteSearch::legFailed(const Route& route, std::size_t leg, std::vector<ViaCandidate> ways) {
   removeLeg(route, leg);
-  for (const ViaCandidate& way : ways) {
+  const auto from = std::make_shared<const Route>(route);
+  const auto shared = std::make_shared<const std::vector<ViaCandidate>>(std::move(ways));
+  for (std::size_t w = 0; w < shared->size(); ++w) {
+    const ViaCandidate& way = (*shared)[w];
     if (route.points.size() - 2 + way.points.size() > maxViaPoints_) continue;
-    Route detour;
-    // Sized once: a failed leg queues up to 120 detours, and growing their vectors took ~7 % of dropping a leg.
-    detour.points.reserve(route.points.size() + way.points.size());
-    detour.margins.reserve(route.margins.size() + way.points.size());
-    detour.points.assign(route.points.begin(), route.points.begin() + static_cast<std::ptrdiff_t>(leg) + 1);
-    detour.margins.assign(route.margins.begin(), route.margins.begin() + static_cast<std::ptrdiff_t>(leg));
-    for (const Eigen::Vector3d& point : way.points) {
-      detour.points.push_back(point);
-      detour.margins.push_back(way.margin);
-    }
-    detour.points.insert(detour.points.end(), route.points.begin() + static_cast<std::ptrdiff_t>(leg) + 1,
-                         route.points.end());
-    detour.margins.insert(detour.margins.end(), route.margins.begin() + static_cast<std::ptrdiff_t>(leg),
-                          route.margins.end());
-    push(std::move(detour));
+    push(Queued{detourLength(route, leg, way.points), from, shared, leg, w});
   }
 }
 

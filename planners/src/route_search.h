@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <queue>
 #include <set>
@@ -36,7 +37,7 @@ public:
   // The shortest route none of whose legs is known to fail; nothing once every route is exhausted.
   std::optional<Route> next();
   // Leg k of `route` failed: remove it, and add `route` with that leg replaced by each candidate.
-  void legFailed(const Route& route, std::size_t leg, const std::vector<ViaCandidate>& ways);
+  void legFailed(const Route& route, std::size_t leg, std::vector<ViaCandidate> ways);
   // Leg k of `route` failed for a reason no via point removes (e.g. unreachable): remove it only.
   void removeLeg(const Route& route, std::size_t leg);
 
@@ -47,12 +48,22 @@ private:
   using Point = std::array<double, 3>;
   using Leg = std::pair<Point, Point>;
   static Leg legOf(const Route& route, std::size_t k);
-  void push(Route route);
+  // A queued route, built only when taken: `from` with its leg `leg` replaced by way `way` of `ways` (`from` itself
+  // when `ways` is null). A failed leg queues up to 120 of them and most are never taken: building each route's
+  // vectors at once was most of what dropping a leg cost.
+  struct Queued {
+    double length;
+    std::shared_ptr<const Route> from;
+    std::shared_ptr<const std::vector<ViaCandidate>> ways;
+    std::size_t leg = 0, way = 0;
+  };
+  static Route build(const Queued& queued);
+  void push(Queued queued);
 
   struct Longer {
-    bool operator()(const Route& a, const Route& b) const { return a.length > b.length; }
+    bool operator()(const Queued& a, const Queued& b) const { return a.length > b.length; }
   };
-  std::priority_queue<Route, std::vector<Route>, Longer> queue_;
+  std::priority_queue<Queued, std::vector<Queued>, Longer> queue_;
   std::set<Leg> failedLegs_;
   std::size_t maxViaPoints_;
   std::size_t tried_ = 0, queued_ = 0;
