@@ -1,7 +1,6 @@
 #include "via_points.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <iterator>
 
@@ -116,47 +115,43 @@ std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Ei
   const Eigen::Vector3d along = (q - p) / length;
   const auto inside = [&](double x) { return std::clamp(x, kEndKeepOut, length - kEndKeepOut); };
   const Eigen::Vector3d across = side ? Eigen::Vector3d(*side - side->dot(along) * along) : Eigen::Vector3d::Zero();
-  // Each hull point's place along the leg, once: a link's Minkowski difference has hundreds of points.
-  std::vector<double> xs;
-  xs.reserve(cluster.hull.size());
-  double x0 = length, x1 = 0.0;
-  for (const Eigen::Vector3d& point : cluster.hull) {
-    xs.push_back((point - p).dot(along));
-    x0 = std::min(x0, xs.back());
-    x1 = std::max(x1, xs.back());
+  // Each hull point's offset from p, once, as three arrays: a link's Minkowski difference has hundreds of points, and
+  // every plane below takes their heights and apex lifts as whole-array operations (Eigen vectorizes them; the same
+  // operations in the same order per point as one point at a time).
+  const auto count = static_cast<Eigen::Index>(cluster.hull.size());
+  Eigen::ArrayXd dx(count), dy(count), dz(count);
+  for (Eigen::Index i = 0; i < count; ++i) {
+    const Eigen::Vector3d offset = cluster.hull[static_cast<std::size_t>(i)] - p;
+    dx[i] = offset.x();
+    dy[i] = offset.y();
+    dz[i] = offset.z();
   }
+  const Eigen::ArrayXd xs = dx * along.x() + dy * along.y() + dz * along.z();  // place along the leg
+  const double x0 = std::min(length, xs.minCoeff()), x1 = std::max(0.0, xs.maxCoeff());
   const double apexX = inside(0.5 * (x0 + x1));
   // How much a hull point's needed height lifts the apex (the legs from p and q to the apex are straight), 0 for
   // points beyond the leg's ends: the same for every plane and margin, so it is computed once (the divisions were
   // most of this function's time on links' Minkowski differences).
-  std::vector<double> lift(cluster.hull.size(), 0.0);
-  for (std::size_t i = 0; i < cluster.hull.size(); ++i) {
+  Eigen::ArrayXd lift = Eigen::ArrayXd::Zero(count);
+  for (Eigen::Index i = 0; i < count; ++i) {
     const double x = xs[i];
     if (x > 0.0 && x < length) lift[i] = x <= apexX ? apexX / x : (length - apexX) / (length - x);
   }
   constexpr std::size_t kMarginCount = std::size(kMargins);
   candidates.reserve(2 * kPlaneSteps * kMarginCount);
-  std::vector<double> heights(cluster.hull.size());
+  Eigen::ArrayXd heights(count), raised(count);
   for (int step = 0; step < kPlaneSteps; ++step) {
     const Eigen::Vector3d away = avoidanceDirection(along, 2.0 * M_PI * step / kPlaneSteps);
     if (across.norm() > 1e-6 && away.dot(across.normalized()) < kWithinSide) continue;
-    double height = 0.0;
-    for (std::size_t i = 0; i < cluster.hull.size(); ++i) {
-      heights[i] = (cluster.hull[i] - p).dot(away);
-      height = std::max(height, heights[i]);
-    }
-    // Apex over the middle, per margin: each hull point between p and q must stay below both legs.
-    std::array<double, kMarginCount> apex;
-    for (std::size_t m = 0; m < kMarginCount; ++m) apex[m] = clearance + kMargins[m];
-    for (std::size_t i = 0; i < cluster.hull.size(); ++i) {
-      if (lift[i] == 0.0) continue;
-      for (std::size_t m = 0; m < kMarginCount; ++m) {
-        const double needed = heights[i] + clearance + kMargins[m];
-        if (needed > 0.0) apex[m] = std::max(apex[m], needed * lift[i]);
-      }
-    }
+    // Height of each point above p in this plane; with the clearance, what it needs below the legs before a margin.
+    heights = dx * away.x() + dy * away.y() + dz * away.z();
+    const double height = std::max(0.0, heights.maxCoeff());
+    raised = heights + clearance;
     for (std::size_t m = 0; m < kMarginCount; ++m) {
       const double margin = kMargins[m], offset = height + clearance + margin;
+      // Apex over the middle: each hull point between p and q must stay below both legs. A point whose needed height
+      // is not positive, or that lies beyond the leg's ends (lift 0), lifts it by nothing (a product of at most 0).
+      const double apex = std::max(clearance + margin, ((raised + margin) * lift).maxCoeff());
       const double enter = inside(x0 - margin), leave = inside(x1 + margin);
       // Its points allocated once and moved in: up to 120 candidates per blocked leg.
       const Eigen::Vector3d entry = p + enter * along + offset * away;
@@ -164,7 +159,7 @@ std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Ei
                                 ? std::vector<Eigen::Vector3d>{entry, p + leave * along + offset * away}
                                 : std::vector<Eigen::Vector3d>{entry},
                             margin});
-      if (apex[m] <= kHighestApex) candidates.push_back({{p + apexX * along + apex[m] * away}, margin});
+      if (apex <= kHighestApex) candidates.push_back({{p + apexX * along + apex * away}, margin});
     }
   }
   return candidates;
