@@ -294,14 +294,15 @@ bool addOpenPairs(const CollisionModel& model, Workspace& data, int k, double re
   return true;
 }
 
-namespace {
-
-using detail::groupCollides;
-
-NamePair namesOf(const CollisionModel& model, const Implementation::PairGroup& group) {
+NamePair detail::namesOf(const CollisionModel& model, const Implementation::PairGroup& group) {
   return {model.linkNames()[group.firstBody],
           group.self ? model.linkNames()[group.secondBody] : model.obstacleNames()[group.secondBody]};
 }
+
+namespace {
+
+using detail::groupCollides;
+using detail::namesOf;
 
 }  // namespace
 
@@ -386,13 +387,14 @@ CollisionReport collide(const CollisionModel& model, CollisionData& workspace, c
   return report;
 }
 
-DistanceReport distance(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
-  Workspace& data = detail::workspaceOf(workspace);
+namespace {
+
+// Every part pair with the lower bound its bounding volumes (and floor) give at q, nearest first, in
+// data.distanceOrder: the order distance queries measure them in.
+void orderPartPairs(const CollisionModel& model, Workspace& data, const robot::JointRef& q) {
   updateRobot(model, data, q);
   const Implementation& impl = detail::implementationOf(model);
   for (std::size_t i = 0; i < impl.robotParts.size(); ++i) ensurePart(impl, data, static_cast<int>(i));
-  // Part pairs nearest first by the lower bound their bounding volumes give; a pair whose bound
-  // is not below the best distance found so far cannot improve it.
   data.distanceOrder.clear();
   for (std::size_t k = 0; k < impl.partPairs.size(); ++k) {
     const auto& pair = impl.partPairs[k];
@@ -402,7 +404,30 @@ DistanceReport distance(const CollisionModel& model, CollisionData& workspace, c
     data.distanceOrder.emplace_back(bound, static_cast<int>(k));
   }
   std::sort(data.distanceOrder.begin(), data.distanceOrder.end());
+}
 
+// The exact distance of part pair `index` (its bound from orderPartPairs), or +inf where its hulls or containing meshes
+// show it is at least `below` apart.
+double distanceIfBelow(const CollisionModel& model, Workspace& data, int index, double bound, double below) {
+  const Implementation& impl = detail::implementationOf(model);
+  const auto& candidate = impl.partPairs[index];
+  const Part& first = impl.robotParts[candidate.first];
+  const Part& second = secondPart(impl, *candidate.group, candidate.second);
+  const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, *candidate.group, candidate.second);
+  if (detail::hullGap(first, data.partPoses[candidate.first], second, secondPose, model.options(), below) >= below ||
+      detail::containingMeshGap(first, data.partPoses[candidate.first], second, secondPose, model.options()) >= below)
+    return std::numeric_limits<double>::infinity();
+  return partsDistance(first, data.partPoses[candidate.first], second, secondPose, bound <= 0.0, model.options());
+}
+
+}  // namespace
+
+DistanceReport distance(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q) {
+  Workspace& data = detail::workspaceOf(workspace);
+  const Implementation& impl = detail::implementationOf(model);
+  // Part pairs nearest first by the lower bound their bounding volumes give; a pair whose bound
+  // is not below the best distance found so far cannot improve it.
+  orderPartPairs(model, data, q);
   DistanceReport report;
   for (const auto& group : impl.selfGroups) {
     if (group.rigid && group.rigidDistance < report.selfDistance) {
@@ -417,20 +442,43 @@ DistanceReport distance(const CollisionModel& model, CollisionData& workspace, c
     double& best = self ? report.selfDistance : report.obstacleDistance;
     if (bound >= std::max(report.selfDistance, report.obstacleDistance)) break;
     if (bound >= best) continue;
-    const Part& first = impl.robotParts[candidate.first];
-    const Part& second = secondPart(impl, *candidate.group, candidate.second);
-    const Eigen::Isometry3d& secondPose = detail::secondPose(impl, data, *candidate.group, candidate.second);
-    if (detail::hullGap(first, data.partPoses[candidate.first], second, secondPose, model.options(), best) >= best ||
-        detail::containingMeshGap(first, data.partPoses[candidate.first], second, secondPose, model.options()) >= best)
-      continue;
-    const double d =
-        partsDistance(first, data.partPoses[candidate.first], second, secondPose, bound <= 0.0, model.options());
+    const double d = distanceIfBelow(model, data, index, bound, best);
     if (d < best) {
       best = d;
       (self ? report.selfPair : report.obstaclePair) = namesOf(model, *candidate.group);
     }
   }
   return report;
+}
+
+detail::LeastPair detail::leastOffsetPair(const CollisionModel& model, CollisionData& workspace,
+                                          const robot::JointRef& q, double obstacleOffset, double selfOffset) {
+  Workspace& data = detail::workspaceOf(workspace);
+  const Implementation& impl = detail::implementationOf(model);
+  orderPartPairs(model, data, q);
+  LeastPair least;
+  // Better: less of distance − offset, an obstacle pair before a self pair as far.
+  const auto take = [&](const Implementation::PairGroup& group, double d) {
+    const double value = d - (group.self ? selfOffset : obstacleOffset);
+    if (value < least.value || (value == least.value && least.group != nullptr && least.group->self && !group.self)) {
+      least = {&group, d, value};
+    }
+  };
+  for (const auto& group : impl.selfGroups)
+    if (group.rigid) take(group, group.rigidDistance);
+  const double largestOffset = std::max(obstacleOffset, selfOffset);
+  for (const auto& [bound, index] : data.distanceOrder) {
+    if (bound - largestOffset > least.value) break;  // nor can any pair after it, nearest first
+    const auto& candidate = impl.partPairs[index];
+    if (candidate.group->rigid) continue;
+    const double offset = candidate.group->self ? selfOffset : obstacleOffset;
+    if (bound - offset > least.value) continue;
+    // At most as far as the best (ties decided by take), measured where its bounds allow it.
+    const double below = std::nextafter(least.value + offset, std::numeric_limits<double>::infinity());
+    const double d = distanceIfBelow(model, data, index, bound, below);
+    if (std::isfinite(d)) take(*candidate.group, d);
+  }
+  return least;
 }
 
 bool hasClearance(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q, double clearance) {

@@ -4,6 +4,7 @@
 // groups, the motion bounds, the per-thread workspace, and the building blocks of a query (forward
 // kinematics, bounding-volume gaps, exact part distances).
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -225,6 +226,21 @@ inline const Eigen::Isometry3d& secondPose(const Implementation& impl, const Wor
 // apart (both > 0): hasClearance with the distances given per kind (collision_model.cpp).
 bool keepsDistances(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q,
                     double obstacleRequired, double selfRequired);
+
+// The pair group at q whose exact distance less an offset per kind (obstacle pairs, self pairs) is least, that
+// distance and the difference; an obstacle pair before a self pair as far. distance()'s part-pair order and bounds, but
+// one running best over both kinds: a pair whose bound less its offset is above it is never measured
+// (collision_model.cpp).
+struct LeastPair {
+  const ModelImplementation::PairGroup* group = nullptr;
+  double distance = std::numeric_limits<double>::infinity();
+  double value = std::numeric_limits<double>::infinity();
+};
+LeastPair leastOffsetPair(const CollisionModel& model, CollisionData& workspace, const robot::JointRef& q,
+                          double obstacleOffset, double selfOffset);
+
+// The group's two bodies by name: (link, obstacle) or (link, link) (collision_model.cpp).
+NamePair namesOf(const CollisionModel& model, const ModelImplementation::PairGroup& group);
 
 // Whether the group's bodies touch in the current configuration (updateRobot) (collision_model.cpp).
 bool groupCollides(const CollisionModel& model, Workspace& data, const ModelImplementation::PairGroup& group);

@@ -374,17 +374,41 @@ bool isMotionCollisionFree(const CollisionModel& model, CollisionData& data, con
   return detail::certifiedMotionFree(model, data, qa, qb, lastValidFraction, options.minimumClearance);
 }
 
+namespace {
+
+// What a certified motion at minimumClearance accepts of a pair at a measured state: its own m and the margin.
+double acceptedDistance(bool self, double minimumClearance) {
+  const double m = requiredDistance(self, minimumClearance);
+  return m + acceptanceMargin(m);
+}
+
+}  // namespace
+
 bool keepsAcceptanceMargin(const CollisionModel& model, CollisionData& data, const robot::JointRef& q,
                            double minimumClearance) {
   if (!(minimumClearance > 0.0) || !std::isfinite(minimumClearance)) {
     throw Error("acceptance margin query: minimumClearance must be a finite distance > 0 m, got " +
                 std::to_string(minimumClearance));
   }
-  const auto accepted = [&](bool self) {
-    const double m = requiredDistance(self, minimumClearance);
-    return m + acceptanceMargin(m);
-  };
-  return detail::keepsDistances(model, data, q, accepted(false), accepted(true));
+  return detail::keepsDistances(model, data, q, acceptedDistance(false, minimumClearance),
+                                acceptedDistance(true, minimumClearance));
+}
+
+Shortfall smallestShortfall(const CollisionModel& model, CollisionData& data, const robot::JointRef& q,
+                            double minimumClearance) {
+  if (!(minimumClearance > 0.0) || !std::isfinite(minimumClearance)) {
+    throw Error("shortfall query: minimumClearance must be a finite distance > 0 m, got " +
+                std::to_string(minimumClearance));
+  }
+  const detail::LeastPair least = detail::leastOffsetPair(model, data, q, acceptedDistance(false, minimumClearance),
+                                                          acceptedDistance(true, minimumClearance));
+  Shortfall result;
+  if (least.group == nullptr) return result;
+  result.self = least.group->self;
+  result.pair = detail::namesOf(model, *least.group);
+  result.distance = least.distance;
+  result.shortfall = least.value;
+  return result;
 }
 
 int discreteSegmentCount(const robot::JointRef& qa, const robot::JointRef& qb, double maxJointStep) {

@@ -8,26 +8,6 @@ namespace arcplan::planners {
 
 namespace {
 
-// The pair of a distance report nearest to being refused by a certificate keeping `clearance`: each pair's distance
-// less what the certificate accepts of it (its own m = collision::requiredDistance, plus the acceptance margin,
-// motion_check.h), the smallest; below 0 the certificate refuses that pair. With the per-pair rule a self pair at
-// 1.1 mm is nearer to that than an obstacle pair at 1.1 cm (c = 1 cm), although farther.
-struct Nearest {
-  double shortfall;  // m
-  double distance;   // m
-  collision::NamePair pair;
-};
-
-Nearest nearestOf(const collision::DistanceReport& d, double clearance) {
-  const auto accepted = [&](bool self) {
-    const double m = collision::requiredDistance(self, clearance);
-    return m + collision::acceptanceMargin(m);
-  };
-  const double obstacle = d.obstacleDistance - accepted(false), self = d.selfDistance - accepted(true);
-  if (obstacle <= self) return {obstacle, d.obstacleDistance, d.obstaclePair};
-  return {self, d.selfDistance, d.selfPair};
-}
-
 // A rejection without a named pair was between two waypoints.
 std::string pairsText(const collision::CollisionReport& report) {
   const std::string text = collision::describeCollisions(report);
@@ -210,8 +190,10 @@ Rejection PathValidator::explain(const RejectedMotion& motion) {
   result.collides = false;
   // Closer than the margin at the rejected waypoint: that pair is the reason, one query suffices
   // (the route search asks this for every rejected route).
+  // With the per-pair rule a self pair at 1.1 mm is nearer to a refusal than an obstacle pair at 1.1 cm (c = 1 cm),
+  // although farther: the pair is the one that keeps least of what the certificate accepts.
   const double clearance = required_.motionClearanceAt(motion.to);
-  Nearest nearest = nearestOf(collision::distance(model_, data_, motion.to), clearance);
+  collision::Shortfall nearest = collision::smallestShortfall(model_, data_, motion.to, clearance);
   result.closest = nearest.distance;
   result.pairs.collisions = {nearest.pair};
   // Closer than its m plus the certificate's acceptance margin: a pair the certificate refuses there.
@@ -230,7 +212,7 @@ Rejection PathValidator::explain(const RejectedMotion& motion) {
     }
   }
   for (int k = 0; k < kSteps; ++k) {
-    const Nearest d = nearestOf(collision::distance(model_, data_, along(k)), clearance);
+    const collision::Shortfall d = collision::smallestShortfall(model_, data_, along(k), clearance);
     if (d.shortfall < nearest.shortfall) {
       nearest = d;
       result.closest = d.distance;

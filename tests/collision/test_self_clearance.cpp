@@ -14,6 +14,7 @@
 #include "arcplan/collision/collision_model.h"
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/collision/moveit_scene.h"
+#include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
 #include "support/collision_options.h"
 #include "support/command.h"
@@ -177,6 +178,50 @@ TEST(SelfClearanceRule, HasClearanceAgreesWithTheRuleOnRandomStates) {
       EXPECT_GT(selfOnlyClose, 0) << scene.name;  // MBM's close link pairs
     }
   }
+}
+
+// smallestShortfall against the distance query's two fields through the rule and the acceptance margin written out
+// here: the pair that keeps least of m + min(m/4, 0.5 mm), m = c for obstacles and min(c, 1 mm) for self pairs, the
+// obstacle pair when both fall as short. On random states of the thesis scene and an MBM shelf, and on the held balls
+// (a self pair at 1.1 mm falls shorter than the table at 2 cm and more).
+TEST(SelfClearanceRule, SmallestShortfallIsThePairNearestToRefusalByTheRule) {
+  std::vector<Scene> scenes{loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"),
+                            arcplan::testing::HeldBalls().scene()};
+  const fs::path mbm = arcplan::testing::sharedDataDirectory() / "mbm_ur5";
+  if (fs::exists(mbm / "problems")) {
+    const fs::path folder = mbm / "problems" / "bookshelf_small_ur5";
+    scenes.push_back(loadMoveItProblem(folder / "scene0001.yaml", folder / "request0001.yaml",
+                                       MoveItRobot{mbm / "ur5.urdf", mbm / "ur5.srdf"})
+                         .scene);
+  }
+  const auto accepted = [](double m) { return m + std::min(0.25 * m, 0.0005); };
+  for (const Scene& scene : scenes) {
+    const auto model = makeCollisionModel(scene);
+    CollisionData data(*model);
+    std::mt19937_64 random(37);
+    int selfNearer = 0, obstacleNearer = 0;
+    for (int k = 0; k < 600; ++k) {
+      const Eigen::VectorXd q = arcplan::testing::randomJointState(model->robot(), random);
+      for (const double c : {0.01, 0.002}) {
+        const DistanceReport report = distance(*model, data, q);
+        const double obstacle = report.obstacleDistance - accepted(c),
+                     self = report.selfDistance - accepted(std::min(c, 0.001));
+        const Shortfall found = smallestShortfall(*model, data, q, c);
+        const bool selfExpected = self < obstacle;
+        ASSERT_EQ(found.self, selfExpected) << scene.name << " state " << k << " c " << c;
+        ASSERT_EQ(found.pair, selfExpected ? report.selfPair : report.obstaclePair) << scene.name << " state " << k;
+        ASSERT_EQ(found.distance, selfExpected ? report.selfDistance : report.obstacleDistance) << scene.name;
+        ASSERT_NEAR(found.shortfall, std::min(obstacle, self), 1e-15) << scene.name << " state " << k;
+        ++(selfExpected ? selfNearer : obstacleNearer);
+      }
+    }
+    EXPECT_GT(obstacleNearer, 0) << scene.name;
+    EXPECT_GT(selfNearer, 0) << scene.name;  // links folded close, or the balls
+  }
+  const auto model = makeCollisionModel(loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"));
+  CollisionData data(*model);
+  EXPECT_THROW(smallestShortfall(*model, data, Eigen::VectorXd::Zero(6), 0.0), arcplan::Error);
+  EXPECT_THROW(smallestShortfall(*model, data, Eigen::VectorXd::Zero(6), std::nan("")), arcplan::Error);
 }
 
 }  // namespace

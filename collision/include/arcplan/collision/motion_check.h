@@ -24,6 +24,7 @@
 // apart); it can miss an obstacle thinner than what a link sweeps in one step (a 0.01 rad step of the
 // UR10e's base joint moves the wrist up to 1.8 cm), so it is kept for comparisons.
 #include <algorithm>
+#include <limits>
 
 #include <Eigen/Core>
 
@@ -58,6 +59,20 @@ inline double acceptanceMargin(double minimumClearance) { return std::min(0.25 *
 // measures closer. Answered with hasClearance's bounds.
 bool keepsAcceptanceMargin(const CollisionModel& model, CollisionData& data, const robot::JointRef& q,
                            double minimumClearance);
+
+// The pair at q that keeps least of what a certified motion at minimumClearance accepts (its own m +
+// acceptanceMargin(m), as keepsAcceptanceMargin): its names, exact distance and that distance less what is accepted
+// (below 0 a certified motion may stop at q); an obstacle pair before a self pair that falls as short. The distance is
+// the one distance() reports for that pair's kind, but pairs whose bounds show they keep more are never measured (what
+// explains a refused waypoint). Throws arcplan::Error as keepsAcceptanceMargin.
+struct Shortfall {
+  NamePair pair;  // (link, obstacle) or (link, link)
+  bool self = false;
+  double distance = std::numeric_limits<double>::infinity();
+  double shortfall = std::numeric_limits<double>::infinity();
+};
+Shortfall smallestShortfall(const CollisionModel& model, CollisionData& data, const robot::JointRef& q,
+                            double minimumClearance);
 
 // Whether the straight motion qa -> qb is collision-free. Certified covers the closed motion [0, 1]
 // (qa too); Discrete checks the states at fractions k/n, k = 1..n (qa is taken as valid, as OMPL
