@@ -140,8 +140,8 @@ TEST_F(HeldBalls, PathCertifierKeepsTheObstacleClearanceAndTheSelfPairsOwn) {
 // UR10e and of MBM's UR5 + Robotiq 85 (where the shared data is), at 1 cm and 2 mm. States within 1e-6 m of a
 // threshold are left out: the two queries reach a distance on different ways (hull bounds less their 1e-6 m
 // slack, GJK to about 1e-6 m), so a pair that close to the threshold may go either way; they are counted.
-TEST(SelfClearanceRule, HasClearanceAgreesWithTheRuleOnRandomStates) {
-  std::vector<Scene> scenes{loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml")};
+// The scenes given, then MBM's first bookshelf where the shared data is: the random-state tests' scenes.
+std::vector<Scene> withAnMbmShelf(std::vector<Scene> scenes) {
   const fs::path mbm = arcplan::testing::sharedDataDirectory() / "mbm_ur5";
   if (fs::exists(mbm / "problems")) {
     const fs::path folder = mbm / "problems" / "bookshelf_small_ur5";
@@ -149,6 +149,12 @@ TEST(SelfClearanceRule, HasClearanceAgreesWithTheRuleOnRandomStates) {
                                        MoveItRobot{mbm / "ur5.urdf", mbm / "ur5.srdf"})
                          .scene);
   }
+  return scenes;
+}
+
+TEST(SelfClearanceRule, HasClearanceAgreesWithTheRuleOnRandomStates) {
+  const std::vector<Scene> scenes =
+      withAnMbmShelf({loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml")});
   for (const Scene& scene : scenes) {
     const auto model = makeCollisionModel(scene);
     CollisionData data(*model);
@@ -185,15 +191,8 @@ TEST(SelfClearanceRule, HasClearanceAgreesWithTheRuleOnRandomStates) {
 // obstacle pair when both fall as short. On random states of the thesis scene and an MBM shelf, and on the held balls
 // (a self pair at 1.1 mm falls shorter than the table at 2 cm and more).
 TEST(SelfClearanceRule, SmallestShortfallIsThePairNearestToRefusalByTheRule) {
-  std::vector<Scene> scenes{loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"),
-                            arcplan::testing::HeldBalls().scene()};
-  const fs::path mbm = arcplan::testing::sharedDataDirectory() / "mbm_ur5";
-  if (fs::exists(mbm / "problems")) {
-    const fs::path folder = mbm / "problems" / "bookshelf_small_ur5";
-    scenes.push_back(loadMoveItProblem(folder / "scene0001.yaml", folder / "request0001.yaml",
-                                       MoveItRobot{mbm / "ur5.urdf", mbm / "ur5.srdf"})
-                         .scene);
-  }
+  const std::vector<Scene> scenes = withAnMbmShelf(
+      {loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"), arcplan::testing::HeldBalls().scene()});
   const auto accepted = [](double m) { return m + std::min(0.25 * m, 0.0005); };
   for (const Scene& scene : scenes) {
     const auto model = makeCollisionModel(scene);
