@@ -4,12 +4,14 @@
 // "naive" sends every non-allowed part pair to FCL (no capsule broad phase). CollisionMotion*
 // checks straight joint-space motions, discrete (0.01 rad) vs certified (motion_check.h). "Prefilter"
 // variants put the SIMD sphere prefilter in front of FCL (CollisionModelOptions::spherePrefilter);
-// the others are FCL only. CollisionPrefilterAgreement counts states whose answer differs between the
+// the others are FCL only. CollisionPathCertifier certifies dense paths waypoint by waypoint (the arc planner's walks).
+// CollisionPrefilterAgreement counts states whose answer differs between the
 // two on 10^5 random states per scene (thesis and generated suites): it must report 0 disagreements.
 // Run: build/perf/arcplan_perf --benchmark_filter=Collision --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (the medians are the numbers in docs/collision.md)
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <random>
 
 #include <benchmark/benchmark.h>
@@ -271,6 +273,42 @@ BENCHMARK_CAPTURE(CollisionMotion, Certified_short, MotionCheck::Certified, Moti
 BENCHMARK_CAPTURE(CollisionMotion, Certified_long_prefilter, MotionCheck::Certified, MotionSet::Long, true);
 BENCHMARK_CAPTURE(CollisionMotion, Certified_long_free_prefilter, MotionCheck::Certified, MotionSet::LongFree, true);
 BENCHMARK_CAPTURE(CollisionMotion, Certified_short_prefilter, MotionCheck::Certified, MotionSet::Short, true);
+
+// Dense paths as the arc planner walks them: 60 seeded paths of 160 small joint steps (0.01–0.02 rad) from the thesis
+// query's start to its goal, each bent sideways by a smooth random offset, so that some pass the particle at a few
+// centimetres and some within 1 cm; certified at 1 cm with their waypoints expected (PathCertifier::expect), up to the
+// first motion refused. Per path: time, motions accepted, measurements per motion.
+void CollisionPathCertifier(benchmark::State& state) {
+  const auto model = makeCollisionModel(thesisScene());
+  CollisionData data(*model);
+  const Eigen::VectorXd a = (Eigen::VectorXd(6) << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098).finished();
+  const Eigen::VectorXd b = (Eigen::VectorXd(6) << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399).finished();
+  std::mt19937_64 random(41);
+  std::normal_distribution<double> offset(0.0, 0.25);
+  std::vector<Eigen::MatrixXd> paths;
+  for (int k = 0; k < 60; ++k) {
+    Eigen::VectorXd bend(6);
+    for (auto& v : bend) v = offset(random);
+    Eigen::MatrixXd path(6, 161);
+    for (int i = 0; i <= 160; ++i) {
+      const double s = i / 160.0;
+      path.col(i) = a + s * (b - a) + std::sin(M_PI * s) * bend;
+    }
+    paths.push_back(path);
+  }
+  std::size_t k = 0, accepted = 0, measurements = 0;
+  for (auto _ : state) {
+    const Eigen::MatrixXd& path = paths[k++ % paths.size()];
+    PathCertifier certifier(*model, data, 0.01);
+    certifier.expect(path);
+    if (!certifier.start(path.col(0))) continue;
+    for (Eigen::Index i = 1; i < path.cols() && certifier.extend(path.col(i)); ++i) ++accepted;
+    measurements += static_cast<std::size_t>(certifier.measurements());
+  }
+  state.counters["motions_accepted_per_path"] = static_cast<double>(accepted) / static_cast<double>(k);
+  state.counters["measurements_per_motion"] = static_cast<double>(measurements) / static_cast<double>(accepted);
+}
+BENCHMARK(CollisionPathCertifier)->Unit(benchmark::kMicrosecond);
 
 using BV = BoundingVolume;
 // The default model: ConvexGJK boolean queries and distances with the capsule broad phase.
