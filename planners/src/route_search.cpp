@@ -7,7 +7,7 @@ namespace {
 
 // The length of the polyline route.points[0..leg], way, route.points[leg + 1..]: summed in that order, as over the
 // built route's points, so that equal routes get equal lengths to the bit (the queue's order depends on them).
-double detourLength(const Route& route, std::size_t leg, const std::vector<Eigen::Vector3d>& way) {
+double detourLength(const Route& route, std::size_t leg, const ViaCandidate& way) {
   double length = 0.0;
   const Eigen::Vector3d* previous = &route.points.front();
   const auto add = [&](const Eigen::Vector3d& point) {
@@ -15,7 +15,7 @@ double detourLength(const Route& route, std::size_t leg, const std::vector<Eigen
     previous = &point;
   };
   for (std::size_t k = 1; k <= leg; ++k) add(route.points[k]);
-  for (const Eigen::Vector3d& point : way) add(point);
+  for (const Eigen::Vector3d& point : way.points) add(point);
   for (std::size_t k = leg + 1; k < route.points.size(); ++k) add(route.points[k]);
   return length;
 }
@@ -25,7 +25,7 @@ double detourLength(const Route& route, std::size_t leg, const std::vector<Eigen
 RouteSearch::RouteSearch(const Eigen::Vector3d& start, const Eigen::Vector3d& goal, std::size_t maxViaPoints)
     : maxViaPoints_(maxViaPoints) {
   auto straight = std::make_shared<Route>(Route{{start, goal}, {}, 0.0});
-  straight->length = detourLength(*straight, 0, {});
+  straight->length = detourLength(*straight, 0, ViaCandidate{});
   const double length = straight->length;
   push(Queued{length, std::move(straight), nullptr});
 }
@@ -85,7 +85,7 @@ void RouteSearch::legFailed(const Route& route, std::size_t leg, std::vector<Via
   for (std::size_t w = 0; w < shared->size(); ++w) {
     const ViaCandidate& way = (*shared)[w];
     if (route.points.size() - 2 + way.points.size() > maxViaPoints_) continue;
-    push(Queued{detourLength(route, leg, way.points), from, shared, leg, w});
+    push(Queued{detourLength(route, leg, way), from, shared, leg, w});
   }
 }
 

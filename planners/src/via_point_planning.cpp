@@ -193,7 +193,7 @@ private:
     route.points.insert(route.points.end(), way->points.begin(), way->points.end());
     route.points.push_back(b);
     if (!legsLongEnough(route)) return std::nullopt;
-    return walkRoute(route, way->points);
+    return walkRoute(route, std::vector<Eigen::Vector3d>(way->points.begin(), way->points.end()));
   }
 
   // The via point's configuration keeps the margin (held orientation).

@@ -153,12 +153,10 @@ std::vector<ViaCandidate> viaCandidates(const ObstacleCluster& cluster, const Ei
       // is not positive, or that lies beyond the leg's ends (lift 0), lifts it by nothing (a product of at most 0).
       const double apex = std::max(clearance + margin, ((raised + margin) * lift).maxCoeff());
       const double enter = inside(x0 - margin), leave = inside(x1 + margin);
-      // Its points allocated once and moved in: up to 120 candidates per blocked leg.
       const Eigen::Vector3d entry = p + enter * along + offset * away;
-      candidates.push_back({leave - enter > 1e-3
-                                ? std::vector<Eigen::Vector3d>{entry, p + leave * along + offset * away}
-                                : std::vector<Eigen::Vector3d>{entry},
-                            margin});
+      ViaCandidate over{{entry}, margin};
+      if (leave - enter > 1e-3) over.points.push_back(p + leave * along + offset * away);
+      candidates.push_back(std::move(over));
       if (apex <= kHighestApex) candidates.push_back({{p + apexX * along + apex * away}, margin});
     }
   }

@@ -16,6 +16,7 @@
 //     every hull point by clearance + margin (a triangle, the shortest way past a small body).
 // Margins grow from 2 cm to 35 cm: the tool and the arm above it need room besides the clearance.
 #include <Eigen/Core>
+#include <boost/container/small_vector.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,9 +36,11 @@ std::vector<Eigen::Vector3d> hullPoints(const collision::Obstacle& obstacle);
 // Clusters of the obstacles that are not floor, in the order of their first body.
 std::vector<ObstacleCluster> clusterObstacles(const std::vector<collision::Obstacle>& obstacles, double gap);
 
-// A way past a cluster: one or two via points between p and q, with the margin they keep.
+// A way past a cluster: one or two via points between p and q (a lattice detour: up to 10), with the margin they keep.
+// The points held in place up to two: a failed leg makes up to 120 candidates, most never walked, and a heap block for
+// each was most of their cost.
 struct ViaCandidate {
-  std::vector<Eigen::Vector3d> points;
+  boost::container::small_vector<Eigen::Vector3d, 2> points;
   double margin = 0.0;  // m beyond clearance
 };
 
