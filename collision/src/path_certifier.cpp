@@ -247,14 +247,16 @@ bool PathCertifier::extend(const robot::JointRef& q) {
     if (open.empty()) return accept();
   }
   // Before anything is measured, the bounds of the links' own moves: on a dense path the joint steps' bound is several
-  // times what the links move. Pairs they cover drop out, by their budgets or again by the spheres.
-  tightenBounds(q);
-  open.erase(std::remove_if(open.begin(), open.end(),
-                            [&](std::size_t k) {
-                              return used_[k] + bound_[k] < budget_[k] || (gaps != nullptr && coveredBySpheres(k));
-                            }),
-             open.end());
-  if (open.empty()) return accept();
+  // times what the links move, and with them the spheres settle a pair again. Only where the spheres are at hand:
+  // without them the measurement at the motion's start below settles almost every such pair anyway (the thesis shape's
+  // walk: 6 % of its motions settled by the chords, two forward kinematics a motion more, 105 -> 131 us a solve).
+  if (gaps != nullptr) {
+    tightenBounds(q);
+    open.erase(std::remove_if(open.begin(), open.end(),
+                              [&](std::size_t k) { return used_[k] + bound_[k] < budget_[k] || coveredBySpheres(k); }),
+               open.end());
+    if (open.empty()) return accept();
+  }
   // At the motion's start, the pairs not measured there (a pair anchored there was measured for a new anchor,
   // which asks more of its bounds than this motion would).
   bool startMeasured = false;
