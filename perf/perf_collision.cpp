@@ -11,7 +11,6 @@
 //      --benchmark_report_aggregates_only=true   (the medians are the numbers in docs/collision.md)
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <random>
 
 #include <benchmark/benchmark.h>
@@ -22,6 +21,7 @@
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/common/resources.h"
 #include "support/random_joint_state.h"
+#include "support/thesis_paths.h"
 
 namespace {
 
@@ -281,19 +281,12 @@ BENCHMARK_CAPTURE(CollisionMotion, Certified_short_prefilter, MotionCheck::Certi
 void CollisionPathCertifier(benchmark::State& state) {
   const auto model = makeCollisionModel(thesisScene());
   CollisionData data(*model);
-  const Eigen::VectorXd a = (Eigen::VectorXd(6) << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098).finished();
-  const Eigen::VectorXd b = (Eigen::VectorXd(6) << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399).finished();
   std::mt19937_64 random(41);
-  std::normal_distribution<double> offset(0.0, 0.25);
   std::vector<Eigen::MatrixXd> paths;
   for (int k = 0; k < 60; ++k) {
-    Eigen::VectorXd bend(6);
-    for (auto& v : bend) v = offset(random);
-    Eigen::MatrixXd path(6, 161);
-    for (int i = 0; i <= 160; ++i) {
-      const double s = i / 160.0;
-      path.col(i) = a + s * (b - a) + std::sin(M_PI * s) * bend;
-    }
+    const std::vector<Eigen::VectorXd> line = arcplan::testing::bentLine(random, 160);
+    Eigen::MatrixXd path(6, static_cast<Eigen::Index>(line.size()));
+    for (std::size_t i = 0; i < line.size(); ++i) path.col(static_cast<Eigen::Index>(i)) = line[i];
     paths.push_back(path);
   }
   std::size_t k = 0, accepted = 0, measurements = 0;

@@ -382,24 +382,26 @@ double acceptedDistance(bool self, double minimumClearance) {
   return m + acceptanceMargin(m);
 }
 
+// The minimumClearance of a query about what a certified motion accepts (`query` names it in the error).
+void checkMinimumClearance(const char* query, double minimumClearance) {
+  if (!(minimumClearance > 0.0) || !std::isfinite(minimumClearance)) {
+    throw Error(std::string(query) + ": minimumClearance must be a finite distance > 0 m, got " +
+                std::to_string(minimumClearance));
+  }
+}
+
 }  // namespace
 
 bool keepsAcceptanceMargin(const CollisionModel& model, CollisionData& data, const robot::JointRef& q,
                            double minimumClearance) {
-  if (!(minimumClearance > 0.0) || !std::isfinite(minimumClearance)) {
-    throw Error("acceptance margin query: minimumClearance must be a finite distance > 0 m, got " +
-                std::to_string(minimumClearance));
-  }
+  checkMinimumClearance("acceptance margin query", minimumClearance);
   return detail::keepsDistances(model, data, q, acceptedDistance(false, minimumClearance),
                                 acceptedDistance(true, minimumClearance));
 }
 
 Shortfall smallestShortfall(const CollisionModel& model, CollisionData& data, const robot::JointRef& q,
                             double minimumClearance) {
-  if (!(minimumClearance > 0.0) || !std::isfinite(minimumClearance)) {
-    throw Error("shortfall query: minimumClearance must be a finite distance > 0 m, got " +
-                std::to_string(minimumClearance));
-  }
+  checkMinimumClearance("shortfall query", minimumClearance);
   const detail::LeastPair least = detail::leastOffsetPair(model, data, q, acceptedDistance(false, minimumClearance),
                                                           acceptedDistance(true, minimumClearance));
   Shortfall result;

@@ -26,8 +26,7 @@ RouteSearch::RouteSearch(const Eigen::Vector3d& start, const Eigen::Vector3d& go
     : maxViaPoints_(maxViaPoints) {
   auto straight = std::make_shared<Route>(Route{{start, goal}, {}, 0.0});
   straight->length = detourLength(*straight, 0, ViaCandidate{});
-  const double length = straight->length;
-  push(Queued{length, std::move(straight), nullptr});
+  push(Queued{straight->length, straight, nullptr});
 }
 
 RouteSearch::Leg RouteSearch::legOf(const Route& route, std::size_t k) {

@@ -25,6 +25,7 @@
 #include "arcplan/common/resources.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/robot/mesh.h"
+#include "support/thesis_paths.h"
 #include "motion_bounds.h"  // collision/src: the bounds behind the certified check
 
 namespace {
@@ -35,8 +36,8 @@ namespace ob = ompl::base;
 
 Scene thesisScene(const char* name) { return loadScene(arcplan::dataDirectory() / "scenes" / name); }
 
-const VectorXd kSolutionA = (VectorXd(6) << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098).finished();
-const VectorXd kSolutionB = (VectorXd(6) << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399).finished();
+const VectorXd& kSolutionA = arcplan::testing::kThesisSolutionA;
+const VectorXd& kSolutionB = arcplan::testing::kThesisSolutionB;
 
 VectorXd along(const VectorXd& qa, const VectorXd& qb, double s) { return qa + s * (qb - qa); }
 

@@ -13,6 +13,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/common/resources.h"
 #include "arcplan/robot/kinematics.h"
+#include "support/thesis_paths.h"
 
 namespace {
 
@@ -21,8 +22,9 @@ using Eigen::VectorXd;
 
 Scene thesisObstacle() { return loadScene(arcplan::dataDirectory() / "scenes" / "thesis_obstacle.yaml"); }
 
-const VectorXd kSolutionA = (VectorXd(6) << -1.098, -1.510, 2.351, -2.411, -1.571, -1.098).finished();
-const VectorXd kSolutionB = (VectorXd(6) << 0.399, -1.624, 2.012, -1.958, -1.571, 0.399).finished();
+using arcplan::testing::bentLine;
+const VectorXd& kSolutionA = arcplan::testing::kThesisSolutionA;
+const VectorXd& kSolutionB = arcplan::testing::kThesisSolutionB;
 
 // The clearance a certifier keeps (its default, passed explicitly where the tests check it).
 constexpr double kClearance = 0.001;
@@ -123,21 +125,6 @@ TEST(PathCertifier, DensePathsNeedFewerMeasurementsThanWaypoints) {
   ASSERT_TRUE(certifier.start(path.front()));
   for (std::size_t i = 1; i < path.size(); ++i) ASSERT_TRUE(certifier.extend(path[i])) << i;
   EXPECT_LT(certifier.measurements(), 40);
-}
-
-// Paths of small joint steps (the arc planner's waypoints are ~1 cm of TCP apart) from the thesis solution A to B
-// through the particle's neighbourhood, each bent sideways by a smooth random offset so that some pass it at a few
-// centimetres, some within 1 cm and some through it.
-std::vector<VectorXd> bentLine(std::mt19937& random, int steps) {
-  std::normal_distribution<double> offset(0.0, 0.25);
-  VectorXd bend(6);
-  for (auto& v : bend) v = offset(random);
-  std::vector<VectorXd> path;
-  for (int k = 0; k <= steps; ++k) {
-    const double s = static_cast<double>(k) / steps;
-    path.push_back(kSolutionA + s * (kSolutionB - kSolutionA) + std::sin(M_PI * s) * bend);
-  }
-  return path;
 }
 
 // The smallest clearance (clearanceOf: what the per-pair rule asks, collision_model.h) at `states` + 1 states of

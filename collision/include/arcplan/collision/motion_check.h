@@ -112,8 +112,8 @@ public:
 
 private:
   bool anchorAll(const robot::JointRef& q);
-  // Where the joint steps' bound (relativeReach · |Δq|) leaves pairs open, each pair's bound of the motion to q
-  // lowered to its links' chord rates (detail::chordRate), from the link poses at last_ and q.
+  // At an expected waypoint where the joint steps' bound (relativeReach · |Δq|) leaves pairs open: each pair's bound of
+  // the motion to q lowered to its links' chord rates (detail::chordRate), from the link poses at last_ and q.
   void tightenBounds(const robot::JointRef& q);
   // q's column of expect()'s waypoints when it is the next one (or the one after), else -1.
   Eigen::Index expectedColumn(const robot::JointRef& q);
