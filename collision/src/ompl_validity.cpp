@@ -9,7 +9,7 @@
 #include "arcplan/collision/joint_states.h"
 #include "arcplan/common/error.h"
 #include "motion_clearance.h"
-#include "valid_state_memo.h"
+#include "answer_memo.h"
 
 namespace arcplan::collision {
 
@@ -39,7 +39,7 @@ CollisionStateValidityChecker::CollisionStateValidityChecker(ob::SpaceInformatio
     : ob::StateValidityChecker(si),
       pool_(std::move(model)),
       required_(std::move(required)),
-      valid_(std::make_shared<detail::ValidStateMemo>()) {
+      valid_(std::make_shared<detail::AnswerMemo<bool, 1>>()) {
   if (!required_) throw Error("state validity: no required clearance");
   specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::APPROXIMATE;  // workspace distance, not C-space
 }
@@ -47,11 +47,13 @@ CollisionStateValidityChecker::CollisionStateValidityChecker(ob::SpaceInformatio
 bool CollisionStateValidityChecker::isValid(const ob::State* state) const {
   if (!si_->satisfiesBounds(state)) return false;
   const auto q = jointsOf(state, model().robot().dof());
-  if (valid_->contains(q)) return true;
+  const robot::JointRef joints(q);
+  if (valid_->find({&joints})) return true;
   const auto lease = pool_.lease();
   const double required = required_->stateClearanceAt(q);
   const bool valid = required > 0.0 ? hasClearance(model(), *lease, q, required) : isCollisionFree(model(), *lease, q);
-  if (valid) valid_->insert(q);
+  // Only the valid ones: most invalid states are random samples, never asked again.
+  if (valid) valid_->insert({&joints}, true);
   return valid;
 }
 
@@ -69,7 +71,11 @@ double CollisionStateValidityChecker::clearance(const ob::State* state) const {
 JointMotionValidator::JointMotionValidator(ob::SpaceInformation* si, std::shared_ptr<const CollisionModel> model,
                                            MotionCheckOptions options,
                                            std::shared_ptr<const EndpointClearance> required)
-    : ob::MotionValidator(si), pool_(std::move(model)), options_(options), required_(std::move(required)) {
+    : ob::MotionValidator(si),
+      pool_(std::move(model)),
+      options_(options),
+      required_(std::move(required)),
+      memo_(std::make_shared<detail::MotionMemo>()) {
   validate(options_);
   // motionFree certifies pieces with the clearances of `required` in place of options.minimumClearance;
   // checked here, as options are, so that nothing throws from inside OMPL's checkMotion. A zone's
@@ -110,27 +116,34 @@ int JointMotionValidator::segmentCount(const ob::State* s1, const ob::State* s2)
 
 bool JointMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
   const int dof = pool_.model().robot().dof();
-  const bool valid = si_->isValid(s2) && motionFree(jointsOf(s1, dof), jointsOf(s2, dof), nullptr);
-  valid ? ++valid_ : ++invalid_;
-  return valid;
+  const robot::JointRef from(jointsOf(s1, dof)), to(jointsOf(s2, dof));
+  std::optional<detail::MotionAnswer> answer = memo_->plain.find({&from, &to});
+  if (!answer) {
+    answer = detail::MotionAnswer{si_->isValid(s2) && motionFree(from, to, nullptr)};
+    memo_->plain.insert({&from, &to}, *answer);
+  }
+  answer->valid ? ++valid_ : ++invalid_;
+  return answer->valid;
 }
 
 bool JointMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                        std::pair<ob::State*, double>& lastValid) const {
   const int dof = pool_.model().robot().dof();
-  // Both checks below cover the collisions of s2; the joint bounds are the rest of its validity (a
-  // straight motion between states inside the bounds stays inside).
-  double fraction = 0.0;
-  bool valid = si_->satisfiesBounds(s2);
-  if (valid) {
-    valid = motionFree(jointsOf(s1, dof), jointsOf(s2, dof), &fraction);
+  const robot::JointRef from(jointsOf(s1, dof)), to(jointsOf(s2, dof));
+  std::optional<detail::MotionAnswer> answer = memo_->traced.find({&from, &to});
+  if (!answer) {
+    // Both checks below cover the collisions of s2; the joint bounds are the rest of its validity (a
+    // straight motion between states inside the bounds stays inside).
+    answer = detail::MotionAnswer{si_->satisfiesBounds(s2), 0.0};
+    if (answer->valid) answer->valid = motionFree(from, to, &answer->lastValidFraction);
+    memo_->traced.insert({&from, &to}, *answer);
   }
-  if (valid) {
+  if (answer->valid) {
     ++valid_;
     return true;
   }
-  lastValid.second = fraction;
-  if (lastValid.first != nullptr) si_->getStateSpace()->interpolate(s1, s2, fraction, lastValid.first);
+  lastValid.second = answer->lastValidFraction;
+  if (lastValid.first != nullptr) si_->getStateSpace()->interpolate(s1, s2, answer->lastValidFraction, lastValid.first);
   ++invalid_;
   return false;
 }

@@ -13,6 +13,7 @@
 #include "arcplan/collision/motion_check.h"
 #include "arcplan/common/error.h"
 #include "arcplan/planners/arc_planner.h"
+#include "arcplan/planners/certified_simplification.h"
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/robot/kinematics.h"
 
@@ -116,7 +117,7 @@ PlannerRun runArcplanPlanner(planners::PlanningProblem& problem, const std::stri
   const auto clock = std::chrono::steady_clock::now();
   setup.solve(timeLimit);
   const bool exact = setup.haveExactSolutionPath();
-  if (exact && benchmarks::simplifiesSolution(plannerName)) setup.simplifySolution();
+  if (exact && benchmarks::simplifiesSolution(plannerName)) planners::simplifySolutionKeepingCertified(setup);
   PlannerRun run;
   run.totalUs = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - clock).count();
 

@@ -36,8 +36,9 @@ struct PlannerRun {
 };
 
 // One planner by registry name on the problem with the given parameters, as `arcplan plan` runs it:
-// SimpleSetup::solve within `timeLimit` seconds, then OMPL's simplifier when benchmarks::simplifiesSolution
-// says so. Only an exact solution counts as solved.
+// SimpleSetup::solve within `timeLimit` seconds, then OMPL's simplifier when benchmarks::simplifiesSolution says so,
+// its result kept only where every motion is certified (planners::simplifySolutionKeepingCertified). Only an exact
+// solution counts as solved.
 PlannerRun runArcplanPlanner(planners::PlanningProblem& problem, const std::string& plannerName,
                              const std::vector<std::pair<std::string, std::string>>& parameters, double timeLimit);
 

@@ -185,6 +185,92 @@ TEST(OmplValidity, AStateAskedAgainKeepsItsAnswer) {
   EXPECT_GT(edges, 20);
 }
 
+// The motion validator remembers its answers (collision/src/answer_memo.h): asked again, each overload gives what
+// isMotionCollisionFree computes for the motion (a workspace of its own, the validator's options at the problem's
+// clearance), the last valid fraction included, and OMPL's counters count every call; motions 1e-12 rad apart across
+// the edge of what the certificate accepts keep their own answers.
+TEST(OmplValidity, AMotionAskedAgainKeepsItsAnswer) {
+  const auto model = sceneModel("thesis_obstacle.yaml");
+  const auto si = makeSpaceInformation(model, {}, 0.01);
+  const auto* validator = dynamic_cast<const JointMotionValidator*>(si->getMotionValidator().get());
+  ASSERT_NE(validator, nullptr);
+  MotionCheckOptions options = validator->options();
+  options.minimumClearance = 0.01;
+  CollisionData data(*model);
+  const auto direct = [&](const Vector6& from, const Vector6& to, double* fraction) {
+    return isMotionCollisionFree(*model, data, from, to, fraction, options);
+  };
+  ob::ScopedState<> lastValidState(si);
+  const auto traced = [&](const Vector6& from, const Vector6& to, double& fraction) {
+    std::pair<ob::State*, double> lastValid{lastValidState.get(), -1.0};
+    const bool valid = si->checkMotion(stateOf(si, from).get(), stateOf(si, to).get(), lastValid);
+    fraction = lastValid.second;
+    return valid;
+  };
+  std::mt19937_64 random(11);
+  std::normal_distribution<double> gaussian(0.0, 0.8);
+  int refused = 0, accepted = 0, edges = 0;
+  unsigned calls = 0;
+  for (int k = 0; k < 500; ++k) {
+    const Vector6 from = arcplan::testing::randomJointState(model->robot(), random);
+    if (!hasClearance(*model, data, from, 0.01)) continue;
+    Vector6 to = from;
+    for (int j = 0; j < 6; ++j) to[j] += gaussian(random);
+    if (!si->satisfiesBounds(stateOf(si, to).get())) continue;
+    double expectedFraction = 0.0;
+    const bool expected = direct(from, to, &expectedFraction);
+    const bool expectedPlain = si->isValid(stateOf(si, to).get()) && direct(from, to, nullptr);
+    for (int ask = 0; ask < 2; ++ask) {
+      EXPECT_EQ(si->checkMotion(stateOf(si, from).get(), stateOf(si, to).get()), expectedPlain) << k;
+      double fraction = -1.0;
+      EXPECT_EQ(traced(from, to, fraction), expected) << k;
+      if (!expected) {
+        EXPECT_EQ(fraction, expectedFraction) << k;
+      }
+      calls += 2;
+    }
+    (expected ? accepted : refused) += 1;
+  }
+  // Refused motions cut back to the edge: an accepted motion and a refused one whose ends are 1e-12 rad apart.
+  for (int k = 0; k < 400 && edges < 15; ++k) {
+    const Vector6 from = arcplan::testing::randomJointState(model->robot(), random);
+    if (!hasClearance(*model, data, from, 0.01)) continue;
+    Vector6 to = from;
+    for (int j = 0; j < 6; ++j) to[j] += gaussian(random);
+    if (!si->satisfiesBounds(stateOf(si, to).get()) || direct(from, to, nullptr)) continue;
+    Vector6 inside = from, outside = to;
+    for (int step = 0; step < 80 && (outside - inside).norm() > 1e-12; ++step) {
+      const Vector6 middle = (inside + outside) / 2.0;
+      (direct(from, middle, nullptr) ? inside : outside) = middle;
+    }
+    if (inside == from) continue;
+    const bool insidePlain = si->isValid(stateOf(si, inside).get());
+    // The traced check (nothing deferred) has an edge of its own nearby: whatever it answers here, it answers again.
+    double insideFraction = 0.0, outsideFraction = 0.0;
+    const bool insideTraced = direct(from, inside, &insideFraction);
+    const bool outsideTraced = direct(from, outside, &outsideFraction);
+    for (int ask = 0; ask < 2; ++ask) {
+      EXPECT_EQ(si->checkMotion(stateOf(si, from).get(), stateOf(si, inside).get()), insidePlain) << k;
+      EXPECT_FALSE(si->checkMotion(stateOf(si, from).get(), stateOf(si, outside).get())) << k;
+      double fraction = -1.0;
+      EXPECT_EQ(traced(from, inside, fraction), insideTraced) << k;
+      if (!insideTraced) {
+        EXPECT_EQ(fraction, insideFraction) << k;
+      }
+      EXPECT_EQ(traced(from, outside, fraction), outsideTraced) << k;
+      if (!outsideTraced) {
+        EXPECT_EQ(fraction, outsideFraction) << k;
+      }
+      calls += 4;
+    }
+    ++edges;
+  }
+  EXPECT_GT(accepted, 20);
+  EXPECT_GT(refused, 20);
+  EXPECT_GE(edges, 10);
+  EXPECT_EQ(validator->getValidMotionCount() + validator->getInvalidMotionCount(), calls);
+}
+
 TEST(OmplValidity, SegmentCountFollowsTheLargestJointStep) {
   MotionCheckOptions options;
   options.maxJointStep = 0.05;

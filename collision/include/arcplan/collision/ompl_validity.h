@@ -26,8 +26,10 @@
 namespace arcplan::collision {
 
 namespace detail {
-class ValidStateMemo;  // collision/src/valid_state_memo.h
-}
+template <typename Answer, int Parts>
+class AnswerMemo;   // collision/src/answer_memo.h
+struct MotionMemo;  // collision/src/answer_memo.h
+}  // namespace detail
 
 // dof-dimensional RealVectorStateSpace, bounds = URDF joint limits, dimension names = joint names.
 ompl::base::StateSpacePtr makeJointStateSpace(const robot::RobotModel& model);
@@ -56,7 +58,7 @@ public:
 private:
   CollisionDataPool pool_;
   std::shared_ptr<const EndpointClearance> required_;
-  std::shared_ptr<detail::ValidStateMemo> valid_;  // the states found valid (isValid answers them at once)
+  std::shared_ptr<detail::AnswerMemo<bool, 1>> valid_;  // the states found valid (isValid answers them at once)
 };
 
 class JointMotionValidator : public ompl::base::MotionValidator {
@@ -69,7 +71,8 @@ public:
                        MotionCheckOptions options = {}, std::shared_ptr<const EndpointClearance> required = nullptr);
 
   // s1 is taken as valid (OMPL's convention, though the certified check measures it as well); s2
-  // must be valid (si->isValid, exact) and the motion collision-free.
+  // must be valid (si->isValid, exact) and the motion collision-free. Both overloads remember their answers and give
+  // a motion asked before (the same joint values bit for bit) its answer then, at once (collision/src/answer_memo.h).
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
   // Checks from s1 toward s2; on failure lastValid gets the last valid state (if lastValid.first is
   // not null) and its fraction of the motion, in [0, 1) (0 when s2 is outside the joint bounds).
@@ -88,6 +91,7 @@ private:
   CollisionDataPool pool_;
   MotionCheckOptions options_;
   std::shared_ptr<const EndpointClearance> required_;
+  std::shared_ptr<detail::MotionMemo> memo_;  // each overload's answers (checkMotion answers them at once)
 };
 
 // Joint state space + CollisionStateValidityChecker + JointMotionValidator, set up. The
