@@ -1,5 +1,6 @@
 // OMPL glue: the joint state space, validity and clearance, the motion validator, use by a real
 // OMPL planner, and calls from several threads.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <thread>
@@ -340,6 +341,48 @@ TEST(OmplValidity, ConcurrentCallersGetTheSequentialAnswers) {
   EXPECT_EQ(first, sequential);
   EXPECT_EQ(second, sequential);
   for (std::size_t k = 0; k < states.size(); ++k) EXPECT_EQ(clearances[k] > 0.0, sequential[k] == 1) << k;
+
+  // Motions, whose answers the validator remembers: two threads ask each motion of a fresh space (one computes it, the
+  // other may find it remembered), both overloads, in opposite orders; the answers are those of one caller alone.
+  const std::size_t motions = 150;
+  const auto alone = makeSpaceInformation(sceneModel("thesis_obstacle.yaml"));
+  std::vector<int> plainAlone(motions), tracedAlone(motions);
+  std::vector<double> fractionAlone(motions);
+  const auto traced = [](const ob::SpaceInformationPtr& space, const ob::State* from, const ob::State* to,
+                         double& fraction) {
+    std::pair<ob::State*, double> lastValid{nullptr, 0.0};
+    const bool valid = space->checkMotion(from, to, lastValid);
+    fraction = valid ? 1.0 : lastValid.second;
+    return valid;
+  };
+  for (std::size_t k = 0; k < motions; ++k) {
+    plainAlone[k] = alone->checkMotion(states[k].get(), states[k + 1].get());
+    tracedAlone[k] = traced(alone, states[k].get(), states[k + 1].get(), fractionAlone[k]);
+  }
+  const auto shared = makeSpaceInformation(sceneModel("thesis_obstacle.yaml"));
+  std::vector<int> plainA(motions), plainB(motions), tracedA(motions), tracedB(motions);
+  std::vector<double> fractionA(motions), fractionB(motions);
+  std::thread c([&] {
+    for (std::size_t k = 0; k < motions; ++k) {
+      plainA[k] = shared->checkMotion(states[k].get(), states[k + 1].get());
+      tracedA[k] = traced(shared, states[k].get(), states[k + 1].get(), fractionA[k]);
+    }
+  });
+  std::thread d([&] {
+    for (std::size_t k = motions; k-- > 0;) {
+      tracedB[k] = traced(shared, states[k].get(), states[k + 1].get(), fractionB[k]);
+      plainB[k] = shared->checkMotion(states[k].get(), states[k + 1].get());
+    }
+  });
+  c.join();
+  d.join();
+  EXPECT_EQ(plainA, plainAlone);
+  EXPECT_EQ(plainB, plainAlone);
+  EXPECT_EQ(tracedA, tracedAlone);
+  EXPECT_EQ(tracedB, tracedAlone);
+  EXPECT_EQ(fractionA, fractionAlone);
+  EXPECT_EQ(fractionB, fractionAlone);
+  EXPECT_GT(std::count(plainAlone.begin(), plainAlone.end(), 0), 10);  // refused motions among them
 }
 
 }  // namespace
