@@ -37,6 +37,16 @@ ob::ScopedState<> stateOf(const ob::SpaceInformationPtr& si, const Vector6& q) {
   return state;
 }
 
+// The checkMotion overload that reports the last valid state: whether the motion is valid, and its last valid
+// fraction (1 when valid).
+bool checkTraced(const ob::SpaceInformationPtr& si, const ob::State* from, const ob::State* to, double& fraction) {
+  ob::ScopedState<> lastValidState(si);
+  std::pair<ob::State*, double> lastValid{lastValidState.get(), -1.0};
+  const bool valid = si->checkMotion(from, to, lastValid);
+  fraction = valid ? 1.0 : lastValid.second;
+  return valid;
+}
+
 TEST(OmplValidity, JointSpaceHasTheUrdfBoundsAndNames) {
   const auto& robot = arcplan::robot::ur10e();
   const auto space = makeJointStateSpace(robot);
@@ -201,12 +211,8 @@ TEST(OmplValidity, AMotionAskedAgainKeepsItsAnswer) {
   const auto direct = [&](const Vector6& from, const Vector6& to, double* fraction) {
     return isMotionCollisionFree(*model, data, from, to, fraction, options);
   };
-  ob::ScopedState<> lastValidState(si);
   const auto traced = [&](const Vector6& from, const Vector6& to, double& fraction) {
-    std::pair<ob::State*, double> lastValid{lastValidState.get(), -1.0};
-    const bool valid = si->checkMotion(stateOf(si, from).get(), stateOf(si, to).get(), lastValid);
-    fraction = lastValid.second;
-    return valid;
+    return checkTraced(si, stateOf(si, from).get(), stateOf(si, to).get(), fraction);
   };
   std::mt19937_64 random(11);
   std::normal_distribution<double> gaussian(0.0, 0.8);
@@ -348,16 +354,9 @@ TEST(OmplValidity, ConcurrentCallersGetTheSequentialAnswers) {
   const auto alone = makeSpaceInformation(sceneModel("thesis_obstacle.yaml"));
   std::vector<int> plainAlone(motions), tracedAlone(motions);
   std::vector<double> fractionAlone(motions);
-  const auto traced = [](const ob::SpaceInformationPtr& space, const ob::State* from, const ob::State* to,
-                         double& fraction) {
-    std::pair<ob::State*, double> lastValid{nullptr, 0.0};
-    const bool valid = space->checkMotion(from, to, lastValid);
-    fraction = valid ? 1.0 : lastValid.second;
-    return valid;
-  };
   for (std::size_t k = 0; k < motions; ++k) {
     plainAlone[k] = alone->checkMotion(states[k].get(), states[k + 1].get());
-    tracedAlone[k] = traced(alone, states[k].get(), states[k + 1].get(), fractionAlone[k]);
+    tracedAlone[k] = checkTraced(alone, states[k].get(), states[k + 1].get(), fractionAlone[k]);
   }
   const auto shared = makeSpaceInformation(sceneModel("thesis_obstacle.yaml"));
   std::vector<int> plainA(motions), plainB(motions), tracedA(motions), tracedB(motions);
@@ -365,12 +364,12 @@ TEST(OmplValidity, ConcurrentCallersGetTheSequentialAnswers) {
   std::thread c([&] {
     for (std::size_t k = 0; k < motions; ++k) {
       plainA[k] = shared->checkMotion(states[k].get(), states[k + 1].get());
-      tracedA[k] = traced(shared, states[k].get(), states[k + 1].get(), fractionA[k]);
+      tracedA[k] = checkTraced(shared, states[k].get(), states[k + 1].get(), fractionA[k]);
     }
   });
   std::thread d([&] {
     for (std::size_t k = motions; k-- > 0;) {
-      tracedB[k] = traced(shared, states[k].get(), states[k + 1].get(), fractionB[k]);
+      tracedB[k] = checkTraced(shared, states[k].get(), states[k + 1].get(), fractionB[k]);
       plainB[k] = shared->checkMotion(states[k].get(), states[k + 1].get());
     }
   });
