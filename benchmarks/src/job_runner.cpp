@@ -289,6 +289,8 @@ JobOutcome runJob(const Suite& suite, const Problem& problem, const PlannerConfi
   if (suite.iterationBudget && !configuration.parameters.count("deadline") && planner->params().hasParam("deadline")) {
     planner->params().setParam("deadline", "0");
   }
+  // The suite's clearance for every planner, the arc planner's own included (unless the suite sets it).
+  keepProblemClearance(*planner, suite.clearance, configuration.parameters.count("clearance") > 0);
   std::shared_ptr<IterationBudgetPlanner> budgeted;
   if (suite.iterationBudget) {
     budgeted = std::make_shared<IterationBudgetPlanner>(planner, *suite.iterationBudget);

@@ -122,6 +122,13 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
   ompl::geometric::SimpleSetup& setup = *problem.setup;
   const ompl::base::PlannerPtr planner =
       planners::makePlanner(plannerName, setup.getSpaceInformation(), problem.plannerContext(), options.parameters);
+  // A clearance asked for is the arc planner's too, as in a campaign with that clearance (without one it keeps its
+  // own).
+  if (options.clearance > 0.0) {
+    const bool given = std::any_of(options.parameters.begin(), options.parameters.end(),
+                                   [](const auto& parameter) { return parameter.first == "clearance"; });
+    keepProblemClearance(*planner, options.clearance, given);
+  }
   setup.setPlanner(planner);
   setup.setup();
   if (options.seed) {

@@ -111,6 +111,8 @@ PlannerRun runArcplanPlanner(planners::PlanningProblem& problem, const std::stri
   setup.clear();  // the previous planner's solution and data
   const ompl::base::PlannerPtr planner =
       planners::makePlanner(plannerName, setup.getSpaceInformation(), problem.plannerContext(), parameters);
+  // No clearance beyond contact, as VAMP: the arc planner's own 1 cm too.
+  benchmarks::keepProblemClearance(*planner, 0.0, false);
   setup.setPlanner(planner);
   setup.setup();
 

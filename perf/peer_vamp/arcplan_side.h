@@ -38,7 +38,8 @@ struct PlannerRun {
 // One planner by registry name on the problem with the given parameters, as `arcplan plan` runs it:
 // SimpleSetup::solve within `timeLimit` seconds, then OMPL's simplifier when benchmarks::simplifiesSolution says so,
 // its result kept only where every motion is certified (planners::simplifySolutionKeepingCertified). Only an exact
-// solution counts as solved.
+// solution counts as solved. The problem keeps no clearance beyond contact, as VAMP plans: nor does the arc planner
+// (benchmarks::keepProblemClearance; until 2026-11-25 it kept its own 1 cm here, a harder problem than the others').
 PlannerRun runArcplanPlanner(planners::PlanningProblem& problem, const std::string& plannerName,
                              const std::vector<std::pair<std::string, std::string>>& parameters, double timeLimit);
 
