@@ -87,6 +87,7 @@ void printSummary(const nlohmann::json& document, const benchmarks::PlannedQuery
             << document[trajectory::solveTimeDescriptor().key].get<double>() << " s\n";
   if (arc && !arc->mode().empty()) {
     std::cout << "mode                " << arc->mode() << " (cartesian fraction " << arc->cartesianFraction << ")\n";
+    if (const auto why = planned.fallbackReason()) std::cout << "fallback reason     " << *why << "\n";
     for (std::size_t i = 0; i < arc->viaPoints.size(); ++i) {
       const Eigen::Vector3d& point = arc->viaPoints[i];
       std::cout << "via point           (" << point.x() << ", " << point.y() << ", " << point.z() << ") m, blend "

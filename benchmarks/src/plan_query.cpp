@@ -174,6 +174,11 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
   return planned;
 }
 
+std::optional<std::string> PlannedQuery::fallbackReason() const {
+  if (!arc || path.empty() || arc->kind != planners::ArcPlannerResult::Kind::Fallback) return std::nullopt;
+  return arc->reason;
+}
+
 nlohmann::json toJson(const PlannedQuery& planned) {
   nlohmann::json document = {{"scene", planned.sceneName},
                              {"query", planned.queryName},
@@ -190,6 +195,7 @@ nlohmann::json toJson(const PlannedQuery& planned) {
     if (!planned.path.empty()) {
       document["mode"] = planned.arc->mode();
       document["cartesian_fraction"] = planned.arc->cartesianFraction;
+      if (const auto why = planned.fallbackReason()) document["fallback_reason"] = *why;
     }
   }
   if (planned.measurement) {

@@ -91,6 +91,7 @@ class PlanResult:
     solve_time_s: float
     simplification_time_s: float
     mode: Optional[str]
+    fallback_reason: Optional[str]
     path: FloatArray
     waypoints: int
     trajectory: Optional[Trajectory]

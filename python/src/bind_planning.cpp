@@ -105,6 +105,7 @@ void bindPlanning(py::module_& module) {
                                if (!p.arc || p.path.empty()) return std::nullopt;
                                return p.arc->mode();
                              })
+      .def_property_readonly("fallback_reason", [](const Planned& p) { return p.fallbackReason(); })
       .def_property_readonly("path", [](const Planned& p) { return toArray(p.path); })
       .def_property_readonly("waypoints", [](const Planned& p) { return p.path.size(); })
       .def_property_readonly(

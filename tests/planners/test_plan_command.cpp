@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -37,8 +38,34 @@ TEST(PlanCommand, ThesisCaseReportsMetricsAndWritesJsonAndPath) {
   EXPECT_EQ(document["simplification_time_s"].get<double>(), 0.0);  // a pure arc path: nothing to simplify
   EXPECT_EQ(document["parameters"]["sagitta"], "0.1");
   EXPECT_EQ(document["arc"]["detours"].size(), 1u);
+  EXPECT_FALSE(document.contains("fallback_reason"));  // lines and arcs only
   const auto path = arcplan::trajectory::readJointPathCsv(csv);
   EXPECT_EQ(path.size(), document["waypoints"].get<std::size_t>());
+}
+
+// Start and goal with the wrist on opposite sides of q5 = 0: no TCP path joins them, so the joint-space fallback
+// answers, and `plan` says why the line search gave up and what the fallback kept.
+TEST(PlanCommand, AFallbackPathSaysWhyTheLineSearchGaveUp) {
+  const auto dir = freshTempDirectory("plan_fallback");
+  std::ofstream(dir / "wrist_flip.yaml")
+      << "name: wrist_flip\nrobot: ur10e\nobstacles:\n"
+         "  - {name: table, box: {size: [2.0, 2.0, 0.05]}, position: [0, 0, -0.025]}\n"
+         "allowed_collisions: [[table, base_link_inertia], [table, shoulder_link]]\n"
+         "queries:\n  - name: flip\n"
+         "    start: {joints: [-1.098, -1.510, 2.351, -2.411, -1.571, -1.098]}\n"
+         "    goal: {joints: [0.399, -1.624, 2.012, -1.958, 1.571, 0.399]}\n";
+  const auto json = dir / "plan.json";
+  const auto result =
+      runArcplan({"plan", "--scene", (dir / "wrist_flip.yaml").string(), "--seed", "1", "--json", json.string()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto document = nlohmann::json::parse(readFile(json));
+  ASSERT_EQ(document["mode"], "fallback");
+  const std::string why = document["fallback_reason"];
+  EXPECT_EQ(why.rfind("branch change: start and goal are on different IK branches", 0), 0u) << why;
+  EXPECT_NE(why.find("differ in the wrist"), std::string::npos) << why;
+  EXPECT_NE(why.find("the fallback kept"), std::string::npos) << why;
+  EXPECT_FALSE(document.contains("reason"));  // an exact path: nothing failed
+  EXPECT_NE(result.out.find("fallback reason     branch change"), std::string::npos) << result.out;
 }
 
 TEST(PlanCommand, JsonOnStdoutIsTheOnlyOutput) {

@@ -54,7 +54,22 @@ def test_thesis_arc_path_length_is_the_analytic_one():
     assert result.tcp_path_length_m == pytest.approx(0.8825, abs=5e-5)
     assert result.execution_time_s is None and result.trajectory is None  # no vmax: not time-scaled
     assert result.mode == "arc" and result.planner == "arc" and result.query == "A_to_B"
+    assert result.fallback_reason is None  # lines and arcs only
     assert result.parameters["sagitta"] == "0.1"
+
+
+def test_a_fallback_path_says_why_as_the_cli_does(cli, tmp_path):
+    # The wrist on opposite sides of q5 = 0 at start and goal: only the joint-space fallback joins them.
+    scene = tmp_path / "wrist_flip.yaml"
+    scene.write_text(THESIS_SCENE.read_text().split("queries:")[0].replace("name: thesis_obstacle", "name: wrist_flip") +
+                     "queries:\n  - name: flip\n"
+                     "    start: {joints: [-1.098, -1.510, 2.351, -2.411, -1.571, -1.098]}\n"
+                     "    goal: {joints: [0.399, -1.624, 2.012, -1.958, 1.571, 0.399]}\n")
+    expected = cli("plan", "--scene", scene, "--seed", 1)
+    result = arcplan.plan(str(scene), seed=1)
+    assert result.mode == expected["mode"] == "fallback"
+    assert result.fallback_reason == expected["fallback_reason"]
+    assert result.fallback_reason.startswith("branch change: start and goal are on different IK branches")
 
 
 def test_path_arrays_and_endpoints():

@@ -57,6 +57,11 @@ struct PlannedQuery {
   // With a path: its smallest (measured − required) clearance, as bench judges it (solution_measurement.h).
   double clearanceMargin = std::numeric_limits<double>::infinity();
   bool clearanceKept = true;  // MeasuredSolution::keptClearance(), the verdict JSON, Python and `plan` read
+
+  // A path the arc planner's joint-space fallback found: why its line-and-arc search gave up and which of the
+  // fallback's paths it kept (ArcPlannerResult::reason); nothing for any other path. `plan`, its JSON
+  // (`fallback_reason`) and Python read it here.
+  std::optional<std::string> fallbackReason() const;
 };
 
 // How the caller names the options in its messages: Python's keywords by default, the command line
@@ -77,8 +82,8 @@ PlannedQuery planQuery(std::shared_ptr<const collision::Scene> scene, const std:
                        const PlanQueryOptions& options);
 
 // The result document of `plan --json` (docs/cli.md): scene, query, planner, status, solve time,
-// time limit, parameters, seed, reason, the arc planner's details, waypoints, vmax, the metrics, the
-// clearance asked for and whether the path kept it (clearance_m, clearance_kept).
+// time limit, parameters, seed, reason, the arc planner's details (a fallback's reason), waypoints, vmax, the metrics,
+// the clearance asked for and whether the path kept it (clearance_m, clearance_kept).
 nlohmann::json toJson(const PlannedQuery& planned);
 
 }  // namespace arcplan::benchmarks
