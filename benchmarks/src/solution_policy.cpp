@@ -3,6 +3,7 @@
 #include <string>
 
 #include "arcplan/common/text_formatting.h"
+#include "arcplan/common/text_parsing.h"
 #include "arcplan/planners/planner_registry.h"
 
 namespace arcplan::benchmarks {
@@ -13,7 +14,8 @@ void keepProblemClearance(ompl::base::Planner& planner, double clearance, bool c
   std::string own;
   if (clearanceGiven || !planner.params().getParam("clearance", own)) return;
   // Exactly the problem's value: the parameter's text is parsed back to the same double.
-  if (std::stod(own) > clearance) planner.params().setParam("clearance", formatNumber(clearance, 17));
+  const std::optional<double> value = parseDouble(own);
+  if (value && *value > clearance) planner.params().setParam("clearance", formatNumber(clearance, 17));
 }
 
 }  // namespace arcplan::benchmarks
