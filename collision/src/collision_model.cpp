@@ -127,9 +127,6 @@ double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, con
   return hullGap(a, poseA, b, poseB, options, enough, none);
 }
 
-namespace {
-
-// The largest projection on `direction` (in the part's frame) of the part's hull; +infinity for a part without one.
 double supportAlong(const Part& part, const Eigen::Vector3d& direction) {
   if (!part.hullGeometry) return std::numeric_limits<double>::infinity();
   if (part.hullGeometry->getNodeType() == fcl::GEOM_CONVEX) {
@@ -151,8 +148,6 @@ double supportAlong(const Part& part, const Eigen::Vector3d& direction) {
       return std::numeric_limits<double>::infinity();
   }
 }
-
-}  // namespace
 
 double separatingGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                      const Eigen::Vector3d& axisInA) {

@@ -184,6 +184,9 @@ double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, con
 // (convex parts: 0, as above; partsDistance with the axis measures them and leaves its direction).
 double hullGap(const Part& a, const Eigen::Isometry3d& poseA, const Part& b, const Eigen::Isometry3d& poseB,
                const CollisionModelOptions& options, double enough, Eigen::Vector3d& axis);
+// The largest projection on `direction` (in the part's frame) of the part's hull (the vertices of an fcl::Convex hull,
+// closed-form for a box, sphere or cylinder); +infinity for a part without one.
+double supportAlong(const Part& part, const Eigen::Vector3d& direction);
 // A lower bound of the distance of two convex hulls from any direction n (unit, a's frame, pointing from a to b):
 // min over b's hull of n·x − max over a's of n·x (their support functions: the vertices of an fcl::Convex hull,
 // closed-form for a box, sphere or cylinder), −infinity where a part has neither.

@@ -190,15 +190,60 @@ double chordRate(const Implementation& impl, int body, const Eigen::Isometry3d& 
   const double radius = 0.5 * (capsule.end - capsule.start).norm() + capsule.radius;
   const double turn = std::sqrt(std::max(0.0, 3.0 - (from.linear().transpose() * to.linear()).trace()));
   const double chord = (to * centre - from * centre).norm() + turn * radius;
+  return chord + 0.5 * linkCurvature(impl, body, step) + kRoundingSlack;
+}
+
+bool movesWith(const Implementation& impl, int body, int other) {
+  for (Eigen::Index j = 0; j < impl.movedBy.cols(); ++j)
+    if (impl.movedBy(other, j) && !impl.movedBy(body, j)) return false;
+  return true;
+}
+
+double linkCurvature(const Implementation& impl, int body, const robot::JointRef& step, int still) {
   // Σ_j D_j |Δq_j| (|Δq_j| + 2 Σ_{i<j} |Δq_i|) over the joints that move the link, base first (RobotModel keeps a
-  // chain's joints in that order, so j is the later of each pair).
+  // chain's joints in that order, so j is the later of each pair). Relative to `still`, the chain from `still` to
+  // `body`: the same sum over the joints between them.
   double curvature = 0.0, earlier = 0.0;
   for (Eigen::Index j = 0; j < step.size(); ++j) {
-    if (!impl.movedBy(body, j)) continue;
+    if (!impl.movedBy(body, j) || (still >= 0 && impl.movedBy(still, j))) continue;
     curvature += impl.jointReach(body, j) * step[j] * (step[j] + 2.0 * earlier);
     earlier += step[j];
   }
-  return chord + 0.5 * curvature + kRoundingSlack;
+  return curvature;
+}
+
+LinkVelocity linkVelocity(const robot::RobotModel& robot, const Implementation& impl, int body,
+                          const std::vector<Eigen::Isometry3d>& linkPoses, const robot::JointRef& delta, int still) {
+  LinkVelocity velocity;
+  // A link's frame turns about its joint's axis (given in that frame) through its own origin.
+  for (int l = impl.linkCapsuleLink[static_cast<std::size_t>(body)]; l >= 0; l = robot.links()[l].parent) {
+    const int joint = robot.links()[l].joint;
+    if (joint < 0 || delta[joint] == 0.0 || (still >= 0 && impl.movedBy(still, joint))) continue;
+    const Eigen::Vector3d axis = linkPoses[l].linear() * robot.links()[l].axis;
+    velocity.angular += delta[joint] * axis;
+    velocity.linear += delta[joint] * linkPoses[l].translation().cross(axis);
+  }
+  return velocity;
+}
+
+double planeReach(const Part& part, const Eigen::Isometry3d& pose, const Part& obstacle,
+                  const Eigen::Isometry3d& obstaclePose, const Eigen::Vector3d& axis, const LinkVelocity& velocity,
+                  double curvature, double minimumClearance) {
+  // Rounding of the rate's products of poses and joint steps (~1e-15 of metres per unit of the motion).
+  constexpr double kRateSlack = 1e-9;
+  if (axis.isZero()) return 0.0;
+  const double room = separatingGap(part, pose, obstacle, obstaclePose, axis) - kHullDistanceSlack - minimumClearance;
+  if (!(room > 0.0)) return 0.0;
+  const Eigen::Vector3d normal = pose.linear() * axis;
+  const Eigen::Vector3d across = normal.cross(velocity.angular);  // n·(ω × p) = p·(n × ω)
+  const Eigen::Vector3d acrossInPart = pose.linear().transpose() * across;
+  const double offset = pose.translation().dot(across) + normal.dot(velocity.linear);
+  const double towards = supportAlong(part, acrossInPart) + offset;
+  const double away = supportAlong(part, -acrossInPart) - offset;
+  const double rate = std::max({towards, away, 0.0}) + kRateSlack;
+  if (!std::isfinite(rate)) return 0.0;
+  // The Δ of rate·Δ + curvature·Δ²/2 = room, in the form that stays accurate where curvature is small.
+  return 2.0 * room / (rate + std::sqrt(rate * rate + 2.0 * curvature * room));
 }
 
 void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl) {

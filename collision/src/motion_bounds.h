@@ -21,6 +21,7 @@ double chordMotionBound(const CollisionModel& model, int body, const robot::Join
 namespace detail {
 
 struct ModelImplementation;
+struct Part;
 
 // chordMotionBound from the link's poses at the two ends (`from`, `to`, in any one frame) and the motion's joint
 // steps |qb − qa|. A point x of the link moves along p(s), s in [0, 1]; on a straight joint motion of a revolute chain
@@ -31,6 +32,42 @@ struct ModelImplementation;
 // where Σ_j |Δq_j|·D_j, into which every joint's full reach enters, is 3–5 cm.
 double chordRate(const ModelImplementation& impl, int body, const Eigen::Isometry3d& from, const Eigen::Isometry3d& to,
                  const robot::JointRef& step);
+
+// Whether every joint that moves link `other` moves link `body` too (`other` nearer the base on the same chain, or
+// moved by no joint): then `body` moves in `other`'s frame by the joints that move it and not `other` alone.
+bool movesWith(const ModelImplementation& impl, int body, int other);
+
+// K of chordRate: |d²p/ds²| <= K for every point p of link `body` anywhere on a straight motion with joint steps `step`
+// (|qb − qa|), s the motion's fraction. With `still` (a link `body` movesWith), the same for `body`'s points in
+// `still`'s frame: the joints that move `still` are left out.
+double linkCurvature(const ModelImplementation& impl, int body, const robot::JointRef& step, int still = -1);
+
+// How the points of link `body` move at one configuration of a straight motion with joint steps `delta` (qb − qa,
+// signed): dp/ds = angular × p + linear for every point p fixed to the link, in the frame of `linkPoses` (forward
+// kinematics of that configuration, base link frame). Revolute joints: Σ_j Δq_j ω_j × (p − o_j), ω_j and o_j the axis
+// and origin of each joint that moves the link. With `still` (a link `body` movesWith), the velocity relative to
+// `still`'s points: the joints that move both move both alike and are left out.
+struct LinkVelocity {
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero(), linear = Eigen::Vector3d::Zero();
+};
+LinkVelocity linkVelocity(const robot::RobotModel& robot, const ModelImplementation& impl, int body,
+                          const std::vector<Eigen::Isometry3d>& linkPoses, const robot::JointRef& delta,
+                          int still = -1);
+
+// How far, in fractions of a straight motion, robot part `part` (at `pose`, one configuration of the motion) stays more
+// than `minimumClearance` from obstacle part `obstacle` each way from that configuration, from the plane between
+// them with normal `axis` (unit, in the part's frame, towards the obstacle: the direction GJK found; 0 for a zero
+// axis): everything of the obstacle lies at least G beyond the part's hull along it (separatingGap). The part's points
+// move along the normal at a rate of at most B = max_p |n·p'(s)| at that configuration (p' = angular × p + linear of
+// `velocity`, linear in p: its extremes over the part are the hull's support along n × angular) and of at most
+// B + K·|t − s| anywhere else on the motion (K = `curvature`, linkCurvature), so the part keeps more than m from the
+// plane, hence from the obstacle, while B·Δ + K·Δ²/2 < G − m. Where the part slides along the obstacle (a gripper over
+// a shelf's board) B is far below the rate of every joint's full reach, which bounds how fast the part moves in any
+// direction. `obstacle` stands still: an obstacle part, or for a self pair a part of the link the other movesWith, with
+// `velocity` and `curvature` relative to that link.
+double planeReach(const Part& part, const Eigen::Isometry3d& pose, const Part& obstacle,
+                  const Eigen::Isometry3d& obstaclePose, const Eigen::Vector3d& axis, const LinkVelocity& velocity,
+                  double curvature, double minimumClearance);
 
 }  // namespace detail
 

@@ -125,10 +125,11 @@ double reachOf(double gap, double rate) {
 }
 
 struct ReachRequest {
-  double groupRate;             // the group's relativeReach · step
-  const Eigen::VectorXd& step;  // |qb − qa|
-  double wanted;                // the reach that would certify the rest of the motion
-  double minimumClearance;      // the motion's m (each pair keeps requiredDistance of it)
+  double groupRate;              // the group's relativeReach · step
+  const Eigen::VectorXd& delta;  // qb − qa
+  const Eigen::VectorXd& step;   // |qb − qa|
+  double wanted;                 // the reach that would certify the rest of the motion
+  double minimumClearance;       // the motion's m (each pair keeps requiredDistance of it)
 };
 
 struct ReachMeasurement {
@@ -168,6 +169,41 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
   if (std::max(linkGap, nearest) >= enough) return {std::max(linkReach, boundsReach), false};
   // Sorted only where the part pairs are refined (most measurements end above: 2.6 % of a bookshelf solve sorted).
   std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
+  // A measured part pair's reach: its distance over its rate, or the plane's (motion_bounds.h) if longer. The plane
+  // needs one body that stands still: an obstacle, or for a self pair the link whose joints all move the other too (a
+  // serial arm's nearer link), in whose frame the other moves by the joints between them alone. Links on two branches
+  // (a gripper's fingers) keep the distance over the rate.
+  int mover = -2, still = -1;  // -2: not decided yet; -1: no plane
+  detail::LinkVelocity velocity;
+  double curvature = 0.0;
+  const auto measuredReach = [&](double gap, double rate, const detail::Part& first, const Eigen::Isometry3d& pose,
+                                 const detail::Part& second, const Eigen::Isometry3d& secondPose,
+                                 const Eigen::Vector3d& axis) {
+    const double reach = reachOf(gap - minimumClearance, rate);
+    if (mover == -2) {
+      mover = -1;
+      if (!group.self || detail::movesWith(impl, group.firstBody, group.secondBody)) {
+        mover = group.firstBody;
+        still = group.self ? group.secondBody : -1;
+      } else if (detail::movesWith(impl, group.secondBody, group.firstBody)) {
+        mover = group.secondBody;
+        still = group.firstBody;
+      }
+      if (mover >= 0) {
+        velocity = detail::linkVelocity(model.robot(), impl, mover, data.kinematics.linkPoses, request.delta, still);
+        curvature = detail::linkCurvature(impl, mover, request.step, still);
+      }
+    }
+    if (mover < 0) return reach;
+    if (mover == group.firstBody) {
+      return std::max(reach,
+                      detail::planeReach(first, pose, second, secondPose, axis, velocity, curvature, minimumClearance));
+    }
+    // The second part moves: the same plane seen from it (its normal reversed, in the second part's frame).
+    const Eigen::Vector3d reversed = secondPose.linear().transpose() * (pose.linear() * -axis);
+    return std::max(
+        reach, detail::planeReach(second, secondPose, first, pose, reversed, velocity, curvature, minimumClearance));
+  };
   double best = kInfinity;
   for (const auto& [reach, bound, p] : order) {
     // A part pair bounded beyond `enough` that certifies enough, or no less than the best so far, keeps
@@ -183,7 +219,7 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     Eigen::Vector3d& axis = detail::motionAxis(data, impl.firstPartPair[k] + p);
     const double hull = detail::hullGap(first, data.partPoses[i], second, secondPose, model.options(), enough, axis);
     if (hull >= enough) {
-      best = std::min(best, reachOf(hull - minimumClearance, rate));
+      best = std::min(best, measuredReach(hull, rate, first, data.partPoses[i], second, secondPose, axis));
       continue;
     }
     // Then the containing mesh's bound (a primitive against a many-triangle mesh part), taken as the hulls'.
@@ -198,7 +234,7 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     const double d =
         detail::partsDistance(first, data.partPoses[i], second, secondPose, bound <= 0.0, model.options(), &axis);
     if (d - kDistanceSlack < enough) return {0.0, true};
-    best = std::min(best, reachOf(d - kDistanceSlack - minimumClearance, rate));
+    best = std::min(best, measuredReach(d - kDistanceSlack, rate, first, data.partPoses[i], second, secondPose, axis));
   }
   return {std::max(linkReach, best), false};
 }
@@ -265,7 +301,8 @@ bool detail::certifiedMotionFree(const CollisionModel& model, CollisionData& wor
   } else {
     for (int k = 0; k < static_cast<int>(pairs.size()); ++k) active.push_back(k);
   }
-  const Eigen::VectorXd step = (qb - qa).cwiseAbs();
+  const Eigen::VectorXd delta = qb - qa;
+  const Eigen::VectorXd step = delta.cwiseAbs();
   for (const int k : active) pairs[k] = {impl.groups[k]->relativeReach.dot(step), 0.0, 1.0, 0.0, 1.0};
   const auto done = [&](int k) { return pairs[k].certifiedFromStart > pairs[k].certifiedFromEnd; };
   bool atStart = true;
@@ -288,7 +325,8 @@ bool detail::certifiedMotionFree(const CollisionModel& model, CollisionData& wor
           atStart ? pair.certifiedFromStart - pair.measuredFromStart : pair.measuredFromEnd - pair.certifiedFromEnd;
       if (ahead > kEarlyMeasurement * lastStep) continue;
       const double remaining = atStart ? pair.certifiedFromEnd - s : s - pair.certifiedFromStart;
-      const ReachMeasurement measured = measureReach(model, data, k, {pair.rate, step, remaining, minimumClearance});
+      const ReachMeasurement measured =
+          measureReach(model, data, k, {pair.rate, delta, step, remaining, minimumClearance});
       if (measured.tooClose) {
         if (lastValidFraction != nullptr) *lastValidFraction = lastClear;
         return false;
