@@ -226,24 +226,68 @@ LinkVelocity linkVelocity(const robot::RobotModel& robot, const Implementation& 
   return velocity;
 }
 
+namespace {
+
+// The Δ each way over which points starting `room` short of a plane, approaching it at rates `towards` (forward) and
+// `away` (backward) at most at the measured state and at most `curvature`·|t − s| faster elsewhere, stay short of it:
+// rate·Δ + curvature·Δ²/2 = room, in the form that stays accurate where curvature is small.
+double reachBeforePlane(double room, double towards, double away, double curvature) {
+  // Rounding of the rate's products of poses and joint steps (~1e-15 of metres per unit of the motion).
+  constexpr double kRateSlack = 1e-9;
+  if (!(room > 0.0)) return 0.0;
+  const double rate = std::max({towards, away, 0.0}) + kRateSlack;
+  if (!std::isfinite(rate)) return 0.0;
+  return 2.0 * room / (rate + std::sqrt(rate * rate + 2.0 * curvature * room));
+}
+
+}  // namespace
+
 double planeReach(const Part& part, const Eigen::Isometry3d& pose, const Part& obstacle,
                   const Eigen::Isometry3d& obstaclePose, const Eigen::Vector3d& axis, const LinkVelocity& velocity,
                   double curvature, double minimumClearance) {
-  // Rounding of the rate's products of poses and joint steps (~1e-15 of metres per unit of the motion).
-  constexpr double kRateSlack = 1e-9;
   if (axis.isZero()) return 0.0;
   const double room = separatingGap(part, pose, obstacle, obstaclePose, axis) - kHullDistanceSlack - minimumClearance;
-  if (!(room > 0.0)) return 0.0;
   const Eigen::Vector3d normal = pose.linear() * axis;
   const Eigen::Vector3d across = normal.cross(velocity.angular);  // n·(ω × p) = p·(n × ω)
   const Eigen::Vector3d acrossInPart = pose.linear().transpose() * across;
   const double offset = pose.translation().dot(across) + normal.dot(velocity.linear);
-  const double towards = supportAlong(part, acrossInPart) + offset;
-  const double away = supportAlong(part, -acrossInPart) - offset;
-  const double rate = std::max({towards, away, 0.0}) + kRateSlack;
-  if (!std::isfinite(rate)) return 0.0;
-  // The Δ of rate·Δ + curvature·Δ²/2 = room, in the form that stays accurate where curvature is small.
-  return 2.0 * room / (rate + std::sqrt(rate * rate + 2.0 * curvature * room));
+  return reachBeforePlane(room, detail::supportAlong(part, acrossInPart) + offset,
+                          detail::supportAlong(part, -acrossInPart) - offset, curvature);
+}
+
+BoundingPlane capsulesPlane(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                            const Eigen::Vector3d& otherStart, const Eigen::Vector3d& otherEnd, double otherRadius) {
+  const auto [onFirst, onOther] = segmentClosestPoints(start, end, otherStart, otherEnd);
+  const Eigen::Vector3d between = onOther - onFirst;
+  const double length = between.norm();
+  if (!(length > radius + otherRadius)) return {};
+  // Rounding of the closest points and their distance (~1e-16 m) is far below the slack taken off.
+  return {between / length, length - radius - otherRadius - kHullDistanceSlack};
+}
+
+BoundingPlane capsuleBoxPlane(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                              const Eigen::Isometry3d& toBox, const Eigen::Vector3d& halfExtents) {
+  const Eigen::Vector3d inBoxStart = toBox * start, inBoxEnd = toBox * end;
+  const Eigen::Array3d lower = inBoxStart.cwiseMin(inBoxEnd).array() - radius;
+  const Eigen::Array3d upper = inBoxStart.cwiseMax(inBoxEnd).array() + radius;
+  const Eigen::Array3d above = lower - halfExtents.array();   // > 0: the capsule's box beyond the box's upper face
+  const Eigen::Array3d below = -halfExtents.array() - upper;  // > 0: below its lower face
+  const Eigen::Vector3d towards = (above > 0.0).select(-above, (below > 0.0).select(below, 0.0)).matrix();
+  const double gap = towards.norm();
+  if (!(gap > kHullDistanceSlack)) return {};
+  return {toBox.linear().transpose() * (towards / gap), gap - kHullDistanceSlack};
+}
+
+double capsulePlaneReach(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                         const BoundingPlane& plane, const LinkVelocity& velocity, double curvature,
+                         double minimumClearance) {
+  if (!(plane.gap > 0.0)) return 0.0;
+  const Eigen::Vector3d across = plane.normal.cross(velocity.angular);
+  const double offset = plane.normal.dot(velocity.linear);
+  const double atStart = start.dot(across) + offset, atEnd = end.dot(across) + offset;
+  const double round = radius * across.norm();
+  return reachBeforePlane(plane.gap - minimumClearance, std::max(atStart, atEnd) + round,
+                          std::max(-atStart, -atEnd) + round, curvature);
 }
 
 void computeMotionBounds(const robot::RobotModel& robot, Implementation& impl) {

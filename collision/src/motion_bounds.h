@@ -68,6 +68,25 @@ LinkVelocity linkVelocity(const robot::RobotModel& robot, const ModelImplementat
 double planeReach(const Part& part, const Eigen::Isometry3d& pose, const Part& obstacle,
                   const Eigen::Isometry3d& obstaclePose, const Eigen::Vector3d& axis, const LinkVelocity& velocity,
                   double curvature, double minimumClearance);
+// A plane between two bounding volumes: what stands still lies at least `gap` beyond the moving one along the unit
+// `normal` (base link frame, pointing from the moving one to the other); gap 0 where none was found.
+struct BoundingPlane {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double gap = 0.0;
+};
+// Between two capsules (segments and radii, base link frame): through their segments' closest points.
+BoundingPlane capsulesPlane(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                            const Eigen::Vector3d& otherStart, const Eigen::Vector3d& otherEnd, double otherRadius);
+// Between a capsule and a box centred at its frame's origin (`toBox`: base link frame to box frame): between the
+// capsule's bounding box in the box frame and the box, whose gaps per axis point from one to the other
+// (capsuleBoxLowerBound's bound).
+BoundingPlane capsuleBoxPlane(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                              const Eigen::Isometry3d& toBox, const Eigen::Vector3d& halfExtents);
+// planeReach for a part inside the capsule `start`–`end` with radius `radius` (base link frame), `plane` away from what
+// stands still: where no exact distance was measured, from the bounding volumes' plane.
+double capsulePlaneReach(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                         const BoundingPlane& plane, const LinkVelocity& velocity, double curvature,
+                         double minimumClearance);
 
 }  // namespace detail
 

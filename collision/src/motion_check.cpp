@@ -166,20 +166,13 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
     order.push_back({reachOf(bound - minimumClearance, rateOf(p)), bound, static_cast<int>(p)});
     boundsReach = std::min(boundsReach, order.back().key);
   }
-  if (std::max(linkGap, nearest) >= enough) return {std::max(linkReach, boundsReach), false};
-  // Sorted only where the part pairs are refined (most measurements end above: 2.6 % of a bookshelf solve sorted).
-  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
-  // A measured part pair's reach: its distance over its rate, or the plane's (motion_bounds.h) if longer. The plane
-  // needs one body that stands still: an obstacle, or for a self pair the link whose joints all move the other too (a
-  // serial arm's nearer link), in whose frame the other moves by the joints between them alone. Links on two branches
-  // (a gripper's fingers) keep the distance over the rate.
+  // A part pair's plane (motion_bounds.h) needs one body that stands still: an obstacle, or for a self pair the link
+  // whose joints all move the other too (a serial arm's nearer link), in whose frame the other moves by the joints
+  // between them alone. Links on two branches (a gripper's fingers) keep the distance over the rate.
   int mover = -2, still = -1;  // -2: not decided yet; -1: no plane
   detail::LinkVelocity velocity;
   double curvature = 0.0;
-  const auto measuredReach = [&](double gap, double rate, const detail::Part& first, const Eigen::Isometry3d& pose,
-                                 const detail::Part& second, const Eigen::Isometry3d& secondPose,
-                                 const Eigen::Vector3d& axis) {
-    const double reach = reachOf(gap - minimumClearance, rate);
+  const auto planes = [&] {
     if (mover == -2) {
       mover = -1;
       if (!group.self || detail::movesWith(impl, group.firstBody, group.secondBody)) {
@@ -194,7 +187,46 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
         curvature = detail::linkCurvature(impl, mover, request.step, still);
       }
     }
-    if (mover < 0) return reach;
+    return mover >= 0;
+  };
+  // The plane of part pair p's bounding volumes, from the part that moves.
+  const auto boundingPlaneReach = [&](int p) {
+    const auto [i, j] = group.parts[p];
+    const int moving = group.self && mover != group.firstBody ? j : i;
+    const Eigen::Vector3d &start = data.capsuleStarts[moving], &end = data.capsuleEnds[moving];
+    const double radius = impl.robotParts[moving].capsule.radius;
+    detail::BoundingPlane plane;
+    if (group.self) {
+      const int other = moving == i ? j : i;
+      plane = detail::capsulesPlane(start, end, radius, data.capsuleStarts[other], data.capsuleEnds[other],
+                                    impl.robotParts[other].capsule.radius);
+    } else if (const detail::Part& obstacle = impl.obstacleParts[j]; obstacle.boxBound) {
+      plane = detail::capsuleBoxPlane(start, end, radius, impl.obstacleInversePoses[j], obstacle.boxHalfExtents);
+    } else {
+      plane = detail::capsulesPlane(start, end, radius, impl.obstacleCapsuleStarts[j], impl.obstacleCapsuleEnds[j],
+                                    obstacle.capsule.radius);
+    }
+    return detail::capsulePlaneReach(start, end, radius, plane, velocity, curvature, minimumClearance);
+  };
+  if (std::max(linkGap, nearest) >= enough) {
+    // Every part pair apart by its bounding volumes: where their distances over the rates would not certify the rest,
+    // the bounding volumes' planes may (no exact distance: measuring one costs more than the steps it saves).
+    double reach = boundsReach;
+    if (std::max(linkReach, reach) < request.wanted && planes()) {
+      reach = kInfinity;
+      for (const auto& [key, bound, p] : order)
+        reach = std::min(reach, key >= request.wanted ? key : std::max(key, boundingPlaneReach(p)));
+    }
+    return {std::max(linkReach, reach), false};
+  }
+  // Sorted only where the part pairs are refined (most measurements end above: 2.6 % of a bookshelf solve sorted).
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
+  // A measured part pair's reach: its distance over its rate, or its hulls' plane's if longer.
+  const auto measuredReach = [&](double gap, double rate, const detail::Part& first, const Eigen::Isometry3d& pose,
+                                 const detail::Part& second, const Eigen::Isometry3d& secondPose,
+                                 const Eigen::Vector3d& axis) {
+    const double reach = reachOf(gap - minimumClearance, rate);
+    if (!planes()) return reach;
     if (mover == group.firstBody) {
       return std::max(reach,
                       detail::planeReach(first, pose, second, secondPose, axis, velocity, curvature, minimumClearance));

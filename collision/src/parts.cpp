@@ -399,14 +399,14 @@ Capsule enclosingCapsule(const std::vector<Capsule>& capsules) {
   return enclosing;
 }
 
-double segmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
-                       const Eigen::Vector3d& q1) {
-  // Closest points of two segments (clamped parameters, as in Ericson, Real-Time Collision Detection §5.1.9).
+std::pair<Eigen::Vector3d, Eigen::Vector3d> segmentClosestPoints(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                                                 const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
+  // Clamped parameters, as in Ericson, Real-Time Collision Detection §5.1.9.
   const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
   constexpr double kTiny = 1e-18;
   double s = 0.0, t = 0.0;
-  if (a <= kTiny && e <= kTiny) return r.norm();
+  if (a <= kTiny && e <= kTiny) return {p0, q0};
   if (a <= kTiny) {
     t = std::clamp(f / e, 0.0, 1.0);
   } else {
@@ -426,7 +426,13 @@ double segmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, con
       }
     }
   }
-  return (p0 + s * d1 - (q0 + t * d2)).norm();
+  return {p0 + s * d1, q0 + t * d2};
+}
+
+double segmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                       const Eigen::Vector3d& q1) {
+  const auto [onFirst, onSecond] = segmentClosestPoints(p0, p1, q0, q1);
+  return (onFirst - onSecond).norm();
 }
 
 double capsuleBoxLowerBound(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,

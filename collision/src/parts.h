@@ -3,6 +3,7 @@
 // component of a link mesh, a URDF primitive, an obstacle) with its FCL geometries, a conservative
 // bounding volume for the broad phase and a solid description for containment tests.
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -78,7 +79,9 @@ Part cylinderPart(double radius, double length, BoundingVolume containingMesh);
 // A capsule containing all the given capsules (fitted to their end points, radius grown by the largest radius).
 Capsule enclosingCapsule(const std::vector<Capsule>& capsules);
 
-// Smallest distance between the segments [p0, p1] and [q0, q1].
+// The closest points of the segments [p0, p1] and [q0, q1] (first on [p0, p1]), and their distance.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> segmentClosestPoints(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                                                 const Eigen::Vector3d& q0, const Eigen::Vector3d& q1);
 double segmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
                        const Eigen::Vector3d& q1);
 

@@ -1,14 +1,16 @@
-// detail::linkVelocity and detail::planeReach (collision/src/motion_bounds.h): how fast a link's points move at one
-// state of a straight joint motion, and how far along the motion a robot part stays clear of an obstacle, or of a link
-// nearer the base, by the plane between them. The velocity is compared with central differences of forward
-// kinematics; the reach with FCL's exact distances at states spread over it: beside MotionBenchMaker's shelf boards,
-// where the gripper slides along a board (reads ARCPLAN_SHARED_DATA's mbm_ur5, as the other board tests do), and
-// between the thesis UR10e's own links.
+// detail::linkVelocity, detail::planeReach and the bounding volumes' planes (collision/src/motion_bounds.h): how fast
+// a link's points move at one state of a straight joint motion, and how far along the motion a robot part stays clear
+// of an obstacle, or of a link nearer the base, by a plane between them (the hulls' from GJK's direction, or the
+// bounding capsules' and boxes'). The velocity is compared with central differences of forward kinematics; the planes
+// with points sampled in the volumes and with the bounds the certified check takes; the reaches with FCL's exact
+// distances at states spread over them: beside MotionBenchMaker's shelf boards, where the gripper slides along a board
+// (reads ARCPLAN_SHARED_DATA's mbm_ur5, as the other board tests do), and between the thesis UR10e's own links.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -50,6 +52,49 @@ std::shared_ptr<const CollisionModel> thesisFree() {
 Eigen::Isometry3d partPose(const detail::Implementation& impl, const arcplan::robot::KinematicsData& kinematics,
                            int part) {
   return kinematics.linkPoses[impl.robotPartLink[part]] * impl.robotParts[part].offset;
+}
+
+// Whether FCL's distance between parts i and j (a robot part, and a robot part or, with `obstacle`, an obstacle part)
+// stays at least m on the motion qa + t·delta at 41 values of t spread over s ± reach (within [0, 1]).
+::testing::AssertionResult apartWithin(const CollisionModel& model, int i, int j, bool obstacle, const VectorXd& qa,
+                                       const VectorXd& delta, double s, double reach, double m) {
+  constexpr double kGjkError = 1e-6;
+  constexpr int kSamples = 40;
+  const auto& impl = detail::implementationOf(model);
+  arcplan::robot::KinematicsData along(model.robot());
+  const double from = std::max(0.0, s - reach), to = std::min(1.0, s + reach);
+  for (int n = 0; n <= kSamples; ++n) {
+    const double t = from + (to - from) * n / kSamples;
+    arcplan::robot::forwardKinematics(model.robot(), qa + t * delta, along);
+    const double distance =
+        obstacle ? detail::partsDistance(impl.robotParts[i], partPose(impl, along, i), impl.obstacleParts[j],
+                                         impl.obstacleParts[j].offset, true, model.options())
+                 : detail::partsDistance(impl.robotParts[i], partPose(impl, along, i), impl.robotParts[j],
+                                         partPose(impl, along, j), true, model.options());
+    if (distance < m - kGjkError) {
+      return ::testing::AssertionFailure()
+             << "distance " << distance << " at " << t << " of the reach " << reach << " about " << s << " ("
+             << model.linkNames()[impl.robotParts[i].body] << ")";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// Points of a capsule (segment start–end, radius): its ends pushed out along ±direction, and random ones inside.
+std::vector<Eigen::Vector3d> capsulePoints(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                                           const Eigen::Vector3d& direction, std::mt19937_64& random) {
+  std::vector<Eigen::Vector3d> points;
+  for (const Eigen::Vector3d& centre : {start, end}) {
+    points.push_back(centre + radius * direction);
+    points.push_back(centre - radius * direction);
+  }
+  std::normal_distribution<double> gaussian;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int n = 0; n < 200; ++n) {
+    const Eigen::Vector3d offset(gaussian(random), gaussian(random), gaussian(random));
+    points.push_back(start + unit(random) * (end - start) + radius * std::cbrt(unit(random)) * offset.normalized());
+  }
+  return points;
 }
 
 TEST(PlaneReach, LinkVelocityIsTheDerivativeOfForwardKinematics) {
@@ -95,12 +140,10 @@ TEST(PlaneReach, NoPartComesCloserThanTheClearanceWithinItsReach) {
   const auto& robot = model.robot();
   const auto& options = model.options();
   constexpr double m = 0.002;  // the clearance asked for
-  constexpr double kGjkError = 1e-6;
-  constexpr int kSamples = 40;
-  arcplan::robot::KinematicsData at(robot), along(robot);
+  arcplan::robot::KinematicsData at(robot);
   std::mt19937_64 random(67);
   std::normal_distribution<double> gaussian;
-  int measured = 0, longer = 0;
+  int measured = 0, longer = 0, bounded = 0;
   for (int trial = 0; trial < 400 && measured < 150; ++trial) {
     // States about the grasp between the boards, on RRTConnect-sized motions (0.35 rad) through them.
     VectorXd q = shelf.goal, direction(robot.dof());
@@ -132,22 +175,27 @@ TEST(PlaneReach, NoPartComesCloserThanTheClearanceWithinItsReach) {
         // it.
         const double rate = impl.partPairReach.row(impl.firstPartPair[k] + static_cast<Eigen::Index>(p)).dot(step);
         if (reach > (d - m) / rate) ++longer;
-        const double from = std::max(0.0, s - reach), to = std::min(1.0, s + reach);
-        for (int n = 0; n <= kSamples; ++n) {
-          const double t = from + (to - from) * n / kSamples;
-          arcplan::robot::forwardKinematics(robot, qa + t * delta, along);
-          const double distance =
-              detail::partsDistance(part, partPose(impl, along, i), obstacle, obstaclePose, true, options);
-          ASSERT_GE(distance, m - kGjkError) << model.linkNames()[group.firstBody] << " trial " << trial << " at " << t
-                                             << " of the reach " << reach << " about " << s;
-        }
+        ASSERT_TRUE(apartWithin(model, i, j, true, qa, delta, s, reach, m)) << "trial " << trial;
+        // The plane of the bounding volumes, from the capsule around the part.
+        const Eigen::Vector3d start = pose * part.capsule.start, end = pose * part.capsule.end;
+        const detail::BoundingPlane plane =
+            obstacle.boxBound ? detail::capsuleBoxPlane(start, end, part.capsule.radius, impl.obstacleInversePoses[j],
+                                                        obstacle.boxHalfExtents)
+                              : detail::capsulesPlane(start, end, part.capsule.radius, impl.obstacleCapsuleStarts[j],
+                                                      impl.obstacleCapsuleEnds[j], obstacle.capsule.radius);
+        const double bounding =
+            detail::capsulePlaneReach(start, end, part.capsule.radius, plane, velocity, curvature, m);
+        if (bounding > 0.0) ++bounded;
+        ASSERT_TRUE(apartWithin(model, i, j, true, qa, delta, s, bounding, m)) << "bounding, trial " << trial;
       }
     }
   }
   // Not vacuous: hundreds of part pairs within 5 cm of a board or the shelf, and on many the plane lets the certificate
-  // run farther than the distance over the rate does.
-  std::cout << "plane reach: " << measured << " part pairs, longer on " << longer << "\n";
+  // run farther than the distance over the rate does; the bounding volumes leave a plane on some.
+  std::cout << "plane reach: " << measured << " part pairs, longer on " << longer << ", bounding planes " << bounded
+            << "\n";
   EXPECT_GE(measured, 100);
+  EXPECT_GE(bounded, 10);
   EXPECT_GE(longer, measured / 4) << longer << " of " << measured;
 }
 
@@ -157,12 +205,10 @@ TEST(PlaneReach, ALinkKeepsItsClearanceFromANearerLinkWithinItsReach) {
   const auto& robot = model->robot();
   const auto& options = model->options();
   constexpr double m = 0.001;  // a self pair's clearance at most (kSelfClearance)
-  constexpr double kGjkError = 1e-6;
-  constexpr int kSamples = 40;
-  arcplan::robot::KinematicsData at(robot), along(robot);
+  arcplan::robot::KinematicsData at(robot);
   std::mt19937_64 random(71);
   std::normal_distribution<double> gaussian;
-  int measured = 0, longer = 0;
+  int measured = 0, longer = 0, bounded = 0;
   for (int trial = 0; trial < 3000 && measured < 150; ++trial) {
     const VectorXd q = arcplan::testing::randomJointState(robot, random);
     VectorXd direction(robot.dof());
@@ -194,22 +240,136 @@ TEST(PlaneReach, ALinkKeepsItsClearanceFromANearerLinkWithinItsReach) {
         ++measured;
         const auto pair = static_cast<Eigen::Index>(impl.firstPartPair[impl.obstacleGroups.size() + g] + p);
         if (reach > (d - m) / impl.partPairReach.row(pair).dot(step)) ++longer;
-        const double from = std::max(0.0, s - reach), to = std::min(1.0, s + reach);
-        for (int n = 0; n <= kSamples; ++n) {
-          const double t = from + (to - from) * n / kSamples;
-          arcplan::robot::forwardKinematics(robot, qa + t * delta, along);
-          const double distance = detail::partsDistance(moving, partPose(impl, along, i), standing,
-                                                        partPose(impl, along, j), true, options);
-          ASSERT_GE(distance, m - kGjkError)
-              << model->linkNames()[mover] << " from " << model->linkNames()[still] << " trial " << trial << " at " << t
-              << " of the reach " << reach << " about " << s;
-        }
+        ASSERT_TRUE(apartWithin(*model, i, j, false, qa, delta, s, reach, m)) << "trial " << trial;
+        const Eigen::Vector3d start = pose * moving.capsule.start, end = pose * moving.capsule.end;
+        const detail::BoundingPlane plane =
+            detail::capsulesPlane(start, end, moving.capsule.radius, standingPose * standing.capsule.start,
+                                  standingPose * standing.capsule.end, standing.capsule.radius);
+        const double bounding =
+            detail::capsulePlaneReach(start, end, moving.capsule.radius, plane, velocity, curvature, m);
+        if (bounding > 0.0) ++bounded;
+        ASSERT_TRUE(apartWithin(*model, i, j, false, qa, delta, s, bounding, m)) << "bounding, trial " << trial;
       }
     }
   }
-  std::cout << "plane reach, self pairs: " << measured << " part pairs, longer on " << longer << "\n";
+  std::cout << "plane reach, self pairs: " << measured << " part pairs, longer on " << longer << ", bounding planes "
+            << bounded << "\n";
   EXPECT_GE(measured, 100);
+  EXPECT_GE(bounded, 10);
   EXPECT_GE(longer, measured / 4) << longer << " of " << measured;
+}
+
+TEST(PlaneReach, BoundingPlanesSeparateTheirVolumesByTheCheckedBounds) {
+  // Random capsules against capsules and against boxes (rotated), apart or not: where a plane is given, every point
+  // sampled in the moving capsule lies at least `gap` short of every point of the other volume along its normal, and
+  // the gap is the bound the certified check takes (segmentDistance less the radii, capsuleBoxLowerBound).
+  std::mt19937_64 random(73);
+  std::uniform_real_distribution<double> coordinate(-0.3, 0.3), size(0.01, 0.15);
+  int planes = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Eigen::Vector3d start(coordinate(random), coordinate(random), coordinate(random));
+    const Eigen::Vector3d end = start + Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+    const double radius = size(random);
+    const Eigen::Vector3d otherStart(coordinate(random), coordinate(random), coordinate(random));
+    const Eigen::Vector3d otherEnd =
+        otherStart + Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+    const double otherRadius = size(random);
+    const detail::BoundingPlane capsules = detail::capsulesPlane(start, end, radius, otherStart, otherEnd, otherRadius);
+    const double bound = detail::segmentDistance(start, end, otherStart, otherEnd) - radius - otherRadius;
+    if (capsules.gap > 0.0) {
+      ++planes;
+      EXPECT_NEAR(capsules.gap, bound, 2e-6);
+      double highest = -1e9, lowest = 1e9;
+      for (const auto& x : capsulePoints(start, end, radius, capsules.normal, random))
+        highest = std::max(highest, capsules.normal.dot(x));
+      for (const auto& x : capsulePoints(otherStart, otherEnd, otherRadius, capsules.normal, random))
+        lowest = std::min(lowest, capsules.normal.dot(x));
+      EXPECT_GE(lowest - highest, capsules.gap - 1e-12) << "trial " << trial;
+    } else {
+      EXPECT_LE(bound, 2e-6) << "trial " << trial;
+    }
+    // A box of random size and pose.
+    const Eigen::Vector3d half(size(random), size(random), size(random));
+    Eigen::Isometry3d box = Eigen::Isometry3d::Identity();
+    box.linear() =
+        Eigen::AngleAxisd(coordinate(random) * 10.0,
+                          Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random)).normalized())
+            .toRotationMatrix();
+    box.translation() = otherStart;
+    const Eigen::Isometry3d toBox = box.inverse();
+    const detail::BoundingPlane boxPlane = detail::capsuleBoxPlane(start, end, radius, toBox, half);
+    const double boxBound = detail::capsuleBoxLowerBound(toBox * start, toBox * end, radius, half);
+    if (boxPlane.gap > 0.0) {
+      ++planes;
+      EXPECT_NEAR(boxPlane.gap, boxBound, 2e-6);
+      double highest = -1e9, lowest = 1e9;
+      for (const auto& x : capsulePoints(start, end, radius, boxPlane.normal, random))
+        highest = std::max(highest, boxPlane.normal.dot(x));
+      for (int corner = 0; corner < 8; ++corner) {
+        const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(), (corner & 2 ? 1 : -1) * half.y(),
+                                    (corner & 4 ? 1 : -1) * half.z());
+        lowest = std::min(lowest, boxPlane.normal.dot(box * local));
+      }
+      EXPECT_GE(lowest - highest, boxPlane.gap - 1e-12) << "trial " << trial;
+    } else {
+      EXPECT_LE(boxBound, 2e-6) << "trial " << trial;
+    }
+  }
+  EXPECT_GE(planes, 200);
+}
+
+TEST(PlaneReach, ACapsuleStaysShortOfAPlaneWithinItsReach) {
+  // The capsules around the UR10e's parts, each before a plane in a random direction (what stands still beyond it),
+  // on 0.35 and 1.5 rad motions: no point of the capsule (its surface sampled, rigid with the part) comes within m of
+  // the plane anywhere within the reach.
+  const auto model = thesisFree();
+  const auto& impl = detail::implementationOf(*model);
+  const auto& robot = model->robot();
+  constexpr double m = 0.002;
+  arcplan::robot::KinematicsData at(robot), along(robot);
+  std::mt19937_64 random(79);
+  std::normal_distribution<double> gaussian;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const VectorXd q = arcplan::testing::randomJointState(robot, random);
+    VectorXd direction(robot.dof());
+    for (int j = 0; j < robot.dof(); ++j) direction[j] = gaussian(random);
+    const VectorXd delta = (trial % 2 == 0 ? 0.35 : 1.5) * direction.normalized();
+    const double s = unit(random);
+    const VectorXd qa = q - s * delta;
+    arcplan::robot::forwardKinematics(robot, q, at);
+    const int i = static_cast<int>(random() % impl.robotParts.size());
+    const detail::Part& part = impl.robotParts[i];
+    const int link = impl.robotPartLink[i];
+    const Eigen::Isometry3d pose = partPose(impl, at, i);
+    const Eigen::Vector3d start = pose * part.capsule.start, end = pose * part.capsule.end;
+    const Eigen::Vector3d normal = Eigen::Vector3d(gaussian(random), gaussian(random), gaussian(random)).normalized();
+    detail::BoundingPlane plane;
+    plane.normal = normal;
+    plane.gap = m + 0.05 * unit(random);
+    const double wall = std::max(normal.dot(start), normal.dot(end)) + part.capsule.radius + plane.gap;
+    const double reach = detail::capsulePlaneReach(start, end, part.capsule.radius, plane,
+                                                   detail::linkVelocity(robot, impl, part.body, at.linkPoses, delta),
+                                                   detail::linkCurvature(impl, part.body, delta.cwiseAbs()), m);
+    // Surface points of the capsule in its link's frame.
+    std::vector<Eigen::Vector3d> points;
+    for (int n = 0; n < 300; ++n) {
+      const Eigen::Vector3d offset(gaussian(random), gaussian(random), gaussian(random));
+      const Eigen::Vector3d onAxis = part.capsule.start + unit(random) * (part.capsule.end - part.capsule.start);
+      points.push_back(part.offset * (onAxis + part.capsule.radius * offset.normalized()));
+    }
+    const double from = std::max(0.0, s - reach), to = std::min(1.0, s + reach);
+    for (int n = 0; n <= 40; ++n) {
+      const double t = from + (to - from) * n / 40;
+      arcplan::robot::forwardKinematics(robot, qa + t * delta, along);
+      for (const Eigen::Vector3d& point : points)
+        ASSERT_LE(normal.dot(along.linkPoses[link] * point), wall - m + 1e-9)
+            << model->linkNames()[part.body] << " trial " << trial << " at " << t << " of the reach " << reach;
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 300);
 }
 
 }  // namespace
