@@ -54,6 +54,15 @@ Eigen::Isometry3d partPose(const detail::Implementation& impl, const arcplan::ro
   return kinematics.linkPoses[impl.robotPartLink[part]] * impl.robotParts[part].offset;
 }
 
+// The distance of two parts and the direction between them as the certified check finds them: the hulls' GJK, or the
+// convex parts' own (`axis` zero where neither gives one).
+double gapAndDirection(const detail::Part& a, const Eigen::Isometry3d& poseA, const detail::Part& b,
+                       const Eigen::Isometry3d& poseB, const CollisionModelOptions& options, Eigen::Vector3d& axis) {
+  axis.setZero();
+  const double d = detail::hullGap(a, poseA, b, poseB, options, 1.0, axis);
+  return axis.isZero() ? detail::partsDistance(a, poseA, b, poseB, false, options, &axis) : d;
+}
+
 // Whether FCL's distance between parts i and j (a robot part, and a robot part or, with `obstacle`, an obstacle part)
 // stays at least m on the motion qa + t·delta at 41 values of t spread over s ± reach (within [0, 1]).
 ::testing::AssertionResult apartWithin(const CollisionModel& model, int i, int j, bool obstacle, const VectorXd& qa,
@@ -95,6 +104,26 @@ std::vector<Eigen::Vector3d> capsulePoints(const Eigen::Vector3d& start, const E
     points.push_back(start + unit(random) * (end - start) + radius * std::cbrt(unit(random)) * offset.normalized());
   }
   return points;
+}
+
+// Whether a bounding volumes' plane with a gap has every point of the other volume at least that gap beyond every
+// point of the moving one along its normal, and the gap is `bound` (the check's bound of the two volumes); without a
+// gap, whether the bound says the volumes touch.
+::testing::AssertionResult separates(const detail::BoundingPlane& plane, double bound,
+                                     const std::vector<Eigen::Vector3d>& moving,
+                                     const std::vector<Eigen::Vector3d>& other) {
+  if (!(plane.gap > 0.0)) {
+    if (bound <= 2e-6) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << "no plane, bound " << bound;
+  }
+  if (std::abs(plane.gap - bound) > 2e-6) return ::testing::AssertionFailure() << plane.gap << " vs bound " << bound;
+  double highest = -1e9, lowest = 1e9;
+  for (const auto& x : moving) highest = std::max(highest, plane.normal.dot(x));
+  for (const auto& x : other) lowest = std::min(lowest, plane.normal.dot(x));
+  if (lowest - highest < plane.gap - 1e-12) {
+    return ::testing::AssertionFailure() << "apart by " << lowest - highest << " along the normal, gap " << plane.gap;
+  }
+  return ::testing::AssertionSuccess();
 }
 
 TEST(PlaneReach, LinkVelocityIsTheDerivativeOfForwardKinematics) {
@@ -164,10 +193,8 @@ TEST(PlaneReach, NoPartComesCloserThanTheClearanceWithinItsReach) {
         const auto [i, j] = group.parts[p];
         const detail::Part &part = impl.robotParts[i], &obstacle = impl.obstacleParts[j];
         const Eigen::Isometry3d pose = partPose(impl, at, i), &obstaclePose = obstacle.offset;
-        // The direction as the certified check finds it: the hulls' GJK, or the convex parts' own.
-        Eigen::Vector3d axis = Eigen::Vector3d::Zero();
-        double d = detail::hullGap(part, pose, obstacle, obstaclePose, options, 1.0, axis);
-        if (axis.isZero()) d = detail::partsDistance(part, pose, obstacle, obstaclePose, false, options, &axis);
+        Eigen::Vector3d axis;
+        const double d = gapAndDirection(part, pose, obstacle, obstaclePose, options, axis);
         if (!(d > m && d < 0.05) || axis.isZero()) continue;
         const double reach = detail::planeReach(part, pose, obstacle, obstaclePose, axis, velocity, curvature, m);
         ++measured;
@@ -232,9 +259,8 @@ TEST(PlaneReach, ALinkKeepsItsClearanceFromANearerLinkWithinItsReach) {
         const int j = firstMoves ? group.parts[p].second : group.parts[p].first;
         const detail::Part &moving = impl.robotParts[i], &standing = impl.robotParts[j];
         const Eigen::Isometry3d pose = partPose(impl, at, i), standingPose = partPose(impl, at, j);
-        Eigen::Vector3d axis = Eigen::Vector3d::Zero();
-        double d = detail::hullGap(moving, pose, standing, standingPose, options, 1.0, axis);
-        if (axis.isZero()) d = detail::partsDistance(moving, pose, standing, standingPose, false, options, &axis);
+        Eigen::Vector3d axis;
+        const double d = gapAndDirection(moving, pose, standing, standingPose, options, axis);
         if (!(d > m && d < 0.05) || axis.isZero()) continue;
         const double reach = detail::planeReach(moving, pose, standing, standingPose, axis, velocity, curvature, m);
         ++measured;
@@ -275,19 +301,10 @@ TEST(PlaneReach, BoundingPlanesSeparateTheirVolumesByTheCheckedBounds) {
         otherStart + Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
     const double otherRadius = size(random);
     const detail::BoundingPlane capsules = detail::capsulesPlane(start, end, radius, otherStart, otherEnd, otherRadius);
-    const double bound = detail::segmentDistance(start, end, otherStart, otherEnd) - radius - otherRadius;
-    if (capsules.gap > 0.0) {
-      ++planes;
-      EXPECT_NEAR(capsules.gap, bound, 2e-6);
-      double highest = -1e9, lowest = 1e9;
-      for (const auto& x : capsulePoints(start, end, radius, capsules.normal, random))
-        highest = std::max(highest, capsules.normal.dot(x));
-      for (const auto& x : capsulePoints(otherStart, otherEnd, otherRadius, capsules.normal, random))
-        lowest = std::min(lowest, capsules.normal.dot(x));
-      EXPECT_GE(lowest - highest, capsules.gap - 1e-12) << "trial " << trial;
-    } else {
-      EXPECT_LE(bound, 2e-6) << "trial " << trial;
-    }
+    EXPECT_TRUE(separates(capsules, detail::segmentDistance(start, end, otherStart, otherEnd) - radius - otherRadius,
+                          capsulePoints(start, end, radius, capsules.normal, random),
+                          capsulePoints(otherStart, otherEnd, otherRadius, capsules.normal, random)))
+        << "capsules, trial " << trial;
     // A box of random size and pose.
     const Eigen::Vector3d half(size(random), size(random), size(random));
     Eigen::Isometry3d box = Eigen::Isometry3d::Identity();
@@ -298,22 +315,15 @@ TEST(PlaneReach, BoundingPlanesSeparateTheirVolumesByTheCheckedBounds) {
     box.translation() = otherStart;
     const Eigen::Isometry3d toBox = box.inverse();
     const detail::BoundingPlane boxPlane = detail::capsuleBoxPlane(start, end, radius, toBox, half);
-    const double boxBound = detail::capsuleBoxLowerBound(toBox * start, toBox * end, radius, half);
-    if (boxPlane.gap > 0.0) {
-      ++planes;
-      EXPECT_NEAR(boxPlane.gap, boxBound, 2e-6);
-      double highest = -1e9, lowest = 1e9;
-      for (const auto& x : capsulePoints(start, end, radius, boxPlane.normal, random))
-        highest = std::max(highest, boxPlane.normal.dot(x));
-      for (int corner = 0; corner < 8; ++corner) {
-        const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(), (corner & 2 ? 1 : -1) * half.y(),
-                                    (corner & 4 ? 1 : -1) * half.z());
-        lowest = std::min(lowest, boxPlane.normal.dot(box * local));
-      }
-      EXPECT_GE(lowest - highest, boxPlane.gap - 1e-12) << "trial " << trial;
-    } else {
-      EXPECT_LE(boxBound, 2e-6) << "trial " << trial;
+    std::vector<Eigen::Vector3d> corners;
+    for (int corner = 0; corner < 8; ++corner) {
+      corners.push_back(box * Eigen::Vector3d((corner & 1 ? 1 : -1) * half.x(), (corner & 2 ? 1 : -1) * half.y(),
+                                              (corner & 4 ? 1 : -1) * half.z()));
     }
+    EXPECT_TRUE(separates(boxPlane, detail::capsuleBoxLowerBound(toBox * start, toBox * end, radius, half),
+                          capsulePoints(start, end, radius, boxPlane.normal, random), corners))
+        << "box, trial " << trial;
+    planes += (capsules.gap > 0.0) + (boxPlane.gap > 0.0);
   }
   EXPECT_GE(planes, 200);
 }
