@@ -14,8 +14,10 @@
 namespace arcplan::collision::detail {
 namespace {
 
-// Slabs about as long as the part is thick: each ball is then at most 12 % wider than the part
-// (sqrt(1 + 1/4)); shorter slabs would tighten that at the price of more spheres per state.
+// Slabs about as long as the part is thick (its diameter about the axis, 2 rho): each ball's radius is then at most
+// sqrt(2) times the part's rho (sqrt(rho^2 + (slab/2)^2)). Half as long (sqrt(1 + 1/4): 12 % wider) made RRTConnect +
+// certified simplification on 30 MBM problems no faster (median of per-problem medians 21.9 -> 21.4 ms, noise; the
+// time goes to the exact checks of pairs truly near a board, not to spheres that overlap too early).
 constexpr double kSlabPerThickness = 1.0;
 // Above this many vertices the segments between every two of them are too many to scan; every slab
 // then takes the part's largest rho (still containing, only looser).
