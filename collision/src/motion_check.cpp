@@ -240,9 +240,14 @@ ReachMeasurement measureReach(const CollisionModel& model, detail::Workspace& da
   for (const auto& [reach, bound, p] : order) {
     // A part pair bounded beyond `enough` that certifies enough, or no less than the best so far, keeps
     // its bound; the others are measured (a distance below `enough` rejects).
-    if (bound >= enough && reach >= std::min(request.wanted, best)) {
-      best = std::min(best, reach);
-      continue;
+    if (bound >= enough) {
+      // Its bounding volumes' plane first where their distance over the rate falls short (no GJK).
+      double kept = reach;
+      if (kept < std::min(request.wanted, best) && planes()) kept = std::max(kept, boundingPlaneReach(p));
+      if (kept >= std::min(request.wanted, best)) {
+        best = std::min(best, kept);
+        continue;
+      }
     }
     const auto [i, j] = group.parts[p];
     const auto &first = impl.robotParts[i], &second = detail::secondPart(impl, group, j);
