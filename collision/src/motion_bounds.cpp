@@ -267,12 +267,10 @@ BoundingPlane capsulesPlane(const Eigen::Vector3d& start, const Eigen::Vector3d&
 
 BoundingPlane capsuleBoxPlane(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
                               const Eigen::Isometry3d& toBox, const Eigen::Vector3d& halfExtents) {
-  const Eigen::Vector3d inBoxStart = toBox * start, inBoxEnd = toBox * end;
-  const Eigen::Array3d lower = inBoxStart.cwiseMin(inBoxEnd).array() - radius;
-  const Eigen::Array3d upper = inBoxStart.cwiseMax(inBoxEnd).array() + radius;
-  const Eigen::Array3d above = lower - halfExtents.array();   // > 0: the capsule's box beyond the box's upper face
-  const Eigen::Array3d below = -halfExtents.array() - upper;  // > 0: below its lower face
-  const Eigen::Vector3d towards = (above > 0.0).select(-above, (below > 0.0).select(below, 0.0)).matrix();
+  const CapsuleBoxGaps gaps = capsuleBoxGaps(toBox * start, toBox * end, radius, halfExtents);
+  // Towards the box: down from beyond its upper face, up from below its lower one; 0 where they overlap.
+  const Eigen::Vector3d apart = gaps.gap.cwiseMax(0.0);
+  const Eigen::Vector3d towards = gaps.aboveUpperFace.select(-apart, apart);
   const double gap = towards.norm();
   if (!(gap > kHullDistanceSlack)) return {};
   return {toBox.linear().transpose() * (towards / gap), gap - kHullDistanceSlack};

@@ -435,11 +435,17 @@ double segmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, con
   return (onFirst - onSecond).norm();
 }
 
-double capsuleBoxLowerBound(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
-                            const Eigen::Vector3d& halfExtents) {
+CapsuleBoxGaps capsuleBoxGaps(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                              const Eigen::Vector3d& halfExtents) {
   const Eigen::Vector3d lower = start.cwiseMin(end).array() - radius;
   const Eigen::Vector3d upper = start.cwiseMax(end).array() + radius;
-  const Eigen::Vector3d gap = (lower - halfExtents).cwiseMax(-halfExtents - upper);
+  const Eigen::Vector3d above = lower - halfExtents, below = -halfExtents - upper;
+  return {above.cwiseMax(below), (above.array() > below.array()).matrix()};
+}
+
+double capsuleBoxLowerBound(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                            const Eigen::Vector3d& halfExtents) {
+  const Eigen::Vector3d gap = capsuleBoxGaps(start, end, radius, halfExtents).gap;
   if (gap.maxCoeff() <= 0.0) return gap.maxCoeff();
   return gap.cwiseMax(0.0).norm();
 }

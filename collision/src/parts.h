@@ -85,9 +85,18 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> segmentClosestPoints(const Eigen::Ve
 double segmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
                        const Eigen::Vector3d& q1);
 
+// Per axis of a box centred at the origin (half extents given), how far a capsule's bounding box (end points, radius,
+// in the box frame) lies beyond the box's faces (> 0: apart along that axis), and whether beyond the upper face.
+struct CapsuleBoxGaps {
+  Eigen::Vector3d gap;
+  Eigen::Matrix<bool, 3, 1> aboveUpperFace;
+};
+CapsuleBoxGaps capsuleBoxGaps(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
+                              const Eigen::Vector3d& halfExtents);
+
 // A lower bound of the distance between a capsule (end points, radius, in the box frame) and a box
 // centred at the origin with the given half extents: the gap between the capsule's bounding box and
-// the box. <= 0 means the bounding volumes overlap.
+// the box (capsuleBoxGaps). <= 0 means the bounding volumes overlap.
 double capsuleBoxLowerBound(const Eigen::Vector3d& start, const Eigen::Vector3d& end, double radius,
                             const Eigen::Vector3d& halfExtents);
 
