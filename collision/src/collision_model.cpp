@@ -333,8 +333,16 @@ bool unclearedPairsCollide(const CollisionModel& model, Workspace& data, const r
     if (!placed) updateRobot(model, data, q);
     placed = true;
   };
+  // The pairs whose spheres touch, deepest first: in a state that collides, the pair whose spheres overlap most is the
+  // likeliest to, and its answer ends the check (the answer is any pair's, whatever the order).
+  auto& uncleared = data.spheres->uncleared;
+  uncleared.clear();
   for (int p = 0; p < prefilter.pairCount(); ++p) {
-    if ((skip != nullptr && skip[p]) || data.spheres->gaps[p * prefilter::kLanes + lane] > 0.0f) continue;
+    const float gap = data.spheres->gaps[p * prefilter::kLanes + lane];
+    if ((skip == nullptr || !skip[p]) && gap <= 0.0f) uncleared.emplace_back(gap, p);
+  }
+  std::sort(uncleared.begin(), uncleared.end());
+  for (const auto& [gap, p] : uncleared) {
     if (p >= bodies) {
       const auto& group = impl.selfGroups[prefilter.selfGroupOf(p - bodies)];
       if (group.floorGrid && group.floorGrid->at(q, groupAxes(impl, data, group)) > 0.0) continue;

@@ -29,6 +29,7 @@ struct SphereWorkspace {
   std::vector<char> floored;   // per pair: its floor (PairGroup::floor) keeps the motion's clearance everywhere
   std::vector<char> deferred;  // per pair: one the spheres left to the certified check (PairsLeft)
   std::vector<char> skip;      // per pair: not asked of FCL (unclearedPairsCollide)
+  std::vector<std::pair<float, int>> uncleared;  // unclearedPairsCollide's pairs to ask FCL: gap, pair
   std::vector<std::pair<int, int>> intervals, next;
   std::vector<int> pending;
 };
