@@ -339,7 +339,9 @@ bool unclearedPairsCollide(const CollisionModel& model, Workspace& data, const r
   uncleared.clear();
   for (int p = 0; p < prefilter.pairCount(); ++p) {
     const float gap = data.spheres->gaps[p * prefilter::kLanes + lane];
-    if ((skip == nullptr || !skip[p]) && gap <= 0.0f) uncleared.emplace_back(gap, p);
+    if ((skip != nullptr && skip[p]) || gap > 0.0f) continue;
+    // A gap that is not a number (no finite sphere) proves nothing: FCL is asked, first, and the sort stays ordered.
+    uncleared.emplace_back(std::isnan(gap) ? -std::numeric_limits<float>::infinity() : gap, p);
   }
   std::sort(uncleared.begin(), uncleared.end());
   for (const auto& [gap, p] : uncleared) {
