@@ -148,7 +148,7 @@ public:
         if (measureArmDetours(armLegs_.size())) continue;
         break;
       }
-      if (query_.ptc()) return failed("time limit reached before a valid route was found (" + lastFailure_ + ")");
+      if (query_.ptc()) return failed("time limit reached before a valid route was found (" + lastFailure() + ")");
       if (walks_ >= kMaxRoutes || static_cast<int>(search_.routesTried()) > kMaxRoutesTaken) break;
       if (!legsLongEnough(*route)) continue;
       const std::vector<Eigen::Vector3d> vias(route->points.begin() + 1, route->points.end() - 1);
@@ -165,7 +165,7 @@ public:
     }
     std::ostringstream message;
     message << (query_.ptc() ? "time limit reached" : "no route through via points is valid") << " ("
-            << search_.routesTried() << " routes walked of " << search_.routesQueued() << "; last: " << lastFailure_
+            << search_.routesTried() << " routes walked of " << search_.routesQueued() << "; last: " << lastFailure()
             << ")";
     return failed(message.str());
   }
@@ -260,16 +260,13 @@ private:
   // The leg leaves the graph; when a cluster's body stopped the walk, that cluster's candidates
   // replace it.
   void dropLeg(const Route& route, std::size_t leg, const Walk& walked) {
-    std::ostringstream failure;
-    failure << toString(walked.waypoints.status) << " on leg " << leg + 1 << " of a route with "
-            << route.points.size() - 2 << " via points";
+    lastFailure_ = DroppedLeg{walked.waypoints.status, leg, route.points.size() - 2, {}, std::nullopt};
     if (!walked.rejected) {
-      lastFailure_ = failure.str() + ": " + walked.waypoints.reason;
+      lastFailure_->reason = walked.waypoints.reason;
       search_.removeLeg(route, leg);
       return;
     }
-    const Rejection rejection = query_.validator.explain(*walked.rejected);
-    lastFailure_ = failure.str() + ": " + rejection.describe(query_.validator.margin());
+    const Rejection& rejection = lastFailure_->rejection.emplace(query_.validator.explain(*walked.rejected));
     const auto cluster = std::find_if(clusters_.begin(), clusters_.end(), [&](const ObstacleCluster& c) {
       return std::any_of(c.names.begin(), c.names.end(), [&](const std::string& n) { return rejection.involves(n); });
     });
@@ -385,7 +382,24 @@ private:
   const bool orientationHeld_;
   std::vector<Suspect> suspects_;
   std::set<std::array<double, 3>> blockedPoints_;  // via points whose posture failed the margin
-  std::string lastFailure_ = "no route";
+  // The last leg dropped, put in words only when a failure reports it (formatting it at every drop cost ~2 % of a
+  // search that drops hundreds).
+  struct DroppedLeg {
+    ConversionStatus status = ConversionStatus::Success;
+    std::size_t leg = 0, viaPoints = 0;
+    std::string reason;                  // the walk's, when no motion was refused
+    std::optional<Rejection> rejection;  // the refused motion's bodies
+  };
+  std::optional<DroppedLeg> lastFailure_;
+  std::string lastFailure() const {
+    if (!lastFailure_) return "no route";
+    std::ostringstream text;
+    text << toString(lastFailure_->status) << " on leg " << lastFailure_->leg + 1 << " of a route with "
+         << lastFailure_->viaPoints << " via points: "
+         << (lastFailure_->rejection ? lastFailure_->rejection->describe(query_.validator.margin())
+                                     : lastFailure_->reason);
+    return text.str();
+  }
   std::vector<std::string> obstacles_;  // bodies that blocked a leg, in the order met
   int routesWalked_ = 0;                // routes tried when the last one was walked
   int walks_ = 0;                       // routes walked (or probed) so far
