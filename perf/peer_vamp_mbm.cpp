@@ -83,6 +83,7 @@ void certify(Outcome& outcome, const std::vector<Joints>& path, const collision:
   const PathCheck check = checkPathExactly(model, path, start, goal, options.validationClearance);
   outcome.validExact = check.valid;
   outcome.exactFailure = check.firstFailure;
+  outcome.certificationUs = check.certificationUs;
   outcome.startError = check.startError;
   outcome.goalError = check.goalError;
 }

@@ -151,9 +151,13 @@ PathCheck checkPathExactly(const collision::CollisionModel& model, const std::ve
   options.minimumClearance = minimumClearance;
   // A one-waypoint path is the motion from that state to itself: the state check.
   const std::size_t motions = std::max<std::size_t>(path.size() - 1, 1);
+  const auto clockStart = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < motions; ++i) {
     const robot::JointVector from = toVector(path[i]);
     const robot::JointVector to = toVector(path[std::min(i + 1, path.size() - 1)]);
+    // Checked as the planners' motion validators check (no last valid fraction asked: finding it searches the motion
+    // from its start, 3.6 times the time on RRTConnect's MBM paths); a refused motion is searched again for it.
+    if (collision::isMotionCollisionFree(model, data, from, to, nullptr, options)) continue;
     double lastValid = 0.0;
     if (!collision::isMotionCollisionFree(model, data, from, to, &lastValid, options)) {
       check.firstFailure = "motion " + std::to_string(i + 1) + " of " + std::to_string(motions) + ": " +
@@ -161,6 +165,8 @@ PathCheck checkPathExactly(const collision::CollisionModel& model, const std::ve
       return check;
     }
   }
+  check.certificationUs =
+      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - clockStart).count();
   check.valid = true;
   return check;
 }

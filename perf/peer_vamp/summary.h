@@ -25,6 +25,7 @@ struct Outcome {
   // The exact check of the path (solved problems only).
   bool validExact = false;
   std::string exactFailure;
+  double certificationUs = 0.0;  // µs to certify the path under the exact meshes (valid paths; PathCheck)
   double startError = 0.0, goalError = 0.0;
   Joints pathStart{}, pathEnd{};
 };
@@ -34,7 +35,8 @@ struct Outcome {
 std::optional<double> percentile(std::vector<double> values, double p);
 
 // problems, valid_inputs, solved, total_us_median, total_us_p95, planning/simplification medians,
-// paths_valid_exact, path_cost_rad_median (times and costs over solved problems); `families` with
+// paths_valid_exact, path_cost_rad_median (times and costs over solved problems), certification_us_median and _p95
+// (over the paths valid under the exact meshes); `families` with
 // the same per family and `per_problem` with every outcome.
 nlohmann::json plannerJson(const std::vector<Outcome>& outcomes);
 

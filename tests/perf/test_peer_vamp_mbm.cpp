@@ -5,12 +5,14 @@
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 #include <unistd.h>
 
 namespace {
@@ -106,6 +108,32 @@ TEST_F(PeerVampMbm, SummarisesEachPlannerOverAllProblemsAndPerFamily) {
   // arcplan plans with the same exact model it is checked with: none of its paths may fail.
   for (const std::string name : {"RRTConnect", "arc"}) {
     EXPECT_EQ(document["planners"][name]["paths_valid_exact"], document["planners"][name]["solved"]) << name;
+  }
+}
+
+// The certificate's cost is reported for exactly the paths valid under the exact meshes, and the planner's median is
+// the median of those (recomputed here from the per-problem values; an odd or even count, numpy's rule).
+TEST_F(PeerVampMbm, ReportsWhatCertifyingEachValidPathCost) {
+  for (const auto& [name, planner] : document.at("planners").items()) {
+    std::vector<double> costs;
+    for (const auto& outcome : planner.at("per_problem")) {
+      const bool valid = outcome.value("path_valid_exact", false);
+      EXPECT_EQ(outcome.contains("certification_us"), valid) << name << " " << outcome.at("problem");
+      if (!valid) continue;
+      const double us = outcome.at("certification_us").get<double>();
+      EXPECT_GT(us, 0.0) << name;  // a valid path has at least one certified motion
+      costs.push_back(us);
+    }
+    if (costs.empty()) {
+      EXPECT_TRUE(planner.at("certification_us_median").is_null()) << name;
+      continue;
+    }
+    std::sort(costs.begin(), costs.end());
+    const std::size_t n = costs.size();
+    const double median = n % 2 == 1 ? costs[n / 2] : 0.5 * (costs[n / 2 - 1] + costs[n / 2]);
+    EXPECT_NEAR(planner.at("certification_us_median").get<double>(), median, 1e-9 * median) << name;
+    EXPECT_LE(planner.at("certification_us_p95").get<double>(), costs.back()) << name;
+    EXPECT_GE(planner.at("certification_us_p95").get<double>(), median) << name;
   }
 }
 
