@@ -156,7 +156,8 @@ PathCheck checkPathExactly(const collision::CollisionModel& model, const std::ve
     const robot::JointVector from = toVector(path[i]);
     const robot::JointVector to = toVector(path[std::min(i + 1, path.size() - 1)]);
     // Checked as the planners' motion validators check (no last valid fraction asked: finding it searches the motion
-    // from its start, 3.6 times the time on RRTConnect's MBM paths); a refused motion is searched again for it.
+    // from its start, 3.6 times the time on RRTConnect's MBM paths); a refused motion is searched again for it, to
+    // describe the failure. Both checks are certificates: a motion either one accepts is certified.
     if (collision::isMotionCollisionFree(model, data, from, to, nullptr, options)) continue;
     double lastValid = 0.0;
     if (!collision::isMotionCollisionFree(model, data, from, to, &lastValid, options)) {

@@ -49,8 +49,8 @@ std::vector<std::pair<std::string, std::string>> sameRangeAsVamp(const std::stri
 
 // The exact verdict on a path: every motion between consecutive waypoints certified free under the
 // meshes (collision::isMotionCollisionFree, MotionCheck::Certified at `minimumClearance`), and how
-// far its ends are from the requested start and goal (largest joint difference, rad); and what certifying it cost:
-// every planner's answer, whoever planned it, costs at least that to certify under the exact meshes.
+// far its ends are from the requested start and goal (largest joint difference, rad); and what certifying it cost with
+// arcplan's certified check, whoever planned the path.
 struct PathCheck {
   bool valid = false;
   std::string firstFailure;  // "motion 3 of 7" when not valid
