@@ -13,9 +13,6 @@ struct ExperimentParameter {
   const char* type;  // SQL type
 };
 
-// OMPL's own run property of the planner's wall-clock solve time (the solve time of OMPL planners).
-inline constexpr const char* kOmplTimeProperty = "time REAL";
-
 // The problem family ("line-sphere", "pillar", "scene file"): the ranking's per-family tables.
 inline constexpr ExperimentParameter kProblemKindParameter{"problem kind", "TEXT"};
 

@@ -16,8 +16,8 @@
 #include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/error.h"
 #include "arcplan/robot/kinematics.h"
-#include "arcplan/trajectory/metric_descriptors.h"
 #include "arcplan/trajectory/time_scaling.h"
+#include "solve_time.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -327,7 +327,7 @@ void ArcPlanner::setSolution(const JointConversionResult& waypoints) {
 void ArcPlanner::getPlannerData(ob::PlannerData& data) const {
   Planner::getPlannerData(data);
   const std::string mode = result_.mode();
-  data.properties[trajectory::solveTimeDescriptor().omplProperty] = number(result_.solveTime);
+  detail::recordSolveTime(data, result_.solveTime);
   // OMPL's Benchmark records RRTConnect's simplification under this name; this planner's is its fallback's
   // first plan's, 0 where there was none.
   data.properties["simplification time REAL"] = number(result_.simplificationTime);

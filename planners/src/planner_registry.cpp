@@ -32,6 +32,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -40,6 +41,7 @@
 
 #include "arcplan/common/error.h"
 #include "arcplan/planners/arc_planner.h"
+#include "solve_time.h"
 
 namespace og = ompl::geometric;
 namespace ob = ompl::base;
@@ -47,9 +49,42 @@ namespace ob = ompl::base;
 namespace arcplan::planners {
 namespace {
 
+// The time of a registered OMPL planner's last solve(), taken around that call alone, as the arc planner takes its
+// own (lastSolveTime). A caller's clock around Planner::solve(fn, checkInterval) — OMPL's Benchmark asks solve(ptc,
+// 0.1), SimpleSetup::solve(t) a hundredth of t from 1 s on — also counts the wait for the thread that evaluates the
+// termination condition: it sleeps in 1 ms steps and is joined after the solve, so a 50 µs RRTConnect solve was
+// recorded as 1.1–1.2 ms in most runs of a campaign on an idle machine (docs/benchmarks.md, "Solve time").
+class SolveClock {
+public:
+  virtual ~SolveClock() = default;
+  double lastSolveTime() const { return lastSolveTime_; }
+
+protected:
+  double lastSolveTime_ = 0.0;
+};
+
+template <typename PlannerType>
+class SolveTimed final : public PlannerType, public SolveClock {
+public:
+  explicit SolveTimed(const ob::SpaceInformationPtr& si) : PlannerType(si) {}
+
+  using PlannerType::solve;
+  ob::PlannerStatus solve(const ob::PlannerTerminationCondition& ptc) override {
+    const auto start = std::chrono::steady_clock::now();
+    const ob::PlannerStatus status = PlannerType::solve(ptc);
+    lastSolveTime_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return status;
+  }
+
+  void getPlannerData(ob::PlannerData& data) const override {
+    PlannerType::getPlannerData(data);
+    detail::recordSolveTime(data, lastSolveTime_);
+  }
+};
+
 template <typename PlannerType>
 ob::PlannerAllocator omplAllocator() {
-  return [](const ob::SpaceInformationPtr& si) { return std::make_shared<PlannerType>(si); };
+  return [](const ob::SpaceInformationPtr& si) { return std::make_shared<SolveTimed<PlannerType>>(si); };
 }
 
 using AllocatorFactory = std::function<ob::PlannerAllocator()>;
@@ -153,6 +188,13 @@ ob::PlannerAllocator plannerAllocator(const std::string& name, const PlannerCont
     if (registered == canonical) return factory();
   }
   throw Error("planner '" + canonical + "' has no allocator");  // unreachable: every name has one
+}
+
+double lastSolveTime(const ob::Planner& planner) {
+  if (const auto* arc = dynamic_cast<const ArcPlanner*>(&planner)) return arc->lastResult().solveTime;
+  if (const auto* timed = dynamic_cast<const SolveClock*>(&planner)) return timed->lastSolveTime();
+  throw Error("planner '" + planner.getName() +
+              "' was not made by the planner registry: it has no solve time of its own");
 }
 
 ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPtr& si, const PlannerContext& context,

@@ -1,8 +1,11 @@
 // The planner registry: names, allocation, parameters by name and their errors.
 #include <gtest/gtest.h>
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/geometric/planners/prm/PRM.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
+#include <chrono>
 #include <string>
 
 #include "arcplan/common/error.h"
@@ -116,6 +119,34 @@ TEST(PlannerRegistry, ArcPlannerNeedsTheCollisionModel) {
   auto problem = thesisProblem("thesis_free");
   EXPECT_NE(errorMessageOf([&] { plannerAllocator("arc", PlannerContext{}); }).find("collision model"),
             std::string::npos);
+}
+
+TEST(PlannerRegistry, EveryPlannerTimesItsOwnSolveAndReportsItInItsPlannerData) {
+  auto problem = thesisProblem("thesis_free");
+  for (const std::string& name : plannerNames()) {
+    const auto planner = makePlanner(name, problem.setup->getSpaceInformation(), problem.plannerContext());
+    planner->setProblemDefinition(problem.setup->getProblemDefinition());
+    problem.setup->getProblemDefinition()->clearSolutionPaths();
+    // As OMPL's Benchmark calls it: the termination condition evaluated on a thread of its own every 0.1 s, whose
+    // join the clock around this call counts and the planner's own does not.
+    const auto start = std::chrono::steady_clock::now();
+    planner->solve(ompl::base::timedPlannerTerminationCondition(0.02), 0.1);
+    const double around = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double own = lastSolveTime(*planner);
+    EXPECT_GT(own, 0.0) << name;
+    EXPECT_LE(own, around) << name;
+    ompl::base::PlannerData data(problem.setup->getSpaceInformation());
+    planner->getPlannerData(data);
+    ASSERT_EQ(data.properties.count("solve time REAL"), 1u) << name;
+    EXPECT_NEAR(std::stod(data.properties.at("solve time REAL")), own, 1e-9 * own) << name;
+  }
+}
+
+TEST(PlannerRegistry, SolveTimeIsOnlyForPlannersTheRegistryMade) {
+  auto problem = thesisProblem("thesis_free");
+  const ompl::geometric::RRTConnect unregistered(problem.setup->getSpaceInformation());
+  const std::string message = errorMessageOf([&] { lastSolveTime(unregistered); });
+  EXPECT_NE(message.find("'RRTConnect' was not made by the planner registry"), std::string::npos) << message;
 }
 
 TEST(PlannerRegistry, RRTConnectSolvesTheThesisProblemWithAValidPath) {

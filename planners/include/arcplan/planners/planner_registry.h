@@ -34,6 +34,14 @@ bool isArcPlanner(const std::string& name);
 // Throws arcplan::Error for an unknown name (listing the names) or an arc planner without a collision model.
 ompl::base::PlannerAllocator plannerAllocator(const std::string& name, const PlannerContext& context);
 
+// The planner's own time for its last solve() call [s], the same measure for every planner the registry makes: the
+// call alone, on the steady clock (the arc planner's without its fallback's first-plan simplification, reported apart;
+// ArcPlannerResult::solveTime). Each also reports it as its planner data's "solve time REAL", which OMPL's Benchmark
+// records per run. OMPL's own `time` counts more: its run thread and, as it calls solve(ptc, 0.1), the wait for the
+// thread evaluating the termination condition, which sleeps in 1 ms steps (up to ~1.1 ms). Throws arcplan::Error for a
+// planner the registry did not make.
+double lastSolveTime(const ompl::base::Planner& planner);
+
 // Allocates the planner and sets its parameters (see setPlannerParameters).
 ompl::base::PlannerPtr makePlanner(const std::string& name, const ompl::base::SpaceInformationPtr& si,
                                    const PlannerContext& context,
