@@ -6,11 +6,13 @@
 // the per-problem arc medians, the largest one, and how many problems are over 5x RRTConnect's median;
 // PlannerArcMbmSuite the same on every 50th MotionBenchMaker UR5 problem (where ../shared/data/mbm_ur5 is);
 // PlannerArcMbmThreads/<n> the arc planner alone on those with `fallback_threads` n, in wall-clock time (its plans are
-// then drawn on n threads: the same paths, sooner where cores are free).
+// then drawn on n threads: the same paths, sooner where cores are free); PlannerArcGeneratedFloor what converting and
+// certifying the arc planner's own answer once costs against RRTConnect's solve (the least any search ending in that
+// answer pays).
 // Times are the solving thread's CPU time (both planners are single-threaded): on this shared 2-core machine the
 // wall clock of a millisecond solve moved several-fold with the other engineers' load. RRTConnect's is its solve
-// alone (no simplifier), in process: without the ~0.1 ms of thread and bookkeeping that OMPL's Benchmark adds to
-// its `time` in a campaign (docs/benchmarks.md's table). Run: build/perf/arcplan_perf
+// alone (no simplifier), in process, as a campaign's `solve time` records it (planners::lastSolveTime; OMPL's `time`
+// adds its harness's threads, up to ~1.1 ms: docs/benchmarks.md, "Solve time"). Run: build/perf/arcplan_perf
 // --benchmark_filter='PlannerArcGenerated|PlannerArcMbm'
 #include <benchmark/benchmark.h>
 #include <ompl/base/PlannerTerminationCondition.h>
@@ -25,9 +27,17 @@
 #include <vector>
 
 #include "arcplan/benchmarks/suite.h"
+#include "arcplan/collision/endpoint_clearance.h"
+#include "arcplan/collision/motion_check.h"
+#include "arcplan/collision/ompl_validity.h"
 #include "arcplan/common/resources.h"
+#include "arcplan/planners/arc_planner.h"
+#include "arcplan/planners/blended_path.h"
+#include "arcplan/planners/cartesian_to_joint.h"
 #include "arcplan/planners/planner_registry.h"
 #include "arcplan/planners/planning_problem.h"
+#include "arcplan/robot/kinematics.h"
+#include "arcplan/robot/ur_inverse_kinematics.h"
 
 namespace {
 
@@ -166,6 +176,86 @@ void PlannerArcSuite(benchmark::State& state, std::vector<Case>& all) {
 
 void PlannerArcGeneratedSuite(benchmark::State& state) { PlannerArcSuite(state, cases()); }
 BENCHMARK(PlannerArcGeneratedSuite)->Unit(benchmark::kMillisecond)->Iterations(5);
+
+// The least any search answering with the arc planner's own path pays: that path (its via points and blends as
+// lastResult() gives them) converted to joints once (convertToJoints, the planner's default resolution) and every
+// motion between its waypoints certified once (collision::PathCertifier, the waypoints expected, at the smallest
+// clearance the endpoint rule asks anywhere: no motion of it needs less) — no failed route, no screen, no set-up.
+// Against RRTConnect's solve on the same problem, both per-problem medians of thread CPU: how many problems are over
+// 5x (and 2.5x) RRTConnect before the search has spent anything. A problem the planner answers by its fallback has no
+// such path and is left out; a conversion that does not reproduce the planner's waypoints, or a motion the
+// certificate refuses, is an error (the floor would not be of the same answer).
+void PlannerArcGeneratedFloor(benchmark::State& state) {
+  auto& all = cases();
+  struct Answer {
+    std::size_t problem;
+    arcplan::planners::BlendedPath path;
+    double clearance;
+    std::size_t waypoints;  // of the planner's answer
+  };
+  std::vector<Answer> answers;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    timedSolve(state, all[i], all[i].arc);
+    const auto& result = dynamic_cast<const arcplan::planners::ArcPlanner&>(*all[i].arc).lastResult();
+    if (result.mode() != "arc") continue;
+    const PlanningProblem& planning = all[i].planning;
+    const arcplan::robot::RobotModel& robot = planning.collisionModel->robot();
+    const auto* validator = dynamic_cast<const arcplan::collision::JointMotionValidator*>(
+        planning.setup->getSpaceInformation()->getMotionValidator().get());
+    const double margin = validator->options().minimumClearance;  // c_m, as the arc planner's walks keep it
+    const arcplan::collision::EndpointClearance required(
+        *planning.collisionModel, margin, margin,
+        {arcplan::robot::JointVector(planning.start), arcplan::robot::JointVector(planning.goal)});
+    double smallest = required.motionClearance();
+    for (const auto& zone : required.zones()) smallest = std::min(smallest, zone.motionClearance);
+    answers.push_back(
+        {i,
+         arcplan::planners::BlendedPath(arcplan::robot::tipPose(robot, planning.start),
+                                        arcplan::robot::tipPose(robot, planning.goal), result.viaPoints, result.blends),
+         smallest, result.waypointArcLengths.size()});
+  }
+  std::vector<std::vector<double>> floorTimes(answers.size()), rrtConnectTimes(answers.size());
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < answers.size(); ++k) {
+      Case& one = all[answers[k].problem];
+      rrtConnectTimes[k].push_back(timedSolve(state, one, one.rrtConnect));
+      const arcplan::collision::CollisionModel& model = *one.planning.collisionModel;
+      const arcplan::robot::UrInverseKinematics ik(model.robot());
+      arcplan::collision::CollisionData data(model);
+      const double start = threadMicros();
+      const arcplan::planners::JointConversionResult converted = arcplan::planners::convertToJoints(
+          ik, answers[k].path, one.planning.start, one.planning.goal, arcplan::planners::JointConversionOptions{});
+      Eigen::MatrixXd waypoints(6, static_cast<Eigen::Index>(converted.joints.size()));
+      for (std::size_t w = 0; w < converted.joints.size(); ++w) {
+        waypoints.col(static_cast<Eigen::Index>(w)) = converted.joints[w];
+      }
+      arcplan::collision::PathCertifier certifier(model, data, answers[k].clearance);
+      certifier.expect(waypoints);
+      bool certified = certifier.start(converted.joints.front());
+      for (std::size_t w = 1; certified && w < converted.joints.size(); ++w) {
+        certified = certifier.extend(converted.joints[w]);
+      }
+      floorTimes[k].push_back(threadMicros() - start);
+      if (!converted.ok() || converted.joints.size() != answers[k].waypoints || !certified) {
+        state.SkipWithError("the arc answer did not convert to its waypoints or certify again");
+      }
+    }
+  }
+  std::vector<double> floors, ratios;
+  for (std::size_t k = 0; k < answers.size(); ++k) {
+    floors.push_back(median(floorTimes[k]));
+    ratios.push_back(floors.back() / median(rrtConnectTimes[k]));
+  }
+  state.counters["floor_median_of_medians_us"] = median(floors);
+  state.counters["floor_ratio_median"] = median(ratios);
+  state.counters["floor_ratio_largest"] = *std::max_element(ratios.begin(), ratios.end());
+  state.counters["problems_over_5x"] =
+      static_cast<double>(std::count_if(ratios.begin(), ratios.end(), [](double r) { return r > 5.0; }));
+  state.counters["problems_over_2_5x"] =
+      static_cast<double>(std::count_if(ratios.begin(), ratios.end(), [](double r) { return r > 2.5; }));
+  state.counters["problems"] = static_cast<double>(answers.size());
+}
+BENCHMARK(PlannerArcGeneratedFloor)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 // Problems of the families the 5x criterion missed on (docs/benchmarks.md, issue 23's table), one each.
 const bool registered = [] {
