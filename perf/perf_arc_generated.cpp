@@ -202,6 +202,10 @@ void PlannerArcGeneratedFloor(benchmark::State& state) {
     const arcplan::robot::RobotModel& robot = planning.collisionModel->robot();
     const auto* validator = dynamic_cast<const arcplan::collision::JointMotionValidator*>(
         planning.setup->getSpaceInformation()->getMotionValidator().get());
+    if (validator == nullptr) {
+      state.SkipWithError("a problem without the certified motion validator");
+      return;
+    }
     const double margin = validator->options().minimumClearance;  // c_m, as the arc planner's walks keep it
     const arcplan::collision::EndpointClearance required(
         *planning.collisionModel, margin, margin,

@@ -17,7 +17,7 @@
 #include "arcplan/common/error.h"
 #include "arcplan/robot/kinematics.h"
 #include "arcplan/trajectory/time_scaling.h"
-#include "solve_time.h"
+#include "planner_properties.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -53,12 +53,7 @@ const std::vector<RealParameter>& realParameters() {
   return table;
 }
 
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(10);
-  text << value;
-  return text.str();
-}
+using detail::propertyNumber;
 
 }  // namespace
 
@@ -103,7 +98,8 @@ double ArcPlanner::checkedParameter(const std::string& name, double value) const
 
 int ArcPlanner::checkedCount(const std::string& name, double value, const std::string& what) const {
   if (checkedParameter(name, value) != std::round(value)) {
-    throw Error("arc planner parameter " + name + " must be a whole number of " + what + ", got " + number(value));
+    throw Error("arc planner parameter " + name + " must be a whole number of " + what + ", got " +
+                propertyNumber(value));
   }
   return static_cast<int>(value);
 }
@@ -330,20 +326,20 @@ void ArcPlanner::getPlannerData(ob::PlannerData& data) const {
   detail::recordSolveTime(data, result_.solveTime);
   // OMPL's Benchmark records RRTConnect's simplification under this name; this planner's is its fallback's
   // first plan's, 0 where there was none.
-  data.properties["simplification time REAL"] = number(result_.simplificationTime);
+  data.properties["simplification time REAL"] = propertyNumber(result_.simplificationTime);
   data.properties["arc mode ENUM"] = mode == "arc" ? "1" : mode == "fallback" ? "2" : "0";
-  data.properties["cartesian fraction REAL"] = number(result_.cartesianFraction);
+  data.properties["cartesian fraction REAL"] = propertyNumber(result_.cartesianFraction);
   data.properties["arc via points INTEGER"] = std::to_string(result_.viaPoints.size());
   data.properties["arc routes INTEGER"] = std::to_string(result_.routesTried);
   data.properties["arc detours INTEGER"] = std::to_string(result_.detours.size());
-  data.properties["arc analytic length REAL"] = number(result_.tcpPathLength);
+  data.properties["arc analytic length REAL"] = propertyNumber(result_.tcpPathLength);
   const Detour first =
       result_.detours.empty() ? Detour{0.0, ArcParameters{0.0, 0.0, 0.0, 0.0}, 0.0} : result_.detours[0];
-  data.properties["arc sagitta REAL"] = number(first.shape.sagitta);
-  data.properties["arc half chord REAL"] = number(first.shape.halfChord);
-  data.properties["arc entry radius REAL"] = number(first.shape.entryRadius);
-  data.properties["arc exit radius REAL"] = number(first.shape.exitRadius);
-  data.properties["arc plane angle REAL"] = number(first.planeAngle);
+  data.properties["arc sagitta REAL"] = propertyNumber(first.shape.sagitta);
+  data.properties["arc half chord REAL"] = propertyNumber(first.shape.halfChord);
+  data.properties["arc entry radius REAL"] = propertyNumber(first.shape.entryRadius);
+  data.properties["arc exit radius REAL"] = propertyNumber(first.shape.exitRadius);
+  data.properties["arc plane angle REAL"] = propertyNumber(first.planeAngle);
   if (solutionJoints_.empty()) return;
   // Built on request only: PlannerData refers to states the planner owns.
   if (!solution_) {

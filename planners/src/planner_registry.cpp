@@ -41,7 +41,7 @@
 
 #include "arcplan/common/error.h"
 #include "arcplan/planners/arc_planner.h"
-#include "solve_time.h"
+#include "planner_properties.h"
 
 namespace og = ompl::geometric;
 namespace ob = ompl::base;
